@@ -1,0 +1,34 @@
+#pragma once
+// Direct evaluation of points, derivatives up to second order and normals of a
+// B-spline or NURBS surface at one parameter pair.
+
+#include <Eigen/Core>
+
+#include "argil/core/bspline_surface.hpp"
+
+namespace argil {
+
+/// Position and partial derivatives of S at (u, v) [mm, mm per unit parameter].
+/// Entries above the requested order are zero.
+struct SurfaceDerivatives {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d du = Eigen::Vector3d::Zero();
+  Eigen::Vector3d dv = Eigen::Vector3d::Zero();
+  Eigen::Vector3d duu = Eigen::Vector3d::Zero();
+  Eigen::Vector3d duv = Eigen::Vector3d::Zero();
+  Eigen::Vector3d dvv = Eigen::Vector3d::Zero();
+};
+
+/// Point S(u, v). (u, v) is clamped to the domain. Precondition: validate(surface).ok().
+Eigen::Vector3d evaluate(const BSplineSurface& surface, double u, double v);
+
+/// Point and derivatives up to `order` (0, 1 or 2), rational surfaces through
+/// the quotient rule on homogeneous derivatives (The NURBS Book A3.6, A4.4).
+SurfaceDerivatives evaluate_derivatives(const BSplineSurface& surface, double u, double v,
+                                        int order = 2);
+
+/// Unit normal S_u x S_v / |S_u x S_v| from first derivatives, or the zero
+/// vector where the surface is degenerate (S_u x S_v = 0, e.g. at a pole).
+Eigen::Vector3d unit_normal(const SurfaceDerivatives& d);
+
+}  // namespace argil
