@@ -105,4 +105,12 @@ struct Box3 {
 };
 Box3 control_point_box(const BSplineSurface& surface);
 
+/// Homogeneous control points (w x, w y, w z, w), one row per pole; w = 1 when
+/// the surface is polynomial.
+Eigen::MatrixX4d homogeneous_control_points(const BSplineSurface& surface);
+
+/// Sets control points (and weights when `rational`) from homogeneous rows.
+void set_homogeneous_control_points(BSplineSurface& surface, const Eigen::MatrixX4d& pw,
+                                    bool rational);
+
 }  // namespace argil

@@ -3,6 +3,7 @@
 // B-spline or NURBS surface at one parameter pair.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "argil/core/bspline_surface.hpp"
 
@@ -28,7 +29,8 @@ SurfaceDerivatives evaluate_derivatives(const BSplineSurface& surface, double u,
                                         int order = 2);
 
 /// Unit normal S_u x S_v / |S_u x S_v| from first derivatives, or the zero
-/// vector where the surface is degenerate (S_u x S_v = 0, e.g. at a pole).
+/// vector where the surface is degenerate: |S_u x S_v| at most 64 ulps of
+/// max(|S_u|, |S_v|)^2 (a collapsed edge or pole, where one tangent is noise).
 Eigen::Vector3d unit_normal(const SurfaceDerivatives& d);
 
 }  // namespace argil

@@ -1,0 +1,100 @@
+#include "argil/core/bezier.hpp"
+#include <cmath>
+
+#include "argil/core/basis.hpp"
+#include "argil/core/knot_insertion.hpp"
+
+namespace argil {
+
+namespace {
+
+int count_equal(const Eigen::VectorXd& knots, double t) {
+  return knot_multiplicity(knots, t);
+}
+
+int last_index_of(const Eigen::VectorXd& knots, double t) {
+  for (Eigen::Index k = knots.size() - 1; k >= 0; --k) {
+    if (knots[k] == t) return static_cast<int>(k);
+  }
+  return -1;
+}
+
+/// Operator of span s: insert both span ends to multiplicity p into the local
+/// knot vector U[s-p .. s+p+1] refining the identity "points".
+Eigen::MatrixXd span_operator(int p, const Eigen::VectorXd& U, int s) {
+  CurveNet local{p, U.segment(s - p, 2 * p + 2), Eigen::MatrixXd::Identity(p + 1, p + 1)};
+  const double a = U[s];
+  const double b = U[s + 1];
+  const int missing_a = p - count_equal(local.knots, a);
+  if (missing_a > 0) local = insert_knot(local, a, missing_a);
+  const int missing_b = p - count_equal(local.knots, b);
+  if (missing_b > 0) local = insert_knot(local, b, missing_b);
+  const int k = last_index_of(local.knots, a);
+  return local.points.middleRows(k - p, p + 1);
+}
+
+}  // namespace
+
+BezierExtraction bezier_extraction(int degree, const Eigen::VectorXd& knots) {
+  BezierExtraction out;
+  const int count = static_cast<int>(knots.size()) - degree - 1;
+  for (int s = degree; s < count; ++s) {
+    if (knots[s] < knots[s + 1]) {
+      out.spans.push_back(s);
+      out.operators.push_back(span_operator(degree, knots, s));
+    }
+  }
+  return out;
+}
+
+SubdivisionMatrices subdivision_matrices(int p) {
+  // Binomial coefficients C(i, j) by Pascal's rule, exact in double up to p ~ 50.
+  Eigen::MatrixXd binomial = Eigen::MatrixXd::Zero(p + 1, p + 1);
+  for (int i = 0; i <= p; ++i) {
+    binomial(i, 0) = 1.0;
+    for (int j = 1; j <= i; ++j) binomial(i, j) = binomial(i - 1, j - 1) + (j < i ? binomial(i - 1, j) : 0.0);
+  }
+  SubdivisionMatrices m{Eigen::MatrixXd::Zero(p + 1, p + 1), Eigen::MatrixXd::Zero(p + 1, p + 1)};
+  for (int i = 0; i <= p; ++i) {
+    const double left_scale = std::ldexp(1.0, -i);
+    const double right_scale = std::ldexp(1.0, -(p - i));
+    for (int j = 0; j <= i; ++j) m.left(i, j) = binomial(i, j) * left_scale;
+    for (int j = i; j <= p; ++j) m.right(i, j) = binomial(p - i, j - i) * right_scale;
+  }
+  return m;
+}
+
+Eigen::Vector3d evaluate(const BezierPatch& patch, double s, double t) {
+  const Eigen::VectorXd bu = bernstein(patch.degree_u, s);
+  const Eigen::VectorXd bv = bernstein(patch.degree_v, t);
+  Eigen::Vector4d h = Eigen::Vector4d::Zero();
+  for (int a = 0; a <= patch.degree_u; ++a) {
+    for (int b = 0; b <= patch.degree_v; ++b) {
+      h += bu[a] * bv[b] * patch.points.row(a * (patch.degree_v + 1) + b).transpose();
+    }
+  }
+  return h.head<3>() / h[3];
+}
+
+BezierPatch subdivide(const BezierPatch& patch, const SubdivisionMatrices& su,
+                      const SubdivisionMatrices& sv, bool split_u, int half_u, bool split_v,
+                      int half_v) {
+  const int p = patch.degree_u;
+  const int q = patch.degree_v;
+  BezierPatch child{p, q, Eigen::MatrixX4d(patch.points.rows(), 4)};
+  const Eigen::MatrixXd& hu = half_u == 0 ? su.left : su.right;
+  const Eigen::MatrixXd& hv = half_v == 0 ? sv.left : sv.right;
+  for (int c = 0; c < 4; ++c) {
+    // Coordinate c as a (p+1) x (q+1) net; child = Hu * B * Hv^T.
+    Eigen::MatrixXd net(p + 1, q + 1);
+    for (int a = 0; a <= p; ++a)
+      for (int b = 0; b <= q; ++b) net(a, b) = patch.points(a * (q + 1) + b, c);
+    if (split_u) net = hu * net;
+    if (split_v) net = net * hv.transpose();
+    for (int a = 0; a <= p; ++a)
+      for (int b = 0; b <= q; ++b) child.points(a * (q + 1) + b, c) = net(a, b);
+  }
+  return child;
+}
+
+}  // namespace argil
