@@ -45,9 +45,9 @@ void basis_derivatives(int p, const Eigen::VectorXd& U, int span, double t, int 
   assert(p >= 1 && p <= kMaxDegree);
   assert(out.rows() == order + 1 && out.cols() == p + 1);
   constexpr int kN = kMaxDegree + 1;
-  std::array<std::array<double, kN>, kN> ndu{};  // basis values and knot differences
-  std::array<double, kN> left{};
-  std::array<double, kN> right{};
+  std::array<std::array<double, kN>, kN> ndu;  // basis values and knot differences (no zero fill: hot path)
+  std::array<double, kN> left;
+  std::array<double, kN> right;
   ndu[0][0] = 1.0;
   for (int j = 1; j <= p; ++j) {
     left[j] = t - U[span + 1 - j];
@@ -67,7 +67,7 @@ void basis_derivatives(int p, const Eigen::VectorXd& U, int span, double t, int 
   for (int k = top + 1; k <= order; ++k) out.row(k).setZero();
   if (top == 0) return;
 
-  std::array<std::array<double, kN>, 2> a{};
+  std::array<std::array<double, kN>, 2> a;
   for (int r = 0; r <= p; ++r) {
     int s1 = 0;
     int s2 = 1;

@@ -1,0 +1,54 @@
+# Argil: two commands on a fresh Debian 12 machine.
+#   make demo   installs what is missing, builds, runs the bundled example
+#   make test   installs what is missing, builds, runs the whole suite (ctest)
+# Also: make bench, make test-sanitize, make format, make clean.
+
+BUILD      ?= build
+BENCH_BUILD ?= build-bench
+SAN_BUILD  ?= build-sanitize
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+CMAKE_ARGS ?=
+
+PACKAGES := g++ make cmake ninja-build libeigen3-dev libocct-data-exchange-dev libtbb-dev \
+            libassimp-dev nlohmann-json3-dev catch2
+BENCH_PACKAGES := libbenchmark-dev libfcl-dev libsisl-dev
+
+.PHONY: deps bench-deps configure build test demo bench test-sanitize format clean
+
+# Installs only the Debian packages that are missing; never touches apt otherwise.
+deps:
+	@./tools/install-packages $(PACKAGES)
+
+bench-deps:
+	@./tools/install-packages $(PACKAGES) $(BENCH_PACKAGES)
+
+configure: deps
+	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARGIL_WERROR=ON $(CMAKE_ARGS)
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	@cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS)
+
+demo: build
+	@./tools/demo $(BUILD)
+
+bench: bench-deps
+	@cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARGIL_BUILD_TESTS=OFF \
+	  -DARGIL_BUILD_BENCH=ON -DARGIL_WERROR=ON $(CMAKE_ARGS)
+	@cmake --build $(BENCH_BUILD) -j $(JOBS)
+	@for b in $(BENCH_BUILD)/tests/bench/bench_*; do echo "== $$b"; $$b || exit 1; done
+
+test-sanitize: deps
+	@cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DARGIL_SANITIZE=ON \
+	  -DARGIL_WERROR=ON $(CMAKE_ARGS)
+	@cmake --build $(SAN_BUILD) -j $(JOBS)
+	@cd $(SAN_BUILD) && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --output-on-failure --no-tests=error -j $(JOBS)
+
+format:
+	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
+
+clean:
+	@rm -rf $(BUILD) $(BENCH_BUILD) $(SAN_BUILD)
