@@ -3,6 +3,9 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <vector>
+
+#include "commands.hpp"
 
 namespace {
 
@@ -10,7 +13,13 @@ void print_usage(std::FILE* out) {
   std::fprintf(out,
                "usage: argil <command> [args]\n"
                "commands:\n"
-               "  --help       this text\n");
+               "  info FILE                         faces, degrees, control nets, trims,\n"
+               "                                    units and bounding box of a model\n"
+               "  convert IN OUT [--tolerance T]    convert between STEP (.step .stp),\n"
+               "                                    IGES (.iges .igs), JSON (.json) and meshes\n"
+               "                                    (.stl .obj .ply .glb); T is the mesh chord\n"
+               "                                    tolerance [mm], default 1e-3 of the model size\n"
+               "  --help                            this text\n");
 }
 
 }  // namespace
@@ -18,9 +27,13 @@ void print_usage(std::FILE* out) {
 int main(int argc, char** argv) {
   if (argc < 2 || std::strcmp(argv[1], "--help") == 0) {
     print_usage(argc < 2 ? stderr : stdout);
-    return argc < 2 ? 2 : 0;
+    return argc < 2 ? argil::cli::kExitUsage : argil::cli::kExitOk;
   }
+  const std::string command = argv[1];
+  const std::vector<std::string> args(argv + 2, argv + argc);
+  if (command == "info") return argil::cli::run_info(args);
+  if (command == "convert") return argil::cli::run_convert(args);
   std::fprintf(stderr, "argil: unknown command '%s'\n", argv[1]);
   print_usage(stderr);
-  return 2;
+  return argil::cli::kExitUsage;
 }

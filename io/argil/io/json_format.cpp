@@ -2,6 +2,7 @@
 #include "argil/io/json_format.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -45,6 +46,22 @@ std::string quote_non_finite_literals(std::string_view text) {
         replaced = true;
         break;
       }
+    }
+    if (!replaced && (c == '-' || (c >= '0' && c <= '9'))) {
+      // A number too large for a double (1e999) would stop the parser without
+      // a field path; mark it like Infinity.
+      const std::size_t end = text.find_first_not_of("+-.0123456789eE", i);
+      const std::string token(text.substr(i, end - i));
+      if (std::isinf(std::strtod(token.c_str(), nullptr))) {
+        out += '"';
+        out += kNonFiniteMarker;
+        out += token;
+        out += '"';
+      } else {
+        out += token;
+      }
+      i += token.size() - 1;
+      replaced = true;
     }
     if (!replaced) out += c;
   }

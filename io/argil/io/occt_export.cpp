@@ -28,7 +28,9 @@
 #include <TColgp_Array1OfPnt2d.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <TopoDS.hxx>
+#include <TopLoc_Location.hxx>
 #include <TopoDS_Compound.hxx>
+#include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
@@ -120,6 +122,18 @@ gp_Pnt surface_point(const Handle(Geom_BSplineSurface) & s, const gp_Pnt2d& uv) 
   return s->Value(uv.X(), uv.Y());
 }
 
+// True when the curve maps to a single 3D point (a surface pole or collapsed
+// side): such an edge is "degenerated" in OCCT and has no 3D curve.
+bool is_degenerate(const Handle(Geom2d_BSplineCurve) & curve,
+                   const Handle(Geom_BSplineSurface) & surface, double tolerance) {
+  const gp_Pnt start = surface_point(surface, curve->StartPoint());
+  for (double f : {0.25, 0.5, 0.75, 1.0}) {
+    const double t = curve->FirstParameter() + f * (curve->LastParameter() - curve->FirstParameter());
+    if (start.Distance(surface_point(surface, curve->Value(t))) > tolerance) return false;
+  }
+  return true;
+}
+
 // A wire through the loop's pcurves. Consecutive curves share one vertex whose
 // tolerance covers the 3D gap between the curve ends.
 Result<TopoDS_Wire> make_wire(const TrimLoop& loop, const Handle(Geom_BSplineSurface) & surface) {
@@ -128,18 +142,48 @@ Result<TopoDS_Wire> make_wire(const TrimLoop& loop, const Handle(Geom_BSplineSur
   for (const TrimCurve& c : loop.curves) curves.push_back(to_occt(c));
   const std::size_t n = curves.size();
   std::vector<TopoDS_Vertex> vertices(n);
+  std::vector<gp_Pnt> positions(n);
+  std::vector<double> tolerances(n);
   for (std::size_t k = 0; k < n; ++k) {
     const gp_Pnt start = surface_point(surface, curves[k]->StartPoint());
     const gp_Pnt previous_end = surface_point(surface, curves[(k + n - 1) % n]->EndPoint());
-    const double gap = start.Distance(previous_end);
-    const gp_Pnt middle((start.XYZ() + previous_end.XYZ()) * 0.5);
-    builder.MakeVertex(vertices[k], middle, std::max(Precision::Confusion(), 0.6 * gap));
+    positions[k] = gp_Pnt((start.XYZ() + previous_end.XYZ()) * 0.5);
+    tolerances[k] = std::max(Precision::Confusion(), 0.6 * start.Distance(previous_end));
+  }
+  std::vector<bool> degenerate(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    degenerate[k] = is_degenerate(curves[k], surface, Precision::Confusion());
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    // Loop corners at one 3D point are one vertex: the ends of a curve closed in
+    // 3D (a full circle, a collapsed side) and the two ends of a seam.
+    bool shared = false;
+    for (std::size_t j = 0; j < k && !shared; ++j) {
+      if (positions[k].Distance(positions[j]) <= std::max(tolerances[k], tolerances[j])) {
+        vertices[k] = vertices[j];
+        shared = true;
+      }
+    }
+    if (!shared) builder.MakeVertex(vertices[k], positions[k], tolerances[k]);
   }
   TopoDS_Wire wire;
   builder.MakeWire(wire);
   for (std::size_t k = 0; k < n; ++k) {
-    BRepBuilderAPI_MakeEdge edge(curves[k], surface, vertices[k], vertices[(k + 1) % n],
-                                 curves[k]->FirstParameter(), curves[k]->LastParameter());
+    const TopoDS_Vertex& first = vertices[k];
+    const TopoDS_Vertex& last = vertices[(k + 1) % n];
+    if (degenerate[k]) {
+      TopoDS_Edge edge;
+      builder.MakeEdge(edge);
+      builder.UpdateEdge(edge, curves[k], surface, TopLoc_Location(), Precision::Confusion());
+      builder.Degenerated(edge, true);
+      builder.Add(edge, first.Oriented(TopAbs_FORWARD));
+      builder.Add(edge, last.Oriented(TopAbs_REVERSED));
+      builder.Range(edge, curves[k]->FirstParameter(), curves[k]->LastParameter());
+      builder.Add(wire, edge);
+      continue;
+    }
+    BRepBuilderAPI_MakeEdge edge(curves[k], surface, first, last, curves[k]->FirstParameter(),
+                                 curves[k]->LastParameter());
     if (!edge.IsDone()) {
       return Status::error(StatusCode::invalid_argument,
                            "trim curve " + std::to_string(k) + " gives no edge (error " +

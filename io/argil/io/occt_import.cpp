@@ -50,6 +50,7 @@
 
 #include "argil/io/cad_exchange.hpp"
 #include "argil/io/occt_console.hpp"
+#include "argil/io/trim_curve.hpp"
 
 namespace argil::io {
 namespace {
@@ -151,6 +152,23 @@ double unit_to_mm(const std::string& name) {
   return 0.0;
 }
 
+// IGES 5.3 global parameter 14 (unit flag); 3 means "see the unit name".
+double iges_unit_to_mm(int flag, const std::string& name) {
+  switch (flag) {
+    case 1: return 25.4;
+    case 2: return 1.0;
+    case 4: return 304.8;
+    case 5: return 1609344.0;
+    case 6: return 1000.0;
+    case 7: return 1e6;
+    case 8: return 0.0254;
+    case 9: return 1e-3;
+    case 10: return 10.0;
+    case 11: return 2.54e-5;
+    default: return unit_to_mm(name);
+  }
+}
+
 // OCCT's knots-with-multiplicities to argil's flat clamped knot vector.
 Eigen::VectorXd flat_knots(const TColStd_Array1OfReal& sequence) {
   Eigen::VectorXd knots(sequence.Length());
@@ -211,6 +229,18 @@ Handle(Geom_BSplineSurface) clamped_copy(const Handle(Geom_BSplineSurface) & s) 
   Handle(Geom_BSplineSurface) copy = Handle(Geom_BSplineSurface)::DownCast(s->Copy());
   if (copy->IsUPeriodic()) copy->SetUNotPeriodic();
   if (copy->IsVPeriodic()) copy->SetVNotPeriodic();
+  // Non-periodic OCCT surfaces may still have end knots of lower multiplicity
+  // (unclamped); segmenting to the full domain clamps them without changing
+  // the parametrisation.
+  const bool clamped = copy->UMultiplicity(1) == copy->UDegree() + 1 &&
+                       copy->UMultiplicity(copy->NbUKnots()) == copy->UDegree() + 1 &&
+                       copy->VMultiplicity(1) == copy->VDegree() + 1 &&
+                       copy->VMultiplicity(copy->NbVKnots()) == copy->VDegree() + 1;
+  if (!clamped) {
+    double u0 = 0.0, u1 = 0.0, v0 = 0.0, v1 = 0.0;
+    copy->Bounds(u0, u1, v0, v1);
+    copy->Segment(u0, u1, v0, v1);
+  }
   return copy;
 }
 
@@ -230,6 +260,11 @@ Result<TrimCurve> edge_trim(const TopoDS_Edge& edge, const TopoDS_Face& face) {
     bspline = Handle(Geom2d_BSplineCurve)::DownCast(bspline->Copy());
   }
   if (bspline->IsPeriodic()) bspline->SetNotPeriodic();
+  const int degree = bspline->Degree();
+  if (bspline->Multiplicity(1) <= degree || bspline->Multiplicity(bspline->NbKnots()) <= degree) {
+    // Unclamped ends: segmenting to the full range clamps them, same curve.
+    bspline->Segment(bspline->FirstParameter(), bspline->LastParameter());
+  }
   if (edge.Orientation() == TopAbs_REVERSED) bspline->Reverse();
   return to_argil(bspline);
 }
@@ -315,6 +350,19 @@ Result<std::vector<TrimLoop>> face_loops(const TopoDS_Face& face) {
   return loops;
 }
 
+// How the file itself names an entity: "#<id>" in STEP, "D<directory entry>" in IGES.
+std::string entity_label(const Handle(Interface_InterfaceModel) & model,
+                         const Handle(Standard_Transient) & entity, CadFormat format) {
+  const int number = model->Number(entity);
+  if (number <= 0) return "";
+  if (format == CadFormat::step) {
+    const auto step = Handle(StepData_StepModel)::DownCast(model);
+    const int id = step.IsNull() ? 0 : step->IdentLabel(entity);
+    return "#" + std::to_string(id > 0 ? id : number);
+  }
+  return "D" + std::to_string(2 * number - 1);
+}
+
 // Where a face came from: "#<entity>" in STEP, "D<directory entry>" in IGES.
 void describe_source(const Handle(XSControl_WorkSession) & session, const TopoDS_Shape& face,
                      CadFormat format, FaceRecord& record) {
@@ -323,15 +371,11 @@ void describe_source(const Handle(XSControl_WorkSession) & session, const TopoDS
   Handle(Standard_Transient) entity = reader->EntityFromShapeResult(face, 1);
   if (entity.IsNull()) entity = reader->EntityFromShapeResult(face, -1);
   if (entity.IsNull()) return;
-  const Handle(Interface_InterfaceModel) model = session->Model();
-  const int number = model->Number(entity);
-  if (number <= 0) return;
+  record.source_id = entity_label(session->Model(), entity, format);
   if (format == CadFormat::step) {
-    record.source_id = "#" + std::to_string(number);
     const auto item = Handle(StepRepr_RepresentationItem)::DownCast(entity);
     if (!item.IsNull() && !item->Name().IsNull()) record.name = item->Name()->ToCString();
   } else {
-    record.source_id = "D" + std::to_string(2 * number - 1);
     const auto iges = Handle(IGESData_IGESEntity)::DownCast(entity);
     if (!iges.IsNull() && iges->HasName()) record.name = iges->NameValue()->ToCString();
   }
@@ -372,16 +416,28 @@ Result<FaceRecord> face_record(const TopoDS_Face& oriented_face) {
   if (!loops.ok()) return loops.status();
   record.loops = std::move(loops).value();
   if (is_natural_boundary(record.loops, record.surface)) record.loops.clear();
+  const Status valid = validate_face(record, 0);
+  if (!valid.ok()) {
+    // Drop validate_face's "face 0" prefix: the caller names the face.
+    return Status::error(valid.code, valid.message.substr(valid.message.find(' ', 5) + 1));
+  }
   return record;
 }
 
 // First failure OCCT recorded while loading, if any ("" when none).
-std::string first_load_failure(const Handle(XSControl_WorkSession) & session) {
+std::string first_load_failure(const Handle(XSControl_WorkSession) & session,
+                               CadFormat format) {
+  const Handle(Interface_InterfaceModel) model = session->Model();
   const Interface_CheckIterator checks = session->ModelCheckList();
   for (checks.Start(); checks.More(); checks.Next()) {
     const Handle(Interface_Check) check = checks.Value();
     if (check->HasFailed()) {
-      std::string text = "entity " + std::to_string(checks.Number());
+      const int number = checks.Number();
+      std::string text = "the file";
+      if (number > 0 && number <= model->NbEntities()) {
+        text = "entity " + entity_label(model, model->Value(number), format) + " (" +
+               model->TypeName(model->Value(number), false) + ")";
+      }
       if (check->NbFails() > 0) text += ": " + std::string(check->CFail(1));
       return text;
     }
@@ -398,12 +454,12 @@ std::string first_unsupported_entity(const Handle(Interface_InterfaceModel) & mo
     if (format == CadFormat::step) {
       const auto unknown = Handle(StepData_UndefinedEntity)::DownCast(entity);
       if (!unknown.IsNull()) {
-        return "#" + std::to_string(n) + " (" + std::string(unknown->StepType()) + ")";
+        return entity_label(model, entity, format) + " (" + std::string(unknown->StepType()) + ")";
       }
     } else {
       const auto unknown = Handle(IGESData_UndefinedEntity)::DownCast(entity);
       if (!unknown.IsNull()) {
-        return "D" + std::to_string(2 * n - 1) + " (type " +
+        return entity_label(model, entity, format) + " (type " +
                std::to_string(unknown->TypeNumber()) + ")";
       }
     }
@@ -423,11 +479,11 @@ Result<Model> read_with_occt(const std::filesystem::path& path, CadFormat format
     if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) {
       return file_error(path, StatusCode::parse_error, "malformed STEP file");
     }
-    if (const std::string fail = first_load_failure(session); !fail.empty()) {
-      return file_error(path, StatusCode::parse_error, "malformed STEP data at " + fail);
-    }
     if (const std::string bad = first_unsupported_entity(session->Model(), format); !bad.empty()) {
       return file_error(path, StatusCode::unsupported, "unsupported STEP entity " + bad);
+    }
+    if (const std::string fail = first_load_failure(session, format); !fail.empty()) {
+      return file_error(path, StatusCode::parse_error, "malformed STEP data at " + fail);
     }
     TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
     reader.FileUnits(lengths, angles, solid_angles);
@@ -447,17 +503,17 @@ Result<Model> read_with_occt(const std::filesystem::path& path, CadFormat format
     if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) {
       return file_error(path, StatusCode::parse_error, "malformed IGES file");
     }
-    if (const std::string fail = first_load_failure(session); !fail.empty()) {
-      return file_error(path, StatusCode::parse_error, "malformed IGES data at " + fail);
-    }
     if (const std::string bad = first_unsupported_entity(session->Model(), format); !bad.empty()) {
       return file_error(path, StatusCode::unsupported, "unsupported IGES entity " + bad);
+    }
+    if (const std::string fail = first_load_failure(session, format); !fail.empty()) {
+      return file_error(path, StatusCode::parse_error, "malformed IGES data at " + fail);
     }
     const auto iges = Handle(IGESData_IGESModel)::DownCast(session->Model());
     if (!iges.IsNull()) {
       const IGESData_GlobalSection& global = iges->GlobalSection();
       if (!global.UnitName().IsNull()) model.source_unit.name = lower(global.UnitName()->ToCString());
-      model.source_unit.to_mm = global.UnitValue() * 1000.0;
+      model.source_unit.to_mm = iges_unit_to_mm(global.UnitFlag(), model.source_unit.name);
     }
     if (reader.NbRootsForTransfer() == 0) {
       return file_error(path, StatusCode::unsupported, "no shapes to transfer (no faces)");
@@ -465,10 +521,11 @@ Result<Model> read_with_occt(const std::filesystem::path& path, CadFormat format
     reader.TransferRoots();
     shape = reader.OneShape();
   }
-  if (format == CadFormat::step) {
-    const double to_mm = unit_to_mm(model.source_unit.name);
-    model.source_unit.to_mm = to_mm > 0.0 ? to_mm : 1.0;
-    if (to_mm == 0.0) model.metadata["source_unit_note"] = "unit name not recognised";
+  if (format == CadFormat::step) model.source_unit.to_mm = unit_to_mm(model.source_unit.name);
+  if (!(model.source_unit.to_mm > 0.0)) {
+    // The reader still converted to mm; only the record of the factor is missing.
+    model.source_unit.to_mm = 1.0;
+    model.metadata["source_unit_note"] = "unit name not recognised, factor unknown";
   }
   model.metadata["source_file"] = path.filename().string();
   model.metadata["source_format"] = kind;

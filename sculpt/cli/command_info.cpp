@@ -1,0 +1,72 @@
+// argil info FILE: what a model file holds, and the surfaces evaluated at the
+// centre of their domains (a quick check that the geometry is sound).
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "argil/core/evaluate.hpp"
+#include "argil/io/model_files.hpp"
+#include "commands.hpp"
+
+namespace argil::cli {
+namespace {
+
+void print_vector(const char* label, const Eigen::Vector3d& p) {
+  std::printf("%s(%.6g, %.6g, %.6g)", label, p.x(), p.y(), p.z());
+}
+
+}  // namespace
+
+int run_info(const std::vector<std::string>& args) {
+  if (args.size() != 1) {
+    std::fprintf(stderr, "usage: argil info FILE\n");
+    return kExitUsage;
+  }
+  const Result<io::Model> read = io::read_model(args[0]);
+  if (!read.ok()) {
+    std::fprintf(stderr, "argil info: %s\n", read.status().message.c_str());
+    return kExitFailure;
+  }
+  const io::Model& model = read.value();
+  std::size_t trimmed = 0, rational = 0;
+  for (const io::FaceRecord& face : model.faces) {
+    trimmed += face.trimmed() ? 1 : 0;
+    rational += face.surface.is_rational() ? 1 : 0;
+  }
+  std::printf("file: %s\n", args[0].c_str());
+  std::printf("units: mm (source unit: %s, 1 source unit = %.17g mm)\n",
+              model.source_unit.name.c_str(), model.source_unit.to_mm);
+  std::printf("faces: %zu (%zu trimmed, %zu rational)\n", model.faces.size(), trimmed, rational);
+  const Box3 box = io::model_box(model);
+  std::printf("bounding box of the control points [mm]: ");
+  print_vector("min ", box.min);
+  print_vector(" max ", box.max);
+  std::printf(" diagonal %.6g\n", box.diagonal());
+  std::printf("\n%5s  %-7s  %-9s  %-8s  %-7s  %5s  %-8s  %s\n", "face", "degree", "poles",
+              "rational", "trimmed", "loops", "source", "name");
+  for (std::size_t f = 0; f < model.faces.size(); ++f) {
+    const io::FaceRecord& face = model.faces[f];
+    const BSplineSurface& s = face.surface;
+    const std::string degree = std::to_string(s.degree[0]) + "x" + std::to_string(s.degree[1]);
+    const std::string poles =
+        std::to_string(s.count(Direction::u)) + "x" + std::to_string(s.count(Direction::v));
+    std::printf("%5zu  %-7s  %-9s  %-8s  %-7s  %5zu  %-8s  %s\n", f, degree.c_str(),
+                poles.c_str(), s.is_rational() ? "yes" : "no", face.trimmed() ? "yes" : "no",
+                face.loops.size(), face.source_id.c_str(), face.name.c_str());
+  }
+  std::printf("\nsurface at the centre of its domain [mm] (normal on the face's side):\n");
+  for (std::size_t f = 0; f < model.faces.size(); ++f) {
+    const BSplineSurface& s = model.faces[f].surface;
+    const double u = 0.5 * (s.domain_start(Direction::u) + s.domain_end(Direction::u));
+    const double v = 0.5 * (s.domain_start(Direction::v) + s.domain_end(Direction::v));
+    const SurfaceDerivatives d = evaluate_derivatives(s, u, v, 1);
+    const double side = model.faces[f].reversed ? -1.0 : 1.0;
+    std::printf("%5zu  (u, v) = (%.6g, %.6g)  ", f, u, v);
+    print_vector("point ", d.point);
+    print_vector("  normal ", side * unit_normal(d));
+    std::printf("\n");
+  }
+  return kExitOk;
+}
+
+}  // namespace argil::cli

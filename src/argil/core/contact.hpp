@@ -1,0 +1,43 @@
+#pragma once
+// The request/result shape shared by every collision query.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "argil/core/surface_hierarchy.hpp"
+
+namespace argil {
+
+/// What a collision query should do. Lengths in model units [mm].
+struct CollisionRequest {
+  /// eps: certified geometric tolerance. Leaves are Bezier sub-patches whose
+  /// flatness bound is at most eps; touching within eps counts as contact.
+  double tolerance = 1e-3;
+  int max_contacts = 256;
+  /// Newton refinement of contact points on the exact surface.
+  bool refine = true;
+  /// Signed penetration depth per contact.
+  bool compute_depth = true;
+};
+
+/// One contact between a surface (side a) and a tool or second surface (side b).
+struct Contact {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // p_WC on surface a [mm]
+  Eigen::Vector2d uv_a = Eigen::Vector2d::Zero();    // parameters on surface a
+  Eigen::Vector2d uv_b = Eigen::Vector2d::Zero();    // parameters on surface b, if any
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit normal of a from S_u x S_v
+  Eigen::Vector3d tangent_u = Eigen::Vector3d::Zero();  // S_u [mm per unit u]
+  Eigen::Vector3d tangent_v = Eigen::Vector3d::Zero();  // S_v [mm per unit v]
+  /// Signed penetration depth [mm]: positive when the surface point is inside
+  /// the tool, zero when touching, negative (down to -eps) when just apart.
+  double depth = 0.0;
+  int region = -1;  // connected contact region id
+};
+
+struct CollisionResult {
+  std::vector<Contact> contacts;  // grouped by region, deepest first within a region
+  int region_count = 0;
+  QueryCounters counters;
+};
+
+}  // namespace argil

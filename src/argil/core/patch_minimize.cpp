@@ -1,0 +1,86 @@
+#include "argil/core/patch_minimize.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace argil {
+
+PatchMinimum minimize_on_patch(const BSplineSurface& s, double u0, double u1, double v0, double v1,
+                               const std::function<DistanceSample(const Eigen::Vector3d&)>& f) {
+  PatchMinimum best;
+  best.value = std::numeric_limits<double>::infinity();
+  for (int a = 0; a <= 2; ++a) {
+    for (int b = 0; b <= 2; ++b) {
+      const double u = u0 + 0.5 * a * (u1 - u0);
+      const double v = v0 + 0.5 * b * (v1 - v0);
+      const double value = f(evaluate(s, u, v)).value;
+      if (value < best.value) {
+        best.value = value;
+        best.uv = {u, v};
+      }
+    }
+  }
+  const Eigen::Vector2d lo(u0, v0), hi(u1, v1);
+  const Eigen::Vector2d scale = (hi - lo).cwiseMax(std::numeric_limits<double>::min());
+  Eigen::Vector2d uv = best.uv;
+  constexpr int kMaxIterations = 30;
+  for (int it = 0; it < kMaxIterations; ++it) {
+    const SurfaceDerivatives d = evaluate_derivatives(s, uv[0], uv[1], 2);
+    const DistanceSample g = f(d.point);
+    Eigen::Matrix<double, 3, 2> J;
+    J << d.du, d.dv;
+    const Eigen::Vector2d grad = J.transpose() * g.gradient;
+    Eigen::Matrix2d H = J.transpose() * g.hessian * J;
+    H(0, 0) += g.gradient.dot(d.duu);
+    H(0, 1) += g.gradient.dot(d.duv);
+    H(1, 0) += g.gradient.dot(d.duv);
+    H(1, 1) += g.gradient.dot(d.dvv);
+    // Variables at a bound with the gradient pushing outward stay fixed.
+    Eigen::Vector2d free_mask(1.0, 1.0);
+    for (int k = 0; k < 2; ++k) {
+      if ((uv[k] <= lo[k] && grad[k] > 0) || (uv[k] >= hi[k] && grad[k] < 0)) free_mask[k] = 0.0;
+    }
+    Eigen::Vector2d step = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d Hf = H;
+    for (int k = 0; k < 2; ++k) {
+      if (free_mask[k] == 0.0) {
+        Hf.row(k).setZero();
+        Hf.col(k).setZero();
+        Hf(k, k) = 1.0;
+      }
+    }
+    const Eigen::Vector2d gf = grad.cwiseProduct(free_mask);
+    if (gf.isZero()) break;
+    Eigen::LLT<Eigen::Matrix2d> llt(Hf);
+    if (llt.info() == Eigen::Success && Hf.determinant() > 0.0) {
+      step = -llt.solve(gf);
+    } else {
+      // Not convex here: steepest descent scaled to a tenth of the rectangle.
+      const Eigen::Vector2d dir = -gf.cwiseProduct(scale);
+      step = dir / std::max(dir.cwiseQuotient(scale).cwiseAbs().maxCoeff(), 1e-300) * 0.1;
+    }
+    // Backtracking on the clamped step.
+    double t = 1.0;
+    bool moved = false;
+    for (int k = 0; k < 30; ++k) {
+      const Eigen::Vector2d trial = (uv + t * step).cwiseMax(lo).cwiseMin(hi);
+      const double value = f(evaluate(s, trial[0], trial[1])).value;
+      if (value < g.value || (value <= g.value && trial != uv)) {
+        moved = (trial - uv).cwiseQuotient(scale).cwiseAbs().maxCoeff() > 1e-15;
+        uv = trial;
+        break;
+      }
+      t *= 0.5;
+    }
+    best.iterations = it + 1;
+    if (!moved) break;
+  }
+  best.uv = uv;
+  best.derivatives = evaluate_derivatives(s, uv[0], uv[1], 1);
+  best.value = f(best.derivatives.point).value;
+  return best;
+}
+
+}  // namespace argil

@@ -1,0 +1,29 @@
+#pragma once
+// Local minimisation of a function of the surface point over a parameter
+// rectangle: the exact step at the leaves of every query.
+
+#include <Eigen/Core>
+#include <functional>
+
+#include "argil/core/bspline_surface.hpp"
+#include "argil/core/evaluate.hpp"
+#include "argil/core/implicit_tool.hpp"
+
+namespace argil {
+
+struct PatchMinimum {
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();
+  double value = 0.0;             // f(S(uv))
+  SurfaceDerivatives derivatives;  // of S at uv, to first order
+  int iterations = 0;
+};
+
+/// Minimises g(u, v) = f(S(u, v)) over [u0, u1] x [v0, v1] by projected
+/// Newton steps (Hessian J^T H_f J + grad f . S'', gradient steps where it is
+/// not positive definite) with backtracking, from the best of a 3x3 sample.
+/// Finds a local minimum; callers certify globality with their bounds.
+PatchMinimum minimize_on_patch(const BSplineSurface& surface, double u0, double u1, double v0,
+                               double v1,
+                               const std::function<DistanceSample(const Eigen::Vector3d&)>& f);
+
+}  // namespace argil

@@ -1,0 +1,105 @@
+#include "argil/core/surface_hierarchy.hpp"
+
+#include <cassert>
+#include <limits>
+
+namespace argil {
+
+Result<SurfaceHierarchy> SurfaceHierarchy::build(const BSplineSurface& surface,
+                                                 OperatorCache& cache) {
+  Result<SurfaceOperators> ops = surface_operators(surface, cache);
+  if (!ops.ok()) return ops.status();
+  SurfaceHierarchy h;
+  h.surface_ = surface;
+  h.ops_ = ops.value();
+  const BezierExtraction& xu = h.ops_.u->extraction();
+  const BezierExtraction& xv = h.ops_.v->extraction();
+  for (std::size_t eu = 0; eu < xu.spans.size(); ++eu) {
+    for (std::size_t ev = 0; ev < xv.spans.size(); ++ev) {
+      HierarchyNode n;
+      n.element_u = static_cast<int>(eu);
+      n.element_v = static_cast<int>(ev);
+      n.u0 = surface.knots[0][xu.spans[eu]];
+      n.u1 = surface.knots[0][xu.spans[eu] + 1];
+      n.v0 = surface.knots[1][xv.spans[ev]];
+      n.v1 = surface.knots[1][xv.spans[ev] + 1];
+      n.version = 0;  // stale: built on first visit
+      h.roots_.push_back(static_cast<int>(h.nodes_.size()));
+      h.nodes_.push_back(std::move(n));
+    }
+  }
+  return h;
+}
+
+void SurfaceHierarchy::set_control_points(const ControlNet& points,
+                                          const Eigen::VectorXd& weights) {
+  assert(points.rows() == surface_.control_points.rows());
+  assert(weights.size() == 0 || weights.size() == surface_.weights.size());
+  surface_.control_points = points;
+  if (weights.size() > 0) surface_.weights = weights;
+  ++version_;
+}
+
+const PatchBound& SurfaceHierarchy::root_bound() {
+  if (root_bound_version_ != version_) {
+    // Convex hull property of the whole net (positive weights).
+    const ControlNet& pts = surface_.control_points;
+    PatchBound b;
+    b.box = {pts.colwise().minCoeff().transpose(), pts.colwise().maxCoeff().transpose()};
+    b.center = 0.5 * (b.box.min + b.box.max);
+    b.radius = (pts.rowwise() - b.center.transpose()).rowwise().norm().maxCoeff();
+    b.flatness = std::numeric_limits<double>::infinity();
+    root_bound_ = b;
+    root_bound_version_ = version_;
+  }
+  return root_bound_;
+}
+
+void SurfaceHierarchy::refresh(int id, QueryCounters* counters) {
+  HierarchyNode& self = nodes_[static_cast<std::size_t>(id)];
+  if (self.version == version_) return;
+  if (self.parent < 0) {
+    self.patch = bezier_patch(surface_, ops_, self.element_u, self.element_v);
+  } else {
+    refresh(self.parent, counters);  // creates no nodes, so `self` stays valid
+    const HierarchyNode& parent = nodes_[static_cast<std::size_t>(self.parent)];
+    self.patch = subdivide(parent.patch, ops_.u->subdivision(), ops_.v->subdivision(), true,
+                           self.half_u, true, self.half_v);
+  }
+  self.bound = bound_patch(self.patch);
+  self.version = version_;
+  if (counters) ++counters->nodes_refreshed;
+}
+
+const HierarchyNode& SurfaceHierarchy::node(int id, QueryCounters* counters) {
+  refresh(id, counters);
+  if (counters) ++counters->nodes_visited;
+  return nodes_[static_cast<std::size_t>(id)];
+}
+
+int SurfaceHierarchy::child(int id, int half_u, int half_v) {
+  const int slot = half_u * 2 + half_v;
+  const int existing = nodes_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(slot)];
+  if (existing >= 0) return existing;
+  const HierarchyNode& parent = nodes_[static_cast<std::size_t>(id)];
+  HierarchyNode c;
+  c.element_u = parent.element_u;
+  c.element_v = parent.element_v;
+  c.level = parent.level + 1;
+  c.parent = id;
+  c.half_u = half_u;
+  c.half_v = half_v;
+  const double um = 0.5 * (parent.u0 + parent.u1);
+  const double vm = 0.5 * (parent.v0 + parent.v1);
+  c.u0 = half_u == 0 ? parent.u0 : um;
+  c.u1 = half_u == 0 ? um : parent.u1;
+  c.v0 = half_v == 0 ? parent.v0 : vm;
+  c.v1 = half_v == 0 ? vm : parent.v1;
+  c.version = 0;
+  const int index = static_cast<int>(nodes_.size());
+  nodes_.push_back(std::move(c));  // may reallocate: no references held across this
+  nodes_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(slot)] = index;
+  return index;
+}
+
+}  // namespace argil

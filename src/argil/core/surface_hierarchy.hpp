@@ -1,0 +1,87 @@
+#pragma once
+// The conservative, lazy hierarchy of ARCHITECTURE 3.3: Bezier sub-patch nodes
+// bounded from their control points, created only where queries reach and
+// refreshed only where queries reach after the control points change.
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "argil/core/bezier.hpp"
+#include "argil/core/bspline_surface.hpp"
+#include "argil/core/patch_bound.hpp"
+#include "argil/core/status.hpp"
+#include "argil/core/surface_operators.hpp"
+
+namespace argil {
+
+/// One node: the Bezier sub-patch over [u0, u1] x [v0, v1] of element
+/// (element_u, element_v) at `level` (each level halves both directions).
+struct HierarchyNode {
+  int element_u = 0;
+  int element_v = 0;
+  int level = 0;
+  int parent = -1;
+  int half_u = 0;  // which half of the parent, in u and v
+  int half_v = 0;
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  std::array<int, 4> children{-1, -1, -1, -1};  // index half_u * 2 + half_v
+  BezierPatch patch;
+  PatchBound bound;
+  std::uint64_t version = 0;  // control-point version the patch was built from
+};
+
+/// Work a query did, for benchmarks and the speed/accuracy trade.
+struct QueryCounters {
+  long nodes_visited = 0;    // node bounds tested
+  long nodes_refreshed = 0;  // nodes whose Bezier net was (re)computed
+  long leaf_pairs = 0;       // leaves (or leaf pairs) examined exactly
+  long triangle_tests = 0;   // triangle-triangle or triangle-tool tests
+};
+
+/// Owns a copy of the surface's control points (the per-frame state), shares
+/// its operators, and grows nodes on demand. Not thread-safe: one per model.
+class SurfaceHierarchy {
+ public:
+  /// Validates the surface and fetches its operators from `cache`.
+  static Result<SurfaceHierarchy> build(const BSplineSurface& surface, OperatorCache& cache);
+
+  const BSplineSurface& surface() const { return surface_; }
+  const SurfaceOperators& operators() const { return ops_; }
+  std::uint64_t version() const { return version_; }
+
+  /// New control points (and weights for a rational surface), same structure:
+  /// O(n) copy; every node becomes stale and is refreshed when next reached.
+  void set_control_points(const ControlNet& points, const Eigen::VectorXd& weights = {});
+
+  /// Sphere around all control points: the broad-phase bound of the surface.
+  const PatchBound& root_bound();
+
+  /// One node per Bezier element: the hierarchy's roots.
+  const std::vector<int>& roots() const { return roots_; }
+  /// The node with fresh bounds (refreshing its ancestors first if needed).
+  const HierarchyNode& node(int id, QueryCounters* counters = nullptr);
+  /// Index of child (half_u, half_v) of `id`, created on first use.
+  int child(int id, int half_u, int half_v);
+
+  /// Number of nodes created so far (for tests and memory accounting).
+  std::size_t node_count() const { return nodes_.size(); }
+  /// Deepest level a query may split to; below it a node is treated as a leaf
+  /// whatever its flatness (guards against endless refinement at degeneracies).
+  static constexpr int kMaxLevel = 24;
+
+ private:
+  SurfaceHierarchy() = default;
+  void refresh(int id, QueryCounters* counters);
+
+  BSplineSurface surface_;
+  SurfaceOperators ops_;
+  std::uint64_t version_ = 1;
+  std::vector<HierarchyNode> nodes_;
+  std::vector<int> roots_;
+  PatchBound root_bound_;
+  std::uint64_t root_bound_version_ = 0;
+};
+
+}  // namespace argil

@@ -1,0 +1,56 @@
+# Runs the argil program for CTest. Modes:
+#   same_faces: convert IN to OUT, then `info` on both must list the same faces
+#               (degrees, pole counts, rational, trimmed); stdout carries no
+#               OpenCASCADE chatter.
+#   fails:      ARGS must exit non-zero with EXPECT in stderr.
+# Variables: ARGIL, MODE, IN, OUT, ARGS (;-list), EXPECT.
+cmake_minimum_required(VERSION 3.20)
+
+function(run_argil out_var err_var rc_var)
+  execute_process(COMMAND ${ARGIL} ${ARGN} OUTPUT_VARIABLE out ERROR_VARIABLE err
+                  RESULT_VARIABLE rc)
+  set(${out_var} "${out}" PARENT_SCOPE)
+  set(${err_var} "${err}" PARENT_SCOPE)
+  set(${rc_var} "${rc}" PARENT_SCOPE)
+endfunction()
+
+# The face table of `argil info` without the source column (ids differ by format).
+function(face_table text out_var)
+  string(REGEX MATCH "faces: [0-9]+[^\n]*" summary "${text}")
+  string(REGEX MATCHALL "\n +[0-9]+  [0-9]+x[0-9]+ +[0-9]+x[0-9]+ +(yes|no) +(yes|no) +[0-9]+"
+         rows "${text}")
+  set(${out_var} "${summary}${rows}" PARENT_SCOPE)
+endfunction()
+
+if(MODE STREQUAL "same_faces")
+  file(REMOVE "${OUT}")
+  run_argil(out err rc convert "${IN}" "${OUT}")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "convert failed (${rc}): ${err}")
+  endif()
+  if(NOT out MATCHES "^converted [^\n]*\n$")
+    message(FATAL_ERROR "convert printed more than its one line:\n${out}")
+  endif()
+  run_argil(info_in err_in rc_in info "${IN}")
+  run_argil(info_out err_out rc_out info "${OUT}")
+  if(NOT rc_in EQUAL 0 OR NOT rc_out EQUAL 0)
+    message(FATAL_ERROR "info failed: ${err_in} ${err_out}")
+  endif()
+  face_table("${info_in}" table_in)
+  face_table("${info_out}" table_out)
+  if(table_in STREQUAL "" OR NOT table_in STREQUAL table_out)
+    message(FATAL_ERROR "faces differ:\n--- ${IN}\n${table_in}\n--- ${OUT}\n${table_out}")
+  endif()
+  message(STATUS "same faces: ${table_in}")
+elseif(MODE STREQUAL "fails")
+  run_argil(out err rc ${ARGS})
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "expected a failure, got exit 0:\n${out}")
+  endif()
+  if(NOT err MATCHES "${EXPECT}")
+    message(FATAL_ERROR "stderr does not mention '${EXPECT}':\n${err}")
+  endif()
+  message(STATUS "failed as expected (${rc}): ${err}")
+else()
+  message(FATAL_ERROR "unknown MODE ${MODE}")
+endif()
