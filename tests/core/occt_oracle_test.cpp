@@ -1,6 +1,7 @@
 // Oracle: points and derivatives up to second order agree with OpenCASCADE's
 // Geom_BSplineSurface on generated surfaces (degrees 1 to 9, non-uniform
 // knots with multiplicities, random weights).
+#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
@@ -136,4 +137,41 @@ TEST_CASE("points and derivatives up to order 2 agree with OpenCASCADE to 1e-12 
     }
   }
   WARN(surfaces << " surfaces; worst relative error vs OpenCASCADE: D0 " << worst[0] << ", D1 " << worst[1] << ", D2 " << worst[2]);
+}
+
+TEST_CASE("the closest point is within eps of OpenCASCADE's global projection") {
+  std::mt19937_64 rng(99);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  argil::OperatorCache cache;
+  double worst = 0.0;
+  int compared = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    argil::test::RandomSurfaceOptions options;
+    options.rational = trial % 2 == 1;
+    options.max_degree = 5;
+    const BSplineSurface s = argil::test::random_surface(rng, options);
+    auto h = argil::SurfaceHierarchy::build(s, cache);
+    REQUIRE(h.ok());
+    const Handle(Geom_BSplineSurface) oc = to_occt(s);
+    const argil::Box3 box = argil::control_point_box(s);
+    const double size = box.diagonal();
+    const double eps = 1e-7 * size;
+    for (int k = 0; k < 5; ++k) {
+      const Eigen::Vector3d q = 0.5 * (box.min + box.max) +
+                                0.4 * size * Eigen::Vector3d(gauss(rng), gauss(rng), 0.5 * gauss(rng));
+      const argil::ClosestPoint ours = argil::closest_point(h.value(), q, {.tolerance = eps});
+      GeomAPI_ProjectPointOnSurf projection(gp_Pnt(q.x(), q.y(), q.z()), oc);
+      if (projection.NbPoints() == 0) continue;  // OCCT found no orthogonal foot
+      const double theirs = projection.LowerDistance();
+      ++compared;
+      INFO("trial " << trial << " point (" << q.transpose() << ") ours " << ours.distance
+                    << " OCCT " << theirs);
+      // Ours is certified within eps of the global minimum; OCCT's extrema
+      // report orthogonal feet only, so a boundary minimum can make it larger.
+      CHECK(ours.distance <= theirs + eps);
+      worst = std::max(worst, std::abs(ours.distance - theirs) / size);
+    }
+  }
+  CHECK(compared > 100);
+  WARN(compared << " projections; largest |ours - OCCT| relative to size: " << worst);
 }
