@@ -30,8 +30,8 @@ int run_info(const std::vector<std::string>& args) {
   const io::Model& model = read.value();
   std::size_t trimmed = 0, rational = 0;
   for (const io::FaceRecord& face : model.faces) {
-    trimmed += face.trimmed() ? 1 : 0;
-    rational += face.surface.is_rational() ? 1 : 0;
+    trimmed += face.trimmed() ? 1u : 0u;
+    rational += face.surface.is_rational() ? 1u : 0u;
   }
   std::printf("file: %s\n", args[0].c_str());
   std::printf("units: mm (source unit: %s, 1 source unit = %.17g mm)\n",
@@ -50,9 +50,9 @@ int run_info(const std::vector<std::string>& args) {
     const std::string degree = std::to_string(s.degree[0]) + "x" + std::to_string(s.degree[1]);
     const std::string poles =
         std::to_string(s.count(Direction::u)) + "x" + std::to_string(s.count(Direction::v));
-    std::printf("%5zu  %-7s  %-9s  %-8s  %-7s  %5zu  %-8s  %s\n", f, degree.c_str(),
-                poles.c_str(), s.is_rational() ? "yes" : "no", face.trimmed() ? "yes" : "no",
-                face.loops.size(), face.source_id.c_str(), face.name.c_str());
+    std::printf("%5zu  %-7s  %-9s  %-8s  %-7s  %5zu  %-8s  %s\n", f, degree.c_str(), poles.c_str(),
+                s.is_rational() ? "yes" : "no", face.trimmed() ? "yes" : "no", face.loops.size(),
+                face.source_id.c_str(), face.name.c_str());
   }
   std::printf("\nsurface at the centre of its domain [mm] (normal on the face's side):\n");
   for (std::size_t f = 0; f < model.faces.size(); ++f) {

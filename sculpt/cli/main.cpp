@@ -10,16 +10,17 @@
 namespace {
 
 void print_usage(std::FILE* out) {
-  std::fprintf(out,
-               "usage: argil <command> [args]\n"
-               "commands:\n"
-               "  info FILE                         faces, degrees, control nets, trims,\n"
-               "                                    units and bounding box of a model\n"
-               "  convert IN OUT [--tolerance T]    convert between STEP (.step .stp),\n"
-               "                                    IGES (.iges .igs), JSON (.json) and meshes\n"
-               "                                    (.stl .obj .ply .glb); T is the mesh chord\n"
-               "                                    tolerance [mm], default 1e-3 of the model size\n"
-               "  --help                            this text\n");
+  std::fprintf(
+      out,
+      "usage: argil <command> [args]\n"
+      "commands:\n"
+      "  info FILE                         faces, degrees, control nets, trims,\n"
+      "                                    units and bounding box of a model\n"
+      "  convert IN OUT [--tolerance T]    convert between STEP (.step .stp),\n"
+      "                                    IGES (.iges .igs), JSON (.json) and meshes\n"
+      "                                    (.stl .obj .ply .glb); T is the mesh chord\n"
+      "                                    tolerance [mm], default 1e-3 of the model size\n"
+      "  --help                            this text\n");
 }
 
 }  // namespace

@@ -1,60 +1,18 @@
 // Points and normals on a 64x64 grid of a 32x32 bicubic surface: through the
 // precomputed operators, through direct evaluation, and through OpenCASCADE's
 // Geom_BSplineSurface::D1, in the same run.
-#include <Geom_BSplineSurface.hxx>
-#include <TColStd_Array1OfInteger.hxx>
-#include <TColStd_Array1OfReal.hxx>
-#include <TColgp_Array2OfPnt.hxx>
-#include <gp_Pnt.hxx>
 #include <gp_Vec.hxx>
 
-#include <cmath>
-
-#include "argil/core.hpp"
+#include "bench_surfaces.hpp"
 #include "median_ratio_reporter.hpp"
 
 namespace {
 
 constexpr int kPoles = 32;
-constexpr int kDegree = 3;
 constexpr int kGrid = 64;
 
-Eigen::VectorXd uniform_knots() {
-  Eigen::VectorXd k(kPoles + kDegree + 1);
-  for (Eigen::Index i = 0; i < k.size(); ++i) {
-    k[i] = std::clamp(static_cast<double>(i - kDegree) / (kPoles - kDegree), 0.0, 1.0);
-  }
-  return k;
-}
-
-argil::BSplineSurface bicubic() {
-  argil::BSplineSurface s;
-  s.degree = {kDegree, kDegree};
-  s.knots = {uniform_knots(), uniform_knots()};
-  s.control_points.resize(kPoles * kPoles, 3);
-  for (int i = 0; i < kPoles; ++i)
-    for (int j = 0; j < kPoles; ++j)
-      s.control_points.row(s.pole_index(i, j)) << 10.0 * i, 10.0 * j,
-          20.0 * std::sin(0.3 * i) * std::cos(0.2 * j);
-  return s;
-}
-
-Handle(Geom_BSplineSurface) to_occt(const argil::BSplineSurface& s) {
-  TColgp_Array2OfPnt poles(1, kPoles, 1, kPoles);
-  for (int i = 0; i < kPoles; ++i)
-    for (int j = 0; j < kPoles; ++j) {
-      const auto p = s.control_points.row(s.pole_index(i, j));
-      poles.SetValue(i + 1, j + 1, gp_Pnt(p[0], p[1], p[2]));
-    }
-  const int distinct = kPoles - kDegree + 1;
-  TColStd_Array1OfReal knots(1, distinct);
-  TColStd_Array1OfInteger mults(1, distinct);
-  for (int k = 0; k < distinct; ++k) {
-    knots.SetValue(k + 1, static_cast<double>(k) / (distinct - 1));
-    mults.SetValue(k + 1, k == 0 || k == distinct - 1 ? kDegree + 1 : 1);
-  }
-  return new Geom_BSplineSurface(poles, knots, knots, mults, mults, kDegree, kDegree);
-}
+argil::BSplineSurface bicubic() { return argil::bench::bicubic_panel(kPoles); }
+Handle(Geom_BSplineSurface) to_occt(const argil::BSplineSurface& s) { return argil::bench::to_occt(s); }
 
 Eigen::VectorXd grid_parameters() { return Eigen::VectorXd::LinSpaced(kGrid, 0.0, 1.0); }
 

@@ -86,7 +86,7 @@ TEST_CASE("a sphere tool pressing into a plane gives the exact depth, point and 
   for (double depth : {0.0, 1e-6, 0.01, 0.5, 2.0}) {
     const double radius = 3.0;
     const auto tool = argil::make_sphere(p + Eigen::Vector3d(0, 0, radius - depth), radius);
-    const argil::CollisionResult r = argil::collide(h, *tool, {.tolerance = 1e-6});
+    const argil::CollisionResult r = argil::collide(h, *tool, {.tolerance = 1e-5});
     INFO("depth " << depth);
     REQUIRE(r.region_count == 1);
     REQUIRE(!r.contacts.empty());
@@ -97,10 +97,10 @@ TEST_CASE("a sphere tool pressing into a plane gives the exact depth, point and 
     CHECK(c.region == 0);
   }
   // Just out of reach: farther than eps is no contact; within eps touches.
-  const auto far = argil::make_sphere(p + Eigen::Vector3d(0, 0, 3.0 + 2e-6), 3.0);
-  CHECK(argil::collide(h, *far, {.tolerance = 1e-6}).contacts.empty());
-  const auto near = argil::make_sphere(p + Eigen::Vector3d(0, 0, 3.0 + 5e-7), 3.0);
-  CHECK(argil::collide(h, *near, {.tolerance = 1e-6}).region_count == 1);
+  const auto far = argil::make_sphere(p + Eigen::Vector3d(0, 0, 3.0 + 2e-5), 3.0);
+  CHECK(argil::collide(h, *far, {.tolerance = 1e-5}).contacts.empty());
+  const auto near = argil::make_sphere(p + Eigen::Vector3d(0, 0, 3.0 + 5e-6), 3.0);
+  CHECK(argil::collide(h, *near, {.tolerance = 1e-5}).region_count == 1);
 }
 
 TEST_CASE("a plane tool against an exact cylinder patch gives the exact depth") {
@@ -233,7 +233,7 @@ TEST_CASE("a rigid motion of surface and tool moves the contacts with it") {
   moved.control_points = ((s.control_points * R.transpose()).rowwise() + t.transpose()).eval();
   argil::SurfaceHierarchy a = hierarchy_of(s);
   argil::SurfaceHierarchy b = hierarchy_of(moved);
-  const double eps = 1e-6;
+  const double eps = 1e-5;
   const auto ra = argil::collide(a, *argil::make_sphere(centre, 3.0), {.tolerance = eps});
   const auto rb = argil::collide(b, *argil::make_sphere(R * centre + t, 3.0), {.tolerance = eps});
   REQUIRE(!ra.contacts.empty());

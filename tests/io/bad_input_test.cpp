@@ -4,7 +4,7 @@
 #include <random>
 #include <regex>
 
-#include "argil/io/io.hpp"
+#include "argil/io.hpp"
 #include "test_files.hpp"
 
 namespace argil::io {
@@ -48,7 +48,8 @@ std::string garbage(std::size_t size, std::uint64_t seed) {
 }
 
 const std::string& panel_text() {
-  static const std::string text = test::read_bytes(test::source_file("examples/surfaces/panel.json"));
+  static const std::string text =
+      test::read_bytes(test::source_file("examples/surfaces/panel.json"));
   return text;
 }
 
@@ -95,6 +96,30 @@ TEST_CASE("truncated STEP and IGES files are errors at any cut", "[io][bad]") {
   }
 }
 
+TEST_CASE("STEP and IGES files corrupted in the middle are errors, not crashes", "[io][bad]") {
+  test::TempDir dir;
+  for (const char* source : {"screw.step", "bearing.iges"}) {
+    const std::string whole = test::read_bytes(test::shared_data(source));
+    for (std::uint64_t seed = 0; seed < 4; ++seed) {
+      // Printable junk over five runs of up to 200 bytes, away from both ends so
+      // the header and terminator checks pass and OCCT's parser meets the damage.
+      std::mt19937_64 rng(seed);
+      std::string damaged = whole;
+      for (int run = 0; run < 5; ++run) {
+        const std::size_t start = whole.size() / 10 + rng() % (whole.size() * 8 / 10);
+        const std::size_t length = 1 + rng() % 200;
+        for (std::size_t i = start; i < start + length; ++i) {
+          damaged[i] = static_cast<char>(32 + rng() % 95);
+        }
+      }
+      const std::filesystem::path path = dir / (std::string("damaged-") + source);
+      test::write_bytes(path, damaged);
+      INFO(source << " seed " << seed);
+      read_error(path);
+    }
+  }
+}
+
 TEST_CASE("a STEP file without faces is an error", "[io][bad]") {
   test::TempDir dir;
   const std::string screw = test::read_bytes(test::shared_data("screw.step"));
@@ -119,7 +144,8 @@ TEST_CASE("unsupported entities are errors naming the entity", "[io][bad]") {
     const std::string bearing = test::read_bytes(test::shared_data("bearing.iges"));
     // Directory entry D5 (the first surface, type 128) in both of its records.
     std::string edited = replace_first(bearing, "     128      19", "     999      19");
-    edited = replace_first(edited, "     128       0       0      15", "     999       0       0      15");
+    edited = replace_first(edited, "     128       0       0      15",
+                           "     999       0       0      15");
     test::write_bytes(dir / "unknown.iges", edited);
     const Status error = read_error(dir / "unknown.iges");
     CHECK(error.code == StatusCode::unsupported);
@@ -151,8 +177,9 @@ TEST_CASE("JSON: invalid surfaces are rejected naming file, face and defect", "[
     CHECK_THAT(error.message, Catch::Contains("knots_u[6]"));
   }
   SECTION("zero weight") {
-    std::string text = replace_first(panel_text(), "\"control_points\"",
-                                     "\"weights\": [" + std::string(47 * 5, ' ') + "],\n  \"control_points\"");
+    std::string text =
+        replace_first(panel_text(), "\"control_points\"",
+                      "\"weights\": [" + std::string(47 * 5, ' ') + "],\n  \"control_points\"");
     std::string weights = "0.0";
     for (int k = 1; k < 48; ++k) weights += ", 1.0";
     text = replace_first(text, "[" + std::string(47 * 5, ' ') + "]", "[" + weights + "]");
@@ -178,7 +205,8 @@ TEST_CASE("JSON: invalid surfaces are rejected naming file, face and defect", "[
 
 TEST_CASE("JSON: an unknown schema version or format is rejected", "[io][bad][json]") {
   test::TempDir dir;
-  test::write_bytes(dir / "v2.json", replace_first(panel_text(), "\"version\": 1", "\"version\": 2"));
+  test::write_bytes(dir / "v2.json",
+                    replace_first(panel_text(), "\"version\": 1", "\"version\": 2"));
   CHECK_THAT(read_error(dir / "v2.json").message, Catch::Contains("version 2"));
   test::write_bytes(dir / "other.json",
                     replace_first(panel_text(), "argil.surfaces", "someone.elses"));
@@ -216,7 +244,8 @@ TEST_CASE("a failed write leaves the existing file byte for byte intact", "[io][
   }
   // No temporary is left behind by any of the failures.
   std::size_t files = 0;
-  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    ++files;
   CHECK(files <= 6);
 }
 

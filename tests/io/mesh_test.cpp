@@ -1,14 +1,14 @@
 // Meshes: the adaptive tessellation is within its chord tolerance, crack-free
 // and trimmed; STL, OBJ, PLY and glb files read back with assimp hold the same
 // triangles, on the surface, with the surface normals.
-#include <assimp/Importer.hpp>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
 
 #include <catch2/catch.hpp>
 #include <map>
 
 #include "argil/core/evaluate.hpp"
-#include "argil/io/io.hpp"
+#include "argil/io.hpp"
 #include "support/random_surface.hpp"
 #include "surface_projection.hpp"
 #include "test_files.hpp"
@@ -36,7 +36,7 @@ Model panel_and_trimmed_face() {
     c.poles.resize(9, 2);
     c.weights.resize(9);
     const Eigen::Vector2d centre = 0.5 * (lo + hi), radii = scale * 0.5 * (hi - lo);
-    const double corners[9][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0},
+    const double corners[9][2] = {{1, 0},   {1, 1},  {0, 1},  {-1, 1}, {-1, 0},
                                   {-1, -1}, {0, -1}, {1, -1}, {1, 0}};
     for (int k = 0; k < 9; ++k) {
       c.poles.row(k) = centre + radii.cwiseProduct(Eigen::Vector2d(corners[k][0], corners[k][1]));
@@ -76,8 +76,8 @@ struct ChordReport {
 // the surface by Newton from their interpolated (u, v).
 ChordReport chord_errors(const Model& model, const TriangleMesh& mesh) {
   ChordReport report;
-  const double weights[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0.5, 0}, {0, 0.5, 0.5},
-                                {0.5, 0, 0.5}};
+  const double weights[4][3] = {
+      {1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}};
   for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
     const int face = mesh.vertex_face[static_cast<std::size_t>(mesh.triangles(t, 0))];
     const BSplineSurface& s = model.faces[static_cast<std::size_t>(face)].surface;
@@ -166,7 +166,8 @@ TEST_CASE("trimmed faces keep only triangles inside the outer loop and outside h
                              0.5 * (s.domain_end(Direction::v) - s.domain_start(Direction::v)));
   double area = 0.0;
   for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
-    const Eigen::Vector2d a = mesh.uv.row(mesh.triangles(t, 0)), b = mesh.uv.row(mesh.triangles(t, 1)),
+    const Eigen::Vector2d a = mesh.uv.row(mesh.triangles(t, 0)),
+                          b = mesh.uv.row(mesh.triangles(t, 1)),
                           c = mesh.uv.row(mesh.triangles(t, 2));
     // Elliptic radius of the centroid: between the hole (0.3) and the outer loop (0.9).
     const double r = ((a + b + c) / 3.0 - centre).cwiseQuotient(half).norm();
@@ -180,8 +181,7 @@ TEST_CASE("trimmed faces keep only triangles inside the outer loop and outside h
   CHECK(std::abs(area - ring) < 0.05 * ring);
 }
 
-TEST_CASE("STL, OBJ, PLY and glb read back with the same triangles on the surface",
-          "[io][mesh]") {
+TEST_CASE("STL, OBJ, PLY and glb read back with the same triangles on the surface", "[io][mesh]") {
   const Model model = panel_and_trimmed_face();
   const double size = model_box(model).diagonal();
   WriteOptions options;
@@ -216,14 +216,18 @@ TEST_CASE("STL, OBJ, PLY and glb read back with the same triangles on the surfac
             // Same vertex, up to float32 storage.
             REQUIRE((position - m.positions.row(ours).transpose()).norm() <=
                     4e-7 * coordinate_scale);
-            const FaceRecord& face = model.faces[static_cast<std::size_t>(m.vertex_face[static_cast<std::size_t>(ours)])];
+            const FaceRecord& face =
+                model
+                    .faces[static_cast<std::size_t>(m.vertex_face[static_cast<std::size_t>(ours)])];
             const Eigen::Vector2d uv = m.uv.row(ours);
-            max_distance = std::max(max_distance, test::project(face.surface, position, uv).distance_mm);
+            max_distance =
+                std::max(max_distance, test::project(face.surface, position, uv).distance_mm);
             if (has_normals && in->mNormals != nullptr) {
               const aiVector3D& n = in->mNormals[index];
               Eigen::Vector3d expected = finite_difference_normal(face.surface, uv);
               if (face.reversed) expected = -expected;
-              max_normal_error = std::max(max_normal_error, (Eigen::Vector3d(n.x, n.y, n.z) - expected).norm());
+              max_normal_error =
+                  std::max(max_normal_error, (Eigen::Vector3d(n.x, n.y, n.z) - expected).norm());
             }
           }
         }
@@ -236,6 +240,27 @@ TEST_CASE("STL, OBJ, PLY and glb read back with the same triangles on the surfac
         CHECK(max_normal_error <= 1e-5);
       }
     }
+  }
+}
+
+}  // namespace argil::io
+
+namespace argil::io {
+
+TEST_CASE("tessellation is deterministic and refuses tolerances finer than float32", "[io][mesh]") {
+  const Result<Model> panel = read_model(test::source_file("examples/surfaces/panel.json"));
+  REQUIRE(panel.ok());
+  TessellationOptions options;
+  options.chord_tolerance_mm = 0.5;
+  const Result<TriangleMesh> a = tessellate(panel.value(), options);
+  const Result<TriangleMesh> b = tessellate(panel.value(), options);
+  REQUIRE(a.ok());
+  REQUIRE(b.ok());
+  CHECK(a.value().triangles == b.value().triangles);
+  CHECK(a.value().positions == b.value().positions);
+  for (double tolerance : {0.0, -1.0, 1e-9}) {
+    options.chord_tolerance_mm = tolerance;
+    CHECK_FALSE(tessellate(panel.value(), options).ok());
   }
 }
 

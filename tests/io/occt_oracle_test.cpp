@@ -1,10 +1,10 @@
 // OpenCASCADE as the independent oracle: face counts, surface points, trims and
 // orientation of imported faces; validity, entities and units of exported files.
+#include <BRepBndLib.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
-#include <BRepBndLib.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomLProp_SLProps.hxx>
 #include <Geom_BSplineSurface.hxx>
@@ -26,7 +26,7 @@
 #include <sstream>
 
 #include "argil/core/evaluate.hpp"
-#include "argil/io/io.hpp"
+#include "argil/io.hpp"
 #include "support/random_surface.hpp"
 #include "surface_projection.hpp"
 #include "test_files.hpp"
@@ -139,13 +139,13 @@ Agreement compare_with_occt(const Model& model, const OcctShape& occt) {
     for (const TrimLoop& loop : model.faces[f].loops) {
       for (const TrimCurve& curve : loop.curves) {
         for (int k = 0; k <= 8; ++k) {
-          const double t = curve.knots[0] +
-                           k / 8.0 * (curve.knots[curve.knots.size() - 1] - curve.knots[0]);
+          const double t =
+              curve.knots[0] + k / 8.0 * (curve.knots[curve.knots.size() - 1] - curve.knots[0]);
           const Eigen::Vector2d uv = evaluate_trim_curve(curve, t);
           const Eigen::Vector3d x = evaluate(ours, uv.x(), uv.y());
-          GeomAPI_ProjectPointOnSurf projector(gp_Pnt(x.x(), x.y(), x.z()), original, u0 - (u1 - u0),
-                                               u1 + (u1 - u0), v0 - (v1 - v0), v1 + (v1 - v0),
-                                               Precision::Confusion());
+          GeomAPI_ProjectPointOnSurf projector(gp_Pnt(x.x(), x.y(), x.z()), original,
+                                               u0 - (u1 - u0), u1 + (u1 - u0), v0 - (v1 - v0),
+                                               v1 + (v1 - v0), Precision::Confusion());
           REQUIRE(projector.NbPoints() > 0);
           const double error = projector.LowerDistance();
           result.max_trim_error_mm = std::max(result.max_trim_error_mm, error);
@@ -159,8 +159,7 @@ Agreement compare_with_occt(const Model& model, const OcctShape& occt) {
 
 }  // namespace
 
-TEST_CASE("imported faces match OpenCASCADE's count, points, trims and orientation",
-          "[io][occt]") {
+TEST_CASE("imported faces match OpenCASCADE's count, points, trims and orientation", "[io][occt]") {
   for (const char* name : {"bearing.iges", "screw.step"}) {
     SECTION(name) {
       const std::filesystem::path path = test::shared_data(name);
@@ -187,7 +186,8 @@ TEST_CASE("exported STEP and IGES pass BRepCheck and declare millimetres", "[io]
     test::RandomSurfaceOptions options;
     options.max_degree = 9;
     options.rational = k % 2 == 0;
-    generated.faces.push_back(FaceRecord{test::random_surface(rng, options), {}, k % 3 == 0, "", ""});
+    generated.faces.push_back(
+        FaceRecord{test::random_surface(rng, options), {}, k % 3 == 0, "", ""});
   }
   const Result<Model> bearing = read_model(test::shared_data("bearing.iges"));
   const Result<Model> screw = read_model(test::shared_data("screw.step"));
@@ -195,8 +195,8 @@ TEST_CASE("exported STEP and IGES pass BRepCheck and declare millimetres", "[io]
   REQUIRE(screw.ok());
   test::TempDir dir;
   for (const auto& [label, model] :
-       {std::pair{"generated", static_cast<const Model*>(&generated)}, std::pair{"bearing", &bearing.value()},
-        std::pair{"screw", &screw.value()}}) {
+       {std::pair{"generated", static_cast<const Model*>(&generated)},
+        std::pair{"bearing", &bearing.value()}, std::pair{"screw", &screw.value()}}) {
     for (const char* extension : {".step", ".iges"}) {
       const std::filesystem::path path = dir / (std::string(label) + extension);
       INFO(path.filename());
@@ -218,8 +218,9 @@ TEST_CASE("exported STEP and IGES pass BRepCheck and declare millimetres", "[io]
         CHECK_THAT(text, Catch::Contains("SI_UNIT(.MILLI.,.METRE.)"));
         CHECK_THAT(text, Catch::Contains("ADVANCED_FACE("));
         CHECK_THAT(text, Catch::Contains("B_SPLINE_SURFACE_WITH_KNOTS("));
-        const bool rational = std::any_of(model->faces.begin(), model->faces.end(),
-                                          [](const FaceRecord& r) { return r.surface.is_rational(); });
+        const bool rational =
+            std::any_of(model->faces.begin(), model->faces.end(),
+                        [](const FaceRecord& r) { return r.surface.is_rational(); });
         if (rational) CHECK_THAT(text, Catch::Contains("RATIONAL_B_SPLINE_SURFACE("));
       } else {
         // Global section: unit flag 2 and name MM; directory entries of type 144 and 128.
@@ -232,8 +233,8 @@ TEST_CASE("exported STEP and IGES pass BRepCheck and declare millimetres", "[io]
           if (line.size() < 73 || line[72] != 'D') continue;
           if (odd) {
             const int type = std::stoi(line.substr(0, 8));
-            trimmed_surfaces += type == 144 ? 1 : 0;
-            bspline_surfaces += type == 128 ? 1 : 0;
+            trimmed_surfaces += type == 144 ? 1u : 0u;
+            bspline_surfaces += type == 128 ? 1u : 0u;
           }
           odd = !odd;
         }

@@ -8,8 +8,8 @@
 #include <random>
 #include <sstream>
 
-#include "argil/io/io.hpp"
 #include "argil/core/evaluate.hpp"
+#include "argil/io.hpp"
 #include "support/random_surface.hpp"
 #include "surface_projection.hpp"
 #include "test_files.hpp"
@@ -38,11 +38,11 @@ std::string bit_difference(const char* what, const Eigen::Ref<const Eigen::Array
 
 std::string surface_difference(const BSplineSurface& a, const BSplineSurface& b) {
   if (a.degree != b.degree) return "degrees differ";
-  for (const std::string& d : {bit_difference("knots_u", a.knots[0], b.knots[0]),
-                               bit_difference("knots_v", a.knots[1], b.knots[1]),
-                               bit_difference("control_points", a.control_points.reshaped(),
-                                              b.control_points.reshaped()),
-                               bit_difference("weights", a.weights, b.weights)}) {
+  for (const std::string& d :
+       {bit_difference("knots_u", a.knots[0], b.knots[0]),
+        bit_difference("knots_v", a.knots[1], b.knots[1]),
+        bit_difference("control_points", a.control_points.reshaped(), b.control_points.reshaped()),
+        bit_difference("weights", a.weights, b.weights)}) {
     if (!d.empty()) return d;
   }
   return "";
@@ -204,7 +204,8 @@ TEST_CASE("JSON keeps every double bit for bit, subnormals and extremes included
     face.surface.knots[1] << 0.0, Eigen::VectorXd::LinSpaced(1000, 0.0, 1.0), 1.0;
     face.surface.control_points.resize(2000, 3);
     for (Eigen::Index k = 0; k < 6000; ++k) {
-      face.surface.control_points.data()[k] = values[(start + static_cast<std::size_t>(k)) % values.size()];
+      face.surface.control_points.data()[k] =
+          values[(start + static_cast<std::size_t>(k)) % values.size()];
     }
     model.faces.push_back(face);
   }

@@ -17,8 +17,8 @@ struct Projection {
 /// Minimises |S(u, v) - point|^2 from `start` with Newton steps on the gradient
 /// (full second-order Hessian), clamped to the domain. Converges quadratically
 /// when `start` is close, which the callers guarantee (known or interpolated uv).
-inline Projection project(const BSplineSurface& s, const Eigen::Vector3d& point,
-                          Eigen::Vector2d uv, int iterations = 30) {
+inline Projection project(const BSplineSurface& s, const Eigen::Vector3d& point, Eigen::Vector2d uv,
+                          int iterations = 30) {
   const Eigen::Vector2d lo(s.domain_start(Direction::u), s.domain_start(Direction::v));
   const Eigen::Vector2d hi(s.domain_end(Direction::u), s.domain_end(Direction::v));
   double best = (evaluate(s, uv.x(), uv.y()) - point).norm();

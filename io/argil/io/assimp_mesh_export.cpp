@@ -1,7 +1,7 @@
 // The one translation unit that uses assimp.
-#include <assimp/Exporter.hpp>
 #include <assimp/material.h>
 #include <assimp/scene.h>
+#include <assimp/Exporter.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -17,10 +17,14 @@ namespace {
 
 const char* assimp_format_id(MeshFormat format) {
   switch (format) {
-    case MeshFormat::stl: return "stlb";
-    case MeshFormat::obj: return "objnomtl";  // one file: no .mtl written beside it
-    case MeshFormat::ply: return "plyb";
-    case MeshFormat::glb: return "glb2";      // "glb" would be glTF 1.0
+    case MeshFormat::stl:
+      return "stlb";
+    case MeshFormat::obj:
+      return "objnomtl";  // one file: no .mtl written beside it
+    case MeshFormat::ply:
+      return "plyb";
+    case MeshFormat::glb:
+      return "glb2";  // "glb" would be glTF 1.0
   }
   return "";
 }
@@ -32,7 +36,7 @@ void fill_scene(const TriangleMesh& mesh, aiScene& scene) {
   material->AddProperty(&name, AI_MATKEY_NAME);
   const aiColor3D grey(0.7f, 0.7f, 0.72f);
   material->AddProperty(&grey, 1, AI_MATKEY_COLOR_DIFFUSE);
-  scene.mMaterials = new aiMaterial*[1]{material};
+  scene.mMaterials = new aiMaterial* [1] { material };
   scene.mNumMaterials = 1;
 
   auto* out = new aiMesh();
@@ -63,7 +67,7 @@ void fill_scene(const TriangleMesh& mesh, aiScene& scene) {
       face.mIndices[c] = static_cast<unsigned>(mesh.triangles(static_cast<Eigen::Index>(f), c));
     }
   }
-  scene.mMeshes = new aiMesh*[1]{out};
+  scene.mMeshes = new aiMesh* [1] { out };
   scene.mNumMeshes = 1;
   scene.mRootNode = new aiNode("argil");
   scene.mRootNode->mMeshes = new unsigned[1]{0};
@@ -83,8 +87,7 @@ std::optional<MeshFormat> mesh_format_for(const std::filesystem::path& path) {
   return std::nullopt;
 }
 
-Status write_mesh(const TriangleMesh& mesh, const std::filesystem::path& path,
-                  MeshFormat format) {
+Status write_mesh(const TriangleMesh& mesh, const std::filesystem::path& path, MeshFormat format) {
   if (mesh.triangles.rows() == 0) {
     return Status::error(StatusCode::invalid_argument,
                          path.string() + ": the mesh has no triangles (everything trimmed away?)");
@@ -96,8 +99,8 @@ Status write_mesh(const TriangleMesh& mesh, const std::filesystem::path& path,
     Assimp::Exporter exporter;
     const aiExportDataBlob* blob = exporter.ExportToBlob(&scene, assimp_format_id(format));
     if (blob == nullptr) {
-      return Status::error(StatusCode::io_error, path.string() + ": assimp export failed: " +
-                                                     exporter.GetErrorString());
+      return Status::error(StatusCode::io_error,
+                           path.string() + ": assimp export failed: " + exporter.GetErrorString());
     }
     bytes.assign(static_cast<const char*>(blob->data), blob->size);
   } catch (const std::exception& e) {

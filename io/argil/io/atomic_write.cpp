@@ -33,8 +33,8 @@ Status write_atomically(const std::filesystem::path& target, const FileWriter& w
   name.push_back('\0');
   const int fd = ::mkstemp(name.data());
   if (fd < 0) {
-    return io_failure(target, std::string("cannot create a temporary file in ") +
-                                  folder.string() + ": " + std::strerror(errno));
+    return io_failure(target, std::string("cannot create a temporary file in ") + folder.string() +
+                                  ": " + std::strerror(errno));
   }
   // mkstemp creates mode 0600; give the file the permissions a plain fopen would.
   const mode_t mask = ::umask(0);

@@ -100,7 +100,8 @@ class Reader {
     if (value.is_string()) {
       const std::string& text = value.get_ref<const std::string&>();
       if (text.rfind(kNonFiniteMarker, 0) == 0) {
-        return fail(path, text.substr(kNonFiniteMarker.size()) + " is not allowed (finite numbers only)");
+        return fail(path,
+                    text.substr(kNonFiniteMarker.size()) + " is not allowed (finite numbers only)");
       }
     }
     if (value.is_null()) return fail(path, "null where a number belongs (a NaN or infinity?)");
@@ -170,9 +171,9 @@ class Reader {
       const Eigen::Index implied = out.knots[static_cast<std::size_t>(d)].size() -
                                    out.degree[static_cast<std::size_t>(d)] - 1;
       if (counts[static_cast<std::size_t>(d)] != implied) {
-        return fail(path + "." + count_key,
-                    std::to_string(counts[static_cast<std::size_t>(d)]) + " but " + knots_key +
-                        " and " + degree_key + " imply " + std::to_string(implied));
+        return fail(path + "." + count_key, std::to_string(counts[static_cast<std::size_t>(d)]) +
+                                                " but " + knots_key + " and " + degree_key +
+                                                " imply " + std::to_string(implied));
       }
     }
     const Json* net = member(value, path, "control_points");
@@ -181,17 +182,17 @@ class Reader {
     }
     const long long expected = static_cast<long long>(counts[0]) * counts[1];
     if (out.control_points.rows() != expected) {
-      return fail(path + ".control_points", "has " + std::to_string(out.control_points.rows()) +
-                                                " points, count_u * count_v = " +
-                                                std::to_string(expected));
+      return fail(path + ".control_points",
+                  "has " + std::to_string(out.control_points.rows()) +
+                      " points, count_u * count_v = " + std::to_string(expected));
     }
     out.weights.resize(0);
     if (const Json* weights = member(value, path, "weights", false)) {
       if (!vector(*weights, path + ".weights", out.weights)) return false;
       if (out.weights.size() != expected) {
-        return fail(path + ".weights", "has " + std::to_string(out.weights.size()) +
-                                           " weights, count_u * count_v = " +
-                                           std::to_string(expected));
+        return fail(path + ".weights",
+                    "has " + std::to_string(out.weights.size()) +
+                        " weights, count_u * count_v = " + std::to_string(expected));
       }
     }
     return true;
@@ -359,12 +360,16 @@ Result<Model> read_json(const std::filesystem::path& path) {
 }
 
 Result<std::string> to_json(const Model& model) {
+  if (!(model.source_unit.to_mm > 0.0) || !std::isfinite(model.source_unit.to_mm)) {
+    return Status::error(StatusCode::invalid_argument,
+                         "source unit factor to_mm must be positive and finite");
+  }
   Json root;
   root["format"] = kJsonFormatName;
   root["version"] = kJsonFormatVersion;
-  root["units"] = {{"length", "mm"},
-                   {"source", {{"name", model.source_unit.name},
-                               {"to_mm", model.source_unit.to_mm}}}};
+  root["units"] = {
+      {"length", "mm"},
+      {"source", {{"name", model.source_unit.name}, {"to_mm", model.source_unit.to_mm}}}};
   Json metadata = Json::object();
   for (const auto& [key, value] : model.metadata) metadata[key] = value;
   root["metadata"] = std::move(metadata);

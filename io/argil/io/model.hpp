@@ -19,7 +19,7 @@ struct TrimCurve {
   int degree = 1;
   Eigen::VectorXd knots;
   Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> poles;  // (u, v) rows
-  Eigen::VectorXd weights;                                           // empty: polynomial
+  Eigen::VectorXd weights;                                          // empty: polynomial
 
   bool is_rational() const { return weights.size() > 0; }
   int count() const { return static_cast<int>(knots.size()) - degree - 1; }

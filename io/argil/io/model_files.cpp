@@ -16,9 +16,9 @@ bool is_json(const std::filesystem::path& path) {
 }
 
 Status unknown_extension(const std::filesystem::path& path, const char* what) {
-  return Status::error(StatusCode::unsupported, path.string() + ": cannot " + what +
-                                                    " this file type (supported: " +
-                                                    supported_extensions() + ")");
+  return Status::error(StatusCode::unsupported,
+                       path.string() + ": cannot " + what +
+                           " this file type (supported: " + supported_extensions() + ")");
 }
 
 }  // namespace

@@ -27,8 +27,8 @@
 #include <TColStd_Array2OfReal.hxx>
 #include <TColgp_Array1OfPnt2d.hxx>
 #include <TColgp_Array2OfPnt.hxx>
-#include <TopoDS.hxx>
 #include <TopLoc_Location.hxx>
+#include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
@@ -43,7 +43,7 @@
 
 #include "argil/io/atomic_write.hpp"
 #include "argil/io/cad_exchange.hpp"
-#include "argil/io/occt_console.hpp"
+#include "argil/io/occt_session.hpp"
 #include "argil/io/trim_curve.hpp"
 
 namespace argil::io {
@@ -87,9 +87,9 @@ Handle(Geom_BSplineSurface) to_occt(const BSplineSurface& s) {
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
       const Eigen::Index row = s.pole_index(i, j);
-      poles(i + 1, j + 1) = gp_Pnt(writable(s.control_points(row, 0)),
-                                   writable(s.control_points(row, 1)),
-                                   writable(s.control_points(row, 2)));
+      poles(i + 1, j + 1) =
+          gp_Pnt(writable(s.control_points(row, 0)), writable(s.control_points(row, 1)),
+                 writable(s.control_points(row, 2)));
       weights(i + 1, j + 1) = s.is_rational() ? s.weights[row] : 1.0;
     }
   }
@@ -128,7 +128,8 @@ bool is_degenerate(const Handle(Geom2d_BSplineCurve) & curve,
                    const Handle(Geom_BSplineSurface) & surface, double tolerance) {
   const gp_Pnt start = surface_point(surface, curve->StartPoint());
   for (double f : {0.25, 0.5, 0.75, 1.0}) {
-    const double t = curve->FirstParameter() + f * (curve->LastParameter() - curve->FirstParameter());
+    const double t =
+        curve->FirstParameter() + f * (curve->LastParameter() - curve->FirstParameter());
     if (start.Distance(surface_point(surface, curve->Value(t))) > tolerance) return false;
   }
   return true;
@@ -212,8 +213,8 @@ Result<TopoDS_Face> make_face(const FaceRecord& record) {
     BRepBuilderAPI_MakeFace make(surface, wires.front(), true);
     for (std::size_t w = 1; w < wires.size() && make.IsDone(); ++w) make.Add(wires[w]);
     if (!make.IsDone()) {
-      return Status::error(StatusCode::invalid_argument, "trim loops give no face (error " +
-                                                             std::to_string(make.Error()) + ")");
+      return Status::error(StatusCode::invalid_argument,
+                           "trim loops give no face (error " + std::to_string(make.Error()) + ")");
     }
     face = make.Face();
     BRepLib::BuildCurves3d(face);
@@ -283,6 +284,7 @@ Status write_iges_file(const TopoDS_Shape& shape, const std::filesystem::path& t
 
 Status write_cad(const Model& model, const std::filesystem::path& path, CadFormat format) {
   detail::silence_occt_console();
+  const auto lock = detail::lock_occt_exchange();
   const auto failed = [&](const Status& status) {
     return Status::error(status.code, path.string() + ": " + status.message);
   };
@@ -294,9 +296,8 @@ Status write_cad(const Model& model, const std::filesystem::path& path, CadForma
     if (!shape.ok()) return failed(shape.status());
     return write_atomically(path, [&](const std::filesystem::path& temporary) {
       try {
-        const Status status = format == CadFormat::step
-                                  ? write_step_file(shape.value(), temporary)
-                                  : write_iges_file(shape.value(), temporary);
+        const Status status = format == CadFormat::step ? write_step_file(shape.value(), temporary)
+                                                        : write_iges_file(shape.value(), temporary);
         return status.ok() ? status : failed(status);
       } catch (const Standard_Failure& failure) {
         return failed(Status::error(StatusCode::io_error, std::string("OpenCASCADE failed: ") +

@@ -22,10 +22,10 @@
 #include <Interface_InterfaceModel.hxx>
 #include <Interface_Static.hxx>
 #include <STEPControl_Reader.hxx>
+#include <Standard_Failure.hxx>
 #include <StepData_StepModel.hxx>
 #include <StepData_UndefinedEntity.hxx>
 #include <StepRepr_RepresentationItem.hxx>
-#include <Standard_Failure.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColStd_Array2OfReal.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
@@ -49,7 +49,7 @@
 #include <string>
 
 #include "argil/io/cad_exchange.hpp"
-#include "argil/io/occt_console.hpp"
+#include "argil/io/occt_session.hpp"
 #include "argil/io/trim_curve.hpp"
 
 namespace argil::io {
@@ -155,17 +155,28 @@ double unit_to_mm(const std::string& name) {
 // IGES 5.3 global parameter 14 (unit flag); 3 means "see the unit name".
 double iges_unit_to_mm(int flag, const std::string& name) {
   switch (flag) {
-    case 1: return 25.4;
-    case 2: return 1.0;
-    case 4: return 304.8;
-    case 5: return 1609344.0;
-    case 6: return 1000.0;
-    case 7: return 1e6;
-    case 8: return 0.0254;
-    case 9: return 1e-3;
-    case 10: return 10.0;
-    case 11: return 2.54e-5;
-    default: return unit_to_mm(name);
+    case 1:
+      return 25.4;
+    case 2:
+      return 1.0;
+    case 4:
+      return 304.8;
+    case 5:
+      return 1609344.0;
+    case 6:
+      return 1000.0;
+    case 7:
+      return 1e6;
+    case 8:
+      return 0.0254;
+    case 9:
+      return 1e-3;
+    case 10:
+      return 10.0;
+    case 11:
+      return 2.54e-5;
+    default:
+      return unit_to_mm(name);
   }
 }
 
@@ -253,8 +264,7 @@ Result<TrimCurve> edge_trim(const TopoDS_Edge& edge, const TopoDS_Face& face) {
     return Status::error(StatusCode::unsupported, "edge without a parameter-space curve");
   }
   Handle(Geom2d_BSplineCurve) bspline = Handle(Geom2d_BSplineCurve)::DownCast(pcurve);
-  if (bspline.IsNull() || bspline->FirstParameter() != first ||
-      bspline->LastParameter() != last) {
+  if (bspline.IsNull() || bspline->FirstParameter() != first || bspline->LastParameter() != last) {
     bspline = Geom2dConvert::CurveToBSplineCurve(new Geom2d_TrimmedCurve(pcurve, first, last));
   } else {
     bspline = Handle(Geom2d_BSplineCurve)::DownCast(bspline->Copy());
@@ -394,9 +404,9 @@ Result<FaceRecord> face_record(const TopoDS_Face& oriented_face) {
     // Converts surface and pcurves together, so the trims follow the new parameters.
     BRepBuilderAPI_NurbsConvert convert(face, true);
     if (!convert.IsDone()) {
-      return Status::error(StatusCode::unsupported,
-                           std::string("cannot convert ") + surface->DynamicType()->Name() +
-                               " to a B-spline");
+      return Status::error(
+          StatusCode::unsupported,
+          std::string("cannot convert ") + surface->DynamicType()->Name() + " to a B-spline");
     }
     face = TopoDS::Face(convert.Shape().Oriented(TopAbs_FORWARD));
     Handle(Geom_Surface) converted = BRep_Tool::Surface(face);
@@ -404,9 +414,9 @@ Result<FaceRecord> face_record(const TopoDS_Face& oriented_face) {
     if (!converted_trimmed.IsNull()) converted = converted_trimmed->BasisSurface();
     bspline = Handle(Geom_BSplineSurface)::DownCast(converted);
     if (bspline.IsNull()) {
-      return Status::error(StatusCode::unsupported,
-                           std::string("conversion of ") + surface->DynamicType()->Name() +
-                               " gave no B-spline surface");
+      return Status::error(StatusCode::unsupported, std::string("conversion of ") +
+                                                        surface->DynamicType()->Name() +
+                                                        " gave no B-spline surface");
     }
   }
   record.surface = to_argil(clamped_copy(bspline));
@@ -425,17 +435,16 @@ Result<FaceRecord> face_record(const TopoDS_Face& oriented_face) {
 }
 
 // First failure OCCT recorded while loading, if any ("" when none).
-std::string first_load_failure(const Handle(XSControl_WorkSession) & session,
-                               CadFormat format) {
+std::string first_load_failure(const Handle(XSControl_WorkSession) & session, CadFormat format) {
   const Handle(Interface_InterfaceModel) model = session->Model();
   const Interface_CheckIterator checks = session->ModelCheckList();
   for (checks.Start(); checks.More(); checks.Next()) {
     const Handle(Interface_Check) check = checks.Value();
     if (check->HasFailed()) {
       const int number = checks.Number();
-      std::string text = "the file";
+      std::string text;
       if (number > 0 && number <= model->NbEntities()) {
-        text = "entity " + entity_label(model, model->Value(number), format) + " (" +
+        text = " at entity " + entity_label(model, model->Value(number), format) + " (" +
                model->TypeName(model->Value(number), false) + ")";
       }
       if (check->NbFails() > 0) text += ": " + std::string(check->CFail(1));
@@ -448,7 +457,7 @@ std::string first_load_failure(const Handle(XSControl_WorkSession) & session,
 // Entities the reader did not recognise; a CAD import that silently dropped
 // geometry would be worse than a clear refusal.
 std::string first_unsupported_entity(const Handle(Interface_InterfaceModel) & model,
-                                      CadFormat format) {
+                                     CadFormat format) {
   for (int n = 1; n <= model->NbEntities(); ++n) {
     const Handle(Standard_Transient) entity = model->Value(n);
     if (format == CadFormat::step) {
@@ -483,7 +492,7 @@ Result<Model> read_with_occt(const std::filesystem::path& path, CadFormat format
       return file_error(path, StatusCode::unsupported, "unsupported STEP entity " + bad);
     }
     if (const std::string fail = first_load_failure(session, format); !fail.empty()) {
-      return file_error(path, StatusCode::parse_error, "malformed STEP data at " + fail);
+      return file_error(path, StatusCode::parse_error, "malformed STEP data" + fail);
     }
     TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
     reader.FileUnits(lengths, angles, solid_angles);
@@ -507,12 +516,13 @@ Result<Model> read_with_occt(const std::filesystem::path& path, CadFormat format
       return file_error(path, StatusCode::unsupported, "unsupported IGES entity " + bad);
     }
     if (const std::string fail = first_load_failure(session, format); !fail.empty()) {
-      return file_error(path, StatusCode::parse_error, "malformed IGES data at " + fail);
+      return file_error(path, StatusCode::parse_error, "malformed IGES data" + fail);
     }
     const auto iges = Handle(IGESData_IGESModel)::DownCast(session->Model());
     if (!iges.IsNull()) {
       const IGESData_GlobalSection& global = iges->GlobalSection();
-      if (!global.UnitName().IsNull()) model.source_unit.name = lower(global.UnitName()->ToCString());
+      if (!global.UnitName().IsNull())
+        model.source_unit.name = lower(global.UnitName()->ToCString());
       model.source_unit.to_mm = iges_unit_to_mm(global.UnitFlag(), model.source_unit.name);
     }
     if (reader.NbRootsForTransfer() == 0) {
@@ -535,13 +545,13 @@ Result<Model> read_with_occt(const std::filesystem::path& path, CadFormat format
   int index = 0;
   for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next(), ++index) {
     Result<FaceRecord> record = face_record(TopoDS::Face(e.Current()));
-    FaceRecord dummy;
     if (!record.ok()) {
-      describe_source(session, e.Current(), format, dummy);
+      FaceRecord source;  // only for the entity id in the message
+      describe_source(session, e.Current(), format, source);
       return file_error(path, record.status().code,
                         "face " + std::to_string(index) +
-                            (dummy.source_id.empty() ? "" : " (" + dummy.source_id + ")") +
-                            ": " + record.status().message);
+                            (source.source_id.empty() ? "" : " (" + source.source_id + ")") + ": " +
+                            record.status().message);
     }
     describe_source(session, e.Current(), format, record.value());
     model.faces.push_back(std::move(record).value());
@@ -563,11 +573,11 @@ std::optional<CadFormat> cad_format_for(const std::filesystem::path& path) {
 
 Result<Model> read_cad(const std::filesystem::path& path, CadFormat format) {
   detail::silence_occt_console();
+  const auto lock = detail::lock_occt_exchange();
   Result<FileEnds> ends = read_ends(path);
   if (!ends.ok()) return ends.status();
-  const Status structure = format == CadFormat::step
-                               ? check_step_structure(path, ends.value())
-                               : check_iges_structure(path, ends.value());
+  const Status structure = format == CadFormat::step ? check_step_structure(path, ends.value())
+                                                     : check_iges_structure(path, ends.value());
   if (!structure.ok()) return structure;
   try {
     return read_with_occt(path, format);

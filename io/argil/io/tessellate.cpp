@@ -100,8 +100,8 @@ struct CornerIndex {
   }
 
   // Values on line `key` within [lo, hi), ascending.
-  static std::vector<double> between(const std::map<double, std::vector<double>>& lines,
-                                     double key, double lo, double hi) {
+  static std::vector<double> between(const std::map<double, std::vector<double>>& lines, double key,
+                                     double lo, double hi) {
     const std::vector<double>& values = lines.at(key);
     return {std::lower_bound(values.begin(), values.end(), lo),
             std::lower_bound(values.begin(), values.end(), hi)};
@@ -255,6 +255,16 @@ Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& o
     return Status::error(StatusCode::invalid_argument,
                          "chord tolerance must be positive and finite [mm]");
   }
+  // Mesh files store float32 coordinates (about 6e-8 relative); a finer chord
+  // tolerance buys nothing and would subdivide without bound.
+  constexpr double kFinestRelativeTolerance = 1e-7;
+  const double size = model_box(model).diagonal();
+  if (options.chord_tolerance_mm < kFinestRelativeTolerance * size) {
+    return Status::error(StatusCode::invalid_argument,
+                         "chord tolerance " + std::to_string(options.chord_tolerance_mm) +
+                             " mm is below 1e-7 of the model size (" + std::to_string(size) +
+                             " mm): finer than float32 mesh files can store");
+  }
   TriangleMesh all;
   std::vector<TriangleMesh> parts;
   Eigen::Index vertices = 0, triangles = 0;
@@ -275,8 +285,7 @@ Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& o
     all.positions.middleRows(v0, nv) = part.positions;
     all.normals.middleRows(v0, nv) = part.normals;
     all.uv.middleRows(v0, nv) = part.uv;
-    all.vertex_face.insert(all.vertex_face.end(), part.vertex_face.begin(),
-                           part.vertex_face.end());
+    all.vertex_face.insert(all.vertex_face.end(), part.vertex_face.begin(), part.vertex_face.end());
     all.triangles.middleRows(t0, nt) = part.triangles.array() + static_cast<int>(v0);
     v0 += nv;
     t0 += nt;

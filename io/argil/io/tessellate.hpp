@@ -51,7 +51,8 @@ TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& 
                              int face_index = 0);
 
 /// Tessellates every face and concatenates the meshes. Fails when a face does
-/// not validate or the tolerance is not positive.
+/// not validate or the tolerance is not positive or below 1e-7 of the model's
+/// control-point diagonal (mesh files hold float32 coordinates).
 Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& options = {});
 
 }  // namespace argil::io

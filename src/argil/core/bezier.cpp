@@ -81,18 +81,32 @@ BezierPatch subdivide(const BezierPatch& patch, const SubdivisionMatrices& su,
                       int half_v) {
   const int p = patch.degree_u;
   const int q = patch.degree_v;
-  BezierPatch child{p, q, Eigen::MatrixX4d(patch.points.rows(), 4)};
   const Eigen::MatrixXd& hu = half_u == 0 ? su.left : su.right;
   const Eigen::MatrixXd& hv = half_v == 0 ? sv.left : sv.right;
-  for (int c = 0; c < 4; ++c) {
-    // Coordinate c as a (p+1) x (q+1) net; child = Hu * B * Hv^T.
-    Eigen::MatrixXd net(p + 1, q + 1);
-    for (int a = 0; a <= p; ++a)
-      for (int b = 0; b <= q; ++b) net(a, b) = patch.points(a * (q + 1) + b, c);
-    if (split_u) net = hu * net;
-    if (split_v) net = net * hv.transpose();
-    for (int a = 0; a <= p; ++a)
-      for (int b = 0; b <= q; ++b) child.points(a * (q + 1) + b, c) = net(a, b);
+  // Child = Hu * B * Hv^T on the homogeneous rows, as two passes of 4-vector
+  // sums (no temporaries: this runs for every refreshed node every tick).
+  BezierPatch across_u{p, q, patch.points};
+  if (split_u) {
+    for (int a = 0; a <= p; ++a) {
+      for (int b = 0; b <= q; ++b) {
+        Eigen::RowVector4d sum = Eigen::RowVector4d::Zero();
+        for (int i = 0; i <= p; ++i) {
+          if (hu(a, i) != 0.0) sum += hu(a, i) * patch.points.row(i * (q + 1) + b);
+        }
+        across_u.points.row(a * (q + 1) + b) = sum;
+      }
+    }
+  }
+  if (!split_v) return across_u;
+  BezierPatch child{p, q, Eigen::MatrixX4d(across_u.points.rows(), 4)};
+  for (int a = 0; a <= p; ++a) {
+    for (int b = 0; b <= q; ++b) {
+      Eigen::RowVector4d sum = Eigen::RowVector4d::Zero();
+      for (int j = 0; j <= q; ++j) {
+        if (hv(b, j) != 0.0) sum += hv(b, j) * across_u.points.row(a * (q + 1) + j);
+      }
+      child.points.row(a * (q + 1) + b) = sum;
+    }
   }
   return child;
 }

@@ -18,6 +18,18 @@ struct CollisionRequest {
   bool refine = true;
   /// Signed penetration depth per contact.
   bool compute_depth = true;
+  /// Surface-surface queries: deepest hierarchy level the descent splits to.
+  /// A node at this level counts as flat whatever its flatness bound, so a
+  /// level below the one eps needs trades the eps guarantee for time.
+  int max_level = SurfaceHierarchy::kMaxLevel;
+};
+
+/// A polyline along the intersection of two surfaces: points [mm] and their
+/// parameters on surface a and on surface b, one entry per point. A closed
+/// curve repeats its first point at the end.
+struct IntersectionCurve {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> uv_a, uv_b;
 };
 
 /// One contact between a surface (side a) and a tool or second surface (side b).
@@ -38,6 +50,9 @@ struct CollisionResult {
   std::vector<Contact> contacts;  // grouped by region, deepest first within a region
   int region_count = 0;
   QueryCounters counters;
+  /// Surface-surface queries: intersection curves, chained from the leaf
+  /// triangle segments (empty for other queries).
+  std::vector<IntersectionCurve> curves;
 };
 
 }  // namespace argil

@@ -41,6 +41,7 @@ class Plane final : public ImplicitTool {
     s.gradient = n_;
     return s;
   }
+  double value(const Eigen::Vector3d& p) const override { return n_.dot(p) - offset_; }
   double lower_bound_on_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                  const Eigen::Vector3d& c) const override {
     return std::min({n_.dot(a), n_.dot(b), n_.dot(c)}) - offset_;
@@ -56,6 +57,7 @@ class Sphere final : public ImplicitTool {
  public:
   Sphere(const Eigen::Vector3d& c, double r) : c_(c), r_(r) {}
   DistanceSample distance(const Eigen::Vector3d& p) const override { return ball_distance(p, c_, r_); }
+  double value(const Eigen::Vector3d& p) const override { return (p - c_).norm() - r_; }
   double lower_bound_on_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                  const Eigen::Vector3d& c) const override {
     return (closest_point_on_triangle(c_, a, b, c) - c_).norm() - r_;
@@ -124,7 +126,7 @@ class ValueTool : public ImplicitTool {
     }
     return s;
   }
-  virtual double value(const Eigen::Vector3d& p) const = 0;
+  double value(const Eigen::Vector3d& p) const override = 0;
 
  private:
   double h_;

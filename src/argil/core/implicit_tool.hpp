@@ -22,6 +22,8 @@ class ImplicitTool {
  public:
   virtual ~ImplicitTool() = default;
   virtual DistanceSample distance(const Eigen::Vector3d& p_W) const = 0;
+  /// The function value alone (no derivatives): what pruning needs.
+  virtual double value(const Eigen::Vector3d& p_W) const { return distance(p_W).value; }
   virtual double lipschitz() const { return 1.0; }
   /// A lower bound of the function over triangle (a, b, c). Plane, sphere and
   /// capsule give the exact minimum; others f(centroid) - L * circumradius.

@@ -1,6 +1,7 @@
 #include "argil/core/patch_bound.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace argil {
 
@@ -8,32 +9,36 @@ PatchBound bound_patch(const BezierPatch& patch) {
   const int p = patch.degree_u;
   const int q = patch.degree_v;
   const Eigen::Index count = patch.points.rows();
-  Eigen::Matrix<double, Eigen::Dynamic, 3> b(count, 3);
-  for (Eigen::Index k = 0; k < count; ++k) {
-    b.row(k) = patch.points.row(k).head<3>() / patch.points(k, 3);
-  }
+  const auto cartesian = [&patch](Eigen::Index k) -> Eigen::Vector3d {
+    return patch.points.row(k).head<3>().transpose() / patch.points(k, 3);
+  };
   PatchBound out;
-  out.box = {b.colwise().minCoeff().transpose(), b.colwise().maxCoeff().transpose()};
-  out.center = 0.5 * (out.box.min + out.box.max);
-  out.radius = (b.rowwise() - out.center.transpose()).rowwise().norm().maxCoeff();
+  Eigen::Vector3d lo = cartesian(0), hi = lo;
+  for (Eigen::Index k = 1; k < count; ++k) {
+    const Eigen::Vector3d x = cartesian(k);
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  out.box = {lo, hi};
+  out.center = 0.5 * (lo + hi);
+  double r2 = 0.0;
+  for (Eigen::Index k = 0; k < count; ++k) r2 = std::max(r2, (cartesian(k) - out.center).squaredNorm());
+  out.radius = std::sqrt(r2);
 
-  const Eigen::Vector3d c00 = b.row(0), c10 = b.row(p * (q + 1));
-  const Eigen::Vector3d c01 = b.row(q), c11 = b.row(p * (q + 1) + q);
-  out.corners[0] = c00;
-  out.corners[1] = c10;
-  out.corners[2] = c01;
-  out.corners[3] = c11;
+  const Eigen::Vector3d c00 = cartesian(0), c10 = cartesian(p * (q + 1));
+  const Eigen::Vector3d c01 = cartesian(q), c11 = cartesian(p * (q + 1) + q);
+  out.corners = {c00, c10, c01, c11};
 
   // Net to bilinear: S - L = sum B_ij (b_ij - L(i/p, j/q)) for polynomial patches
   // (Bernstein polynomials reproduce bilinear functions).
-  double net_gap = 0.0;
+  double net_gap2 = 0.0;
   for (int i = 0; i <= p; ++i) {
     const double s = static_cast<double>(i) / p;
     for (int j = 0; j <= q; ++j) {
       const double t = static_cast<double>(j) / q;
       const Eigen::Vector3d l =
           (1 - s) * (1 - t) * c00 + s * (1 - t) * c10 + (1 - s) * t * c01 + s * t * c11;
-      net_gap = std::max(net_gap, (b.row(i * (q + 1) + j).transpose() - l).norm());
+      net_gap2 = std::max(net_gap2, (cartesian(i * (q + 1) + j) - l).squaredNorm());
     }
   }
   // Rational: the rational basis differs from the Bernstein one by at most
@@ -51,7 +56,7 @@ PatchBound bound_patch(const BezierPatch& patch) {
   // Bilinear to two triangles: L - T = t (1 - s) (c10 + c01 - c00 - c11) on
   // the triangle s >= t (symmetric on the other), at most a quarter of it.
   const double twist = 0.25 * (c10 + c01 - c00 - c11).norm();
-  out.flatness = net_gap + rational_gap + twist;
+  out.flatness = std::sqrt(net_gap2) + rational_gap + twist;
   return out;
 }
 

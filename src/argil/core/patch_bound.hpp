@@ -2,6 +2,7 @@
 // Conservative bounds of a Bezier (sub-)patch from its control points alone.
 
 #include <Eigen/Core>
+#include <array>
 
 #include "argil/core/bezier.hpp"
 #include "argil/core/bspline_surface.hpp"
@@ -20,7 +21,9 @@ struct PatchBound {
   /// same parameters: net-to-bilinear distance, a rational term that vanishes
   /// as the weights even out, and the bilinear-to-triangles term.
   double flatness = 0.0;
-  Eigen::Vector3d corners[4];  // S(0,0), S(1,0), S(0,1), S(1,1)
+  // S(0,0), S(1,0), S(0,1), S(1,1)
+  std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                         Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
 };
 
 PatchBound bound_patch(const BezierPatch& patch);

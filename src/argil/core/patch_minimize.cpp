@@ -8,18 +8,29 @@
 namespace argil {
 
 PatchMinimum minimize_on_patch(const BSplineSurface& s, double u0, double u1, double v0, double v1,
-                               const std::function<DistanceSample(const Eigen::Vector3d&)>& f) {
+                               const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
+                               const std::array<Eigen::Vector3d, 4>* corners) {
   PatchMinimum best;
   best.value = std::numeric_limits<double>::infinity();
-  for (int a = 0; a <= 2; ++a) {
-    for (int b = 0; b <= 2; ++b) {
-      const double u = u0 + 0.5 * a * (u1 - u0);
-      const double v = v0 + 0.5 * b * (v1 - v0);
-      const double value = f(evaluate(s, u, v)).value;
+  // Start from the best of the corners and the centre.
+  for (int a = 0; a <= 2; a += 2) {
+    for (int b = 0; b <= 2; b += 2) {
+      const double u = a == 0 ? u0 : u1;
+      const double v = b == 0 ? v0 : v1;
+      const Eigen::Vector3d x = corners ? (*corners)[static_cast<std::size_t>(a / 2 + b)] : evaluate(s, u, v);
+      const double value = f(x).value;
       if (value < best.value) {
         best.value = value;
         best.uv = {u, v};
       }
+    }
+  }
+  {
+    const double u = 0.5 * (u0 + u1), v = 0.5 * (v0 + v1);
+    const double value = f(evaluate(s, u, v)).value;
+    if (value < best.value) {
+      best.value = value;
+      best.uv = {u, v};
     }
   }
   const Eigen::Vector2d lo(u0, v0), hi(u1, v1);

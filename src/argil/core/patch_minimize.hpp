@@ -3,6 +3,7 @@
 // rectangle: the exact step at the leaves of every query.
 
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 
 #include "argil/core/bspline_surface.hpp"
@@ -20,10 +21,13 @@ struct PatchMinimum {
 
 /// Minimises g(u, v) = f(S(u, v)) over [u0, u1] x [v0, v1] by projected
 /// Newton steps (Hessian J^T H_f J + grad f . S'', gradient steps where it is
-/// not positive definite) with backtracking, from the best of a 3x3 sample.
+/// not positive definite) with backtracking, from the best of the corners and the centre.
 /// Finds a local minimum; callers certify globality with their bounds.
+/// `corners`, when given, are S at (u0,v0), (u1,v0), (u0,v1), (u1,v1) (a
+/// hierarchy node has them), saving four evaluations.
 PatchMinimum minimize_on_patch(const BSplineSurface& surface, double u0, double u1, double v0,
                                double v1,
-                               const std::function<DistanceSample(const Eigen::Vector3d&)>& f);
+                               const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
+                               const std::array<Eigen::Vector3d, 4>* corners = nullptr);
 
 }  // namespace argil

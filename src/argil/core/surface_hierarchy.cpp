@@ -1,6 +1,8 @@
 #include "argil/core/surface_hierarchy.hpp"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <limits>
 
 namespace argil {
@@ -28,7 +30,68 @@ Result<SurfaceHierarchy> SurfaceHierarchy::build(const BSplineSurface& surface,
       h.nodes_.push_back(std::move(n));
     }
   }
+  h.build_block(0, static_cast<int>(xu.spans.size()), 0, static_cast<int>(xv.spans.size()));
   return h;
+}
+
+int SurfaceHierarchy::build_block(int eu0, int eu1, int ev0, int ev1) {
+  const int id = static_cast<int>(blocks_.size());
+  ElementBlock fresh;
+  fresh.eu0 = eu0;
+  fresh.eu1 = eu1;
+  fresh.ev0 = ev0;
+  fresh.ev1 = ev1;
+  blocks_.push_back(fresh);
+  const int elements_v = ops_.v->element_count();
+  if (eu1 - eu0 == 1 && ev1 - ev0 == 1) {
+    blocks_[static_cast<std::size_t>(id)].element_node = roots_[static_cast<std::size_t>(eu0 * elements_v + ev0)];
+    return id;
+  }
+  // Halve every range that has more than one element.
+  const int mu = eu1 - eu0 > 1 ? (eu0 + eu1) / 2 : eu1;
+  const int mv = ev1 - ev0 > 1 ? (ev0 + ev1) / 2 : ev1;
+  const int u_ranges[2][2] = {{eu0, mu}, {mu, eu1}};
+  const int v_ranges[2][2] = {{ev0, mv}, {mv, ev1}};
+  for (int hu = 0; hu < 2; ++hu) {
+    for (int hv = 0; hv < 2; ++hv) {
+      const int* ru = u_ranges[hu];
+      const int* rv = v_ranges[hv];
+      if (ru[0] >= ru[1] || rv[0] >= rv[1]) continue;
+      const int c = build_block(ru[0], ru[1], rv[0], rv[1]);
+      blocks_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(hu * 2 + hv)] = c;
+    }
+  }
+  return id;
+}
+
+const ElementBlock& SurfaceHierarchy::block(int id, QueryCounters* counters) {
+  ElementBlock& b = blocks_[static_cast<std::size_t>(id)];
+  if (counters) ++counters->nodes_visited;
+  if (b.version == version_) return b;
+  const int p = surface_.degree[0];
+  const int q = surface_.degree[1];
+  const int i0 = ops_.u->extraction().spans[static_cast<std::size_t>(b.eu0)] - p;
+  const int i1 = ops_.u->extraction().spans[static_cast<std::size_t>(b.eu1 - 1)];
+  const int j0 = ops_.v->extraction().spans[static_cast<std::size_t>(b.ev0)] - q;
+  const int j1 = ops_.v->extraction().spans[static_cast<std::size_t>(b.ev1 - 1)];
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (int i = i0; i <= i1; ++i) {
+    for (int j = j0; j <= j1; ++j) {
+      const Eigen::Vector3d x = surface_.control_points.row(surface_.pole_index(i, j)).transpose();
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+  }
+  // One pass over the poles: the box, and the sphere around it (looser than
+  // the tightest, but blocks are refreshed every tick on a deforming surface).
+  b.bound.box = {lo, hi};
+  b.bound.center = 0.5 * (lo + hi);
+  b.bound.radius = 0.5 * (hi - lo).norm();
+  b.bound.flatness = std::numeric_limits<double>::infinity();
+  b.version = version_;
+  if (counters) ++counters->nodes_refreshed;
+  return b;
 }
 
 void SurfaceHierarchy::set_control_points(const ControlNet& points,

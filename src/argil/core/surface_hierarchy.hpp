@@ -32,6 +32,18 @@ struct HierarchyNode {
   std::uint64_t version = 0;  // control-point version the patch was built from
 };
 
+/// A block of Bezier elements [eu0, eu1) x [ev0, ev1) above the element roots,
+/// so a query reaches the few elements near a tool in O(log) sphere tests
+/// instead of testing every element. Its bound encloses the B-spline control
+/// points acting on those elements (convex hull property of the B-spline).
+struct ElementBlock {
+  int eu0 = 0, eu1 = 0, ev0 = 0, ev1 = 0;
+  std::array<int, 4> children{-1, -1, -1, -1};  // sub-blocks; -1 where a range cannot split
+  int element_node = -1;  // the element's root node when the block is one element
+  PatchBound bound;       // centre, radius and box only (flatness is not defined)
+  std::uint64_t version = 0;
+};
+
 /// Work a query did, for benchmarks and the speed/accuracy trade.
 struct QueryCounters {
   long nodes_visited = 0;    // node bounds tested
@@ -60,6 +72,9 @@ class SurfaceHierarchy {
 
   /// One node per Bezier element: the hierarchy's roots.
   const std::vector<int>& roots() const { return roots_; }
+  /// The block tree over the elements (built with the structure; bounds lazy).
+  /// Block 0 covers every element.
+  const ElementBlock& block(int id, QueryCounters* counters = nullptr);
   /// The node with fresh bounds (refreshing its ancestors first if needed).
   const HierarchyNode& node(int id, QueryCounters* counters = nullptr);
   /// Index of child (half_u, half_v) of `id`, created on first use.
@@ -74,12 +89,14 @@ class SurfaceHierarchy {
  private:
   SurfaceHierarchy() = default;
   void refresh(int id, QueryCounters* counters);
+  int build_block(int eu0, int eu1, int ev0, int ev1);
 
   BSplineSurface surface_;
   SurfaceOperators ops_;
   std::uint64_t version_ = 1;
   std::vector<HierarchyNode> nodes_;
   std::vector<int> roots_;
+  std::vector<ElementBlock> blocks_;
   PatchBound root_bound_;
   std::uint64_t root_bound_version_ = 0;
 };

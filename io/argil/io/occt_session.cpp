@@ -1,10 +1,8 @@
-#include "argil/io/occt_console.hpp"
+#include "argil/io/occt_session.hpp"
 
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
-
-#include <mutex>
 
 namespace argil::io::detail {
 
@@ -14,6 +12,11 @@ void silence_occt_console() {
     // Transfer statistics and warnings go to stdout with colour codes otherwise.
     Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
   });
+}
+
+std::unique_lock<std::mutex> lock_occt_exchange() {
+  static std::mutex mutex;
+  return std::unique_lock<std::mutex>(mutex);
 }
 
 }  // namespace argil::io::detail

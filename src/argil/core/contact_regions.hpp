@@ -1,0 +1,26 @@
+#pragma once
+// Grouping of leaf contacts into connected contact regions, shared by every
+// collision query.
+
+#include <vector>
+
+#include "argil/core/contact.hpp"
+
+namespace argil {
+
+/// A contact found on one leaf, with the leaf's parameter rectangle on
+/// surface a (the side regions are grouped on).
+struct LeafContact {
+  Contact contact;
+  double u0, u1, v0, v1;
+};
+
+/// Groups leaf contacts whose rectangles touch (closed rectangles: sharing an
+/// edge or a corner counts) into regions, numbers regions by their deepest
+/// contact (deepest first; ties keep first appearance), orders each region
+/// deepest first (ties by uv_a), and appends to `out.contacts` at most
+/// max_contacts of them: every region's deepest contact first, then the rest
+/// in order. Sets out.region_count. Reorders `leaves`.
+void group_regions(std::vector<LeafContact>& leaves, int max_contacts, CollisionResult& out);
+
+}  // namespace argil

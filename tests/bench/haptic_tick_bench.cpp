@@ -1,0 +1,203 @@
+// Per-tick contact on a deforming 32x32 bicubic panel whose control points all
+// move every tick: argil's sphere tool on the lazy hierarchy against the FCL
+// route (re-tessellate to the same chord error, refit the AABB tree, collide).
+// Also closest-point queries against OpenCASCADE's local and global projection.
+#include <Extrema_GenLocateExtPS.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <GeomAdaptor_Surface.hxx>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "bench_surfaces.hpp"
+#include "median_ratio_reporter.hpp"
+
+namespace {
+
+constexpr int kPoles = 32;
+constexpr double kToolRadius = 10.0;  // [mm]
+constexpr double kPress = 1.0;        // sphere depth into the undeformed panel [mm]
+constexpr int kPathSteps = 1000;      // one second of ticks at 1 kHz
+
+double chord_tolerance() { return 0.05; }  // [mm], about 1e-4 of the panel diagonal
+
+/// Every control point moves every tick: a travelling wave of 0.5 mm.
+void deform(const argil::ControlNet& rest, int tick, argil::ControlNet& out) {
+  out = rest;
+  const double phase = 0.02 * tick;
+  for (Eigen::Index k = 0; k < out.rows(); ++k) {
+    out(k, 2) += 0.5 * std::sin(phase + 0.05 * rest(k, 0) + 0.03 * rest(k, 1));
+  }
+}
+
+/// Tool centres along a diagonal stroke, pressing kPress into the rest surface.
+std::vector<Eigen::Vector3d> tool_path(const argil::BSplineSurface& s) {
+  std::vector<Eigen::Vector3d> path;
+  for (int k = 0; k < kPathSteps; ++k) {
+    const double t = 0.2 + 0.6 * k / (kPathSteps - 1);
+    const auto d = argil::evaluate_derivatives(s, t, 0.3 + 0.4 * t, 1);
+    path.push_back(d.point + argil::unit_normal(d) * (kToolRadius - kPress));
+  }
+  return path;
+}
+
+/// Uniform grid fine enough that triangles are within `chord` of the surface:
+/// (du^2 |S_uu| + 2 du dv |S_uv| + dv^2 |S_vv|) / 8 <= chord (second derivatives
+/// sampled densely, with a 20% margin for the wave).
+int grid_for_chord(const argil::BSplineSurface& s, double chord) {
+  double suu = 0, suv = 0, svv = 0;
+  for (int a = 0; a <= 200; ++a)
+    for (int b = 0; b <= 200; ++b) {
+      const auto d = argil::evaluate_derivatives(s, a / 200.0, b / 200.0, 2);
+      suu = std::max(suu, d.duu.norm());
+      suv = std::max(suv, d.duv.norm());
+      svv = std::max(svv, d.dvv.norm());
+    }
+  const double second = 1.2 * (suu + 2 * suv + svv);
+  return static_cast<int>(std::ceil(1.0 / std::sqrt(8.0 * chord / second))) + 1;
+}
+
+void argil_sphere_tick(benchmark::State& state) {
+  const argil::BSplineSurface rest = argil::bench::bicubic_panel(kPoles);
+  argil::OperatorCache cache;
+  argil::SurfaceHierarchy h = argil::SurfaceHierarchy::build(rest, cache).value();
+  const std::vector<Eigen::Vector3d> path = tool_path(rest);
+  argil::ControlNet moved;
+  const argil::CollisionRequest request{.tolerance = chord_tolerance()};
+  int tick = 0;
+  long contacts = 0, leaves = 0, refreshed = 0, visited = 0;
+  for (auto _ : state) {
+    deform(rest.control_points, tick, moved);
+    h.set_control_points(moved);
+    const auto tool = argil::make_sphere(path[static_cast<std::size_t>(tick % kPathSteps)], kToolRadius);
+    const argil::CollisionResult r = argil::collide(h, *tool, request);
+    contacts += static_cast<long>(r.contacts.size());
+    leaves += r.counters.leaf_pairs;
+    refreshed += r.counters.nodes_refreshed;
+    visited += r.counters.nodes_visited;
+    ++tick;
+  }
+  state.counters["contacts_per_tick"] = static_cast<double>(contacts) / tick;
+  state.counters["leaves_per_tick"] = static_cast<double>(leaves) / tick;
+  state.counters["refreshed_per_tick"] = static_cast<double>(refreshed) / tick;
+  state.counters["visited_per_tick"] = static_cast<double>(visited) / tick;
+}
+
+void fcl_sphere_tick(benchmark::State& state) {
+  const argil::BSplineSurface rest = argil::bench::bicubic_panel(kPoles);
+  argil::OperatorCache cache;
+  const argil::SurfaceOperators ops = argil::surface_operators(rest, cache).value();
+  const int n = grid_for_chord(rest, chord_tolerance());
+  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(n, 0.0, 1.0);
+  const argil::SamplingRows rows = ops.u->sampling_rows(t);  // generous to FCL: our fast grid path
+  argil::SurfaceGrid grid;
+  argil::evaluate_grid(rest, rows, rows, 0, grid);
+  std::vector<fcl::Vector3d> vertices(static_cast<std::size_t>(n) * n);
+  std::vector<fcl::Triangle> triangles;
+  for (int a = 0; a + 1 < n; ++a)
+    for (int b = 0; b + 1 < n; ++b) {
+      const auto id = [n](int i, int j) { return static_cast<std::size_t>(i * n + j); };
+      triangles.emplace_back(id(a, b), id(a + 1, b), id(a + 1, b + 1));
+      triangles.emplace_back(id(a, b), id(a + 1, b + 1), id(a, b + 1));
+    }
+  for (std::size_t k = 0; k < vertices.size(); ++k) vertices[k] = grid.points.row(static_cast<Eigen::Index>(k)).transpose();
+  auto mesh = std::make_shared<fcl::BVHModel<fcl::AABBd>>();
+  mesh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size()));
+  mesh->addSubModel(vertices, triangles);
+  mesh->endModel();
+  fcl::CollisionObjectd mesh_object(mesh);
+  const std::vector<Eigen::Vector3d> path = tool_path(rest);
+  auto sphere = std::make_shared<fcl::Sphered>(kToolRadius);
+  argil::BSplineSurface moved = rest;
+  int tick = 0;
+  long contacts = 0;
+  for (auto _ : state) {
+    deform(rest.control_points, tick, moved.control_points);
+    argil::evaluate_grid(moved, rows, rows, 0, grid);  // re-tessellate
+    for (std::size_t k = 0; k < vertices.size(); ++k) vertices[k] = grid.points.row(static_cast<Eigen::Index>(k)).transpose();
+    mesh->beginUpdateModel();
+    mesh->updateSubModel(vertices);
+    mesh->endUpdateModel(true, true);  // refit the AABB tree
+    mesh_object.computeAABB();
+    fcl::CollisionObjectd tool(sphere, fcl::Transform3d(Eigen::Translation3d(path[static_cast<std::size_t>(tick % kPathSteps)])));
+    fcl::CollisionRequestd request(256, true);
+    fcl::CollisionResultd result;
+    fcl::collide(&tool, &mesh_object, request, result);
+    contacts += static_cast<long>(result.numContacts());
+    ++tick;
+  }
+  state.counters["contacts_per_tick"] = static_cast<double>(contacts) / tick;
+  state.counters["triangles"] = static_cast<double>(triangles.size());
+}
+
+/// Query points around the panel, 5 to 40 mm off the surface.
+std::vector<Eigen::Vector3d> query_points(const argil::BSplineSurface& s) {
+  std::vector<Eigen::Vector3d> q;
+  for (int k = 0; k < 256; ++k) {
+    const double u = 0.05 + 0.9 * std::fmod(0.618034 * k, 1.0);
+    const double v = 0.05 + 0.9 * std::fmod(0.414214 * k, 1.0);
+    const auto d = argil::evaluate_derivatives(s, u, v, 1);
+    q.push_back(d.point + argil::unit_normal(d) * (5.0 + 35.0 * std::fmod(0.2718 * k, 1.0)) +
+                Eigen::Vector3d(3.0, -2.0, 0.0));
+  }
+  return q;
+}
+
+void argil_closest_point(benchmark::State& state) {
+  const argil::BSplineSurface s = argil::bench::bicubic_panel(kPoles);
+  argil::OperatorCache cache;
+  argil::SurfaceHierarchy h = argil::SurfaceHierarchy::build(s, cache).value();
+  const auto q = query_points(s);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(argil::closest_point(h, q[k++ % q.size()], {.tolerance = 1e-6}).distance);
+  }
+}
+
+void occt_local_closest_point(benchmark::State& state) {
+  const argil::BSplineSurface s = argil::bench::bicubic_panel(kPoles);
+  GeomAdaptor_Surface adaptor(argil::bench::to_occt(s));
+  const auto q = query_points(s);
+  Extrema_GenLocateExtPS locate(adaptor, 1e-9, 1e-9);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const Eigen::Vector3d& p = q[k++ % q.size()];
+    locate.Perform(gp_Pnt(p.x(), p.y(), p.z()), 0.5, 0.5);  // local: from the domain centre
+    benchmark::DoNotOptimize(locate.IsDone());
+  }
+}
+
+void occt_global_closest_point(benchmark::State& state) {
+  const argil::BSplineSurface s = argil::bench::bicubic_panel(kPoles);
+  const Handle(Geom_BSplineSurface) oc = argil::bench::to_occt(s);
+  const auto q = query_points(s);
+  GeomAPI_ProjectPointOnSurf projection;
+  projection.Init(oc, 0.0, 1.0, 0.0, 1.0);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const Eigen::Vector3d& p = q[k++ % q.size()];
+    projection.Perform(gp_Pnt(p.x(), p.y(), p.z()));
+    benchmark::DoNotOptimize(projection.NbPoints());
+  }
+}
+
+BENCHMARK(argil_sphere_tick)->Name("tick32_sphere/argil")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
+BENCHMARK(fcl_sphere_tick)->Name("tick32_sphere/fcl_retessellate_refit")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
+BENCHMARK(argil_closest_point)->Name("closest_point/argil_global_eps1e-6")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
+BENCHMARK(occt_local_closest_point)->Name("closest_point/occt_local")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
+BENCHMARK(occt_global_closest_point)->Name("closest_point/occt_global")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return argil::bench::run_with_ratios(
+      argc, argv,
+      {{"tick32_sphere/fcl_retessellate_refit", "tick32_sphere/argil"},
+       {"closest_point/occt_local", "closest_point/argil_global_eps1e-6"},
+       {"closest_point/occt_global", "closest_point/argil_global_eps1e-6"}});
+}
