@@ -6,6 +6,7 @@
 
 #include "argil/core.hpp"
 #include "support/random_surface.hpp"
+#include "surface_pairs.hpp"
 
 using argil::BSplineSurface;
 using argil::Direction;
@@ -105,16 +106,7 @@ TEST_CASE("a sphere tool pressing into a plane gives the exact depth, point and 
 
 TEST_CASE("a plane tool against an exact cylinder patch gives the exact depth") {
   // Quarter cylinder of radius 10 around the x axis: rational quadratic arc in u.
-  BSplineSurface s;
-  s.degree = {2, 1};
-  s.knots[0].resize(6);
-  s.knots[0] << 0, 0, 0, 1, 1, 1;
-  s.knots[1].resize(4);
-  s.knots[1] << 0, 0, 1, 1;
-  s.control_points.resize(6, 3);
-  s.control_points << 0, 0, -10, 40, 0, -10, 0, 10, -10, 40, 10, -10, 0, 10, 0, 40, 10, 0;
-  s.weights.resize(6);
-  s.weights << 1, 1, std::sqrt(0.5), std::sqrt(0.5), 1, 1;
+  const BSplineSurface s = argil::test::cylinder_x(10.0, 0.0, 40.0);
   argil::SurfaceHierarchy h = hierarchy_of(s);
   // The arc goes from (y, z) = (0, -10) to (10, 0); a plane with normal (0, 1, 1)/sqrt2
   // touches it at 45 degrees: the lowest value of n.x on the arc is -10.

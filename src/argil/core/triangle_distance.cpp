@@ -42,33 +42,41 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
-double segment_segment_distance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
-                                const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
+void closest_on_segments(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                         const Eigen::Vector3d& q0, const Eigen::Vector3d& q1, double& s,
+                         double& t) {
   const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
   const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0, t = 0;
-  if (a <= 0 && e <= 0) return r.norm();
+  s = 0.0;
+  t = 0.0;
+  if (a <= 0 && e <= 0) return;
   if (a <= 0) {
     t = std::clamp(f / e, 0.0, 1.0);
-  } else {
-    const double c = d1.dot(r);
-    if (e <= 0) {
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else {
-      const double b = d1.dot(d2);
-      const double denom = a * e - b * b;
-      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-      t = (b * s + f) / e;
-      if (t < 0) {
-        t = 0;
-        s = std::clamp(-c / a, 0.0, 1.0);
-      } else if (t > 1) {
-        t = 1;
-        s = std::clamp((b - c) / a, 0.0, 1.0);
-      }
-    }
+    return;
   }
-  return ((p0 + d1 * s) - (q0 + d2 * t)).norm();
+  const double c = d1.dot(r);
+  if (e <= 0) {
+    s = std::clamp(-c / a, 0.0, 1.0);
+    return;
+  }
+  const double b = d1.dot(d2);
+  const double denom = a * e - b * b;
+  s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+  t = (b * s + f) / e;
+  if (t < 0) {
+    t = 0;
+    s = std::clamp(-c / a, 0.0, 1.0);
+  } else if (t > 1) {
+    t = 1;
+    s = std::clamp((b - c) / a, 0.0, 1.0);
+  }
+}
+
+double segment_segment_distance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
+  double s = 0.0, t = 0.0;
+  closest_on_segments(p0, p1, q0, q1, s, t);
+  return ((p0 + (p1 - p0) * s) - (q0 + (q1 - q0) * t)).norm();
 }
 
 double segment_triangle_distance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,

@@ -103,37 +103,6 @@ TriangleIntersection coplanar_overlap(const Triangle& a, const Triangle& b) {
   return out;
 }
 
-/// Parameters (s, t) of the closest points of segments p0 + s (p1 - p0) and
-/// q0 + t (q1 - q0), both in [0, 1] (Ericson 5.1.9).
-void closest_on_segments(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
-                         const Eigen::Vector3d& q1, double& s, double& t) {
-  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  s = 0.0;
-  t = 0.0;
-  if (a <= 0 && e <= 0) return;
-  if (a <= 0) {
-    t = std::clamp(f / e, 0.0, 1.0);
-    return;
-  }
-  const double c = d1.dot(r);
-  if (e <= 0) {
-    s = std::clamp(-c / a, 0.0, 1.0);
-    return;
-  }
-  const double b = d1.dot(d2);
-  const double denom = a * e - b * b;
-  s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-  t = (b * s + f) / e;
-  if (t < 0) {
-    t = 0;
-    s = std::clamp(-c / a, 0.0, 1.0);
-  } else if (t > 1) {
-    t = 1;
-    s = std::clamp((b - c) / a, 0.0, 1.0);
-  }
-}
-
 }  // namespace
 
 Orientation orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
