@@ -9,9 +9,14 @@ PatchBound bound_patch(const BezierPatch& patch) {
   const int p = patch.degree_u;
   const int q = patch.degree_v;
   const Eigen::Index count = patch.points.rows();
-  const auto cartesian = [&patch](Eigen::Index k) -> Eigen::Vector3d {
-    return patch.points.row(k).head<3>().transpose() / patch.points(k, 3);
-  };
+  // Cartesian control points, once (a node refresh runs this every tick).
+  constexpr int kMaxPoints = (kMaxDegree + 1) * (kMaxDegree + 1);
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor, kMaxPoints, 3> xyz(count, 3);
+  for (Eigen::Index k = 0; k < count; ++k) {
+    const double w = patch.points(k, 3);
+    xyz.row(k) = patch.points.row(k).head<3>() / w;
+  }
+  const auto cartesian = [&xyz](Eigen::Index k) -> Eigen::Vector3d { return xyz.row(k).transpose(); };
   PatchBound out;
   Eigen::Vector3d lo = cartesian(0), hi = lo;
   for (Eigen::Index k = 1; k < count; ++k) {
