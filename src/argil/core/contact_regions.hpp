@@ -2,6 +2,7 @@
 // Grouping of leaf contacts into connected contact regions, shared by every
 // collision query.
 
+#include <limits>
 #include <vector>
 
 #include "argil/core/contact.hpp"
@@ -13,6 +14,9 @@ namespace argil {
 struct LeafContact {
   Contact contact;
   double u0, u1, v0, v1;
+  /// A lower bound of the tool function on the leaf (-inf when unknown): how
+  /// deep anything on the leaf can be, for refining region heads.
+  double value_lower_bound = -std::numeric_limits<double>::infinity();
 };
 
 /// Groups leaf contacts whose rectangles touch (closed rectangles: sharing an

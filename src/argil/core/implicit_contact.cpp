@@ -1,10 +1,12 @@
 #include "argil/core/implicit_contact.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <queue>
+#include <set>
 #include <tuple>
 
 #include "argil/core/contact_regions.hpp"
@@ -29,6 +31,41 @@ Contact make_contact(const PatchMinimum& m) {
 /// Tools without an exact triangle bound descend at most this many levels
 /// below the first flat level before the local minimum decides.
 constexpr int kExtraLevels = 4;
+
+/// Replaces each region's first contact by its deepest point:
+/// Newton on the region's leaves in order of how deep they could be (their
+/// lower bounds), stopping when no leaf can be deeper than the best found.
+void refine_region_heads(SurfaceHierarchy& h,
+                         const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
+                         const std::vector<LeafContact>& leaves,
+                         CollisionResult& result) {
+  std::size_t begin = 0;
+  while (begin < leaves.size()) {
+    std::size_t end = begin;
+    while (end < leaves.size() && leaves[end].contact.region == leaves[begin].contact.region) ++end;
+    std::vector<const LeafContact*> order;
+    for (std::size_t i = begin; i < end; ++i) order.push_back(&leaves[i]);
+    std::stable_sort(order.begin(), order.end(), [](const LeafContact* a, const LeafContact* b) {
+      return a->value_lower_bound < b->value_lower_bound;
+    });
+    Contact best = leaves[begin].contact;  // the deepest sample
+    for (const LeafContact* leaf : order) {
+      if (-leaf->value_lower_bound <= best.depth) break;
+      const PatchMinimum m = minimize_on_patch(h.surface(), leaf->u0, leaf->u1, leaf->v0, leaf->v1, f);
+      if (-m.value > best.depth) {
+        best = make_contact(m);
+        best.region = leaves[begin].contact.region;
+      }
+    }
+    for (Contact& c : result.contacts) {
+      if (c.region == best.region) {
+        c = best;
+        break;
+      }
+    }
+    begin = end;
+  }
+}
 
 }  // namespace
 
@@ -67,11 +104,11 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
     const double lower = centre_value - reach;
     if (lower > eps) continue;
     if (centre_value + reach <= 0.0) {
-      // The whole sub-patch is inside the tool: one contact at its deepest
-      // point stands for it; descending would only multiply contacts.
+      // The whole sub-patch is inside the tool: one contact stands for it;
+      // descending would only multiply contacts.
       ++result.counters.leaf_pairs;
-      const PatchMinimum m = minimize_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f, &node.bound.corners);
-      leaves.push_back({make_contact(m), node.u0, node.u1, node.v0, node.v1});
+      const PatchMinimum m = best_sample_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f, &node.bound.corners);
+      leaves.push_back({make_contact(m), node.u0, node.u1, node.v0, node.v1, lower});
       continue;
     }
     const bool flat = node.bound.flatness <= eps || node.level >= SurfaceHierarchy::kMaxLevel;
@@ -80,12 +117,20 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
       const auto& c = node.bound.corners;
       const double triangles = std::min(tool.lower_bound_on_triangle(c[0], c[1], c[3]),
                                         tool.lower_bound_on_triangle(c[0], c[3], c[2]));
-      if (triangles - lipschitz * node.bound.flatness > eps) continue;
+      const double leaf_lower = std::max(lower, triangles - lipschitz * node.bound.flatness);
+      if (leaf_lower > eps) continue;
       ++result.counters.leaf_pairs;
       ++result.counters.triangle_tests;
+      // A sample in contact settles the leaf; Newton only decides the others
+      // (region heads are refined after grouping).
+      const PatchMinimum sample = best_sample_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f, &node.bound.corners);
+      if (sample.value <= eps) {
+        leaves.push_back({make_contact(sample), node.u0, node.u1, node.v0, node.v1, leaf_lower});
+        continue;
+      }
       const PatchMinimum m = minimize_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f, &node.bound.corners);
       if (m.value <= eps) {
-        leaves.push_back({make_contact(m), node.u0, node.u1, node.v0, node.v1});
+        leaves.push_back({make_contact(m), node.u0, node.u1, node.v0, node.v1, leaf_lower});
         continue;
       }
       if (reach <= eps || node.level >= SurfaceHierarchy::kMaxLevel) continue;
@@ -101,15 +146,16 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
     for (int hu = 1; hu >= 0; --hu)
       for (int hv = 1; hv >= 0; --hv) stack.push_back({h.child(id, hu, hv), flat_level});
   }
-  // Neighbouring leaves can converge to the same point on their shared edge.
-  std::vector<LeafContact> unique;
-  for (const LeafContact& l : leaves) {
-    const bool seen = std::any_of(unique.begin(), unique.end(), [&](const LeafContact& k) {
-      return (k.contact.uv_a - l.contact.uv_a).norm() == 0.0;
-    });
-    if (!seen) unique.push_back(l);
+  group_regions(leaves, request.max_contacts, result);
+  if (request.refine) refine_region_heads(h, f, leaves, result);
+  // Neighbouring leaves can give the same point (a shared corner or edge):
+  // keep its first, deepest-first listing.
+  std::vector<Contact> unique;
+  std::set<std::pair<double, double>> seen;
+  for (const Contact& c : result.contacts) {
+    if (seen.insert({c.uv_a[0], c.uv_a[1]}).second) unique.push_back(c);
   }
-  group_regions(unique, request.max_contacts, result);
+  result.contacts = std::move(unique);
   return result;
 }
 

@@ -7,9 +7,12 @@
 
 namespace argil {
 
-PatchMinimum minimize_on_patch(const BSplineSurface& s, double u0, double u1, double v0, double v1,
-                               const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
-                               const std::array<Eigen::Vector3d, 4>* corners) {
+namespace {
+
+/// Best of the corners and the centre, value only.
+PatchMinimum best_start(const BSplineSurface& s, double u0, double u1, double v0, double v1,
+                        const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
+                        const std::array<Eigen::Vector3d, 4>* corners) {
   PatchMinimum best;
   best.value = std::numeric_limits<double>::infinity();
   // Start from the best of the corners and the centre.
@@ -33,6 +36,24 @@ PatchMinimum minimize_on_patch(const BSplineSurface& s, double u0, double u1, do
       best.uv = {u, v};
     }
   }
+  return best;
+}
+
+}  // namespace
+
+PatchMinimum best_sample_on_patch(const BSplineSurface& s, double u0, double u1, double v0,
+                                  double v1,
+                                  const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
+                                  const std::array<Eigen::Vector3d, 4>* corners) {
+  PatchMinimum best = best_start(s, u0, u1, v0, v1, f, corners);
+  best.derivatives = evaluate_derivatives(s, best.uv[0], best.uv[1], 1);
+  return best;
+}
+
+PatchMinimum minimize_on_patch(const BSplineSurface& s, double u0, double u1, double v0, double v1,
+                               const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
+                               const std::array<Eigen::Vector3d, 4>* corners) {
+  PatchMinimum best = best_start(s, u0, u1, v0, v1, f, corners);
   const Eigen::Vector2d lo(u0, v0), hi(u1, v1);
   const Eigen::Vector2d scale = (hi - lo).cwiseMax(std::numeric_limits<double>::min());
   Eigen::Vector2d uv = best.uv;

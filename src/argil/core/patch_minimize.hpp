@@ -19,6 +19,14 @@ struct PatchMinimum {
   int iterations = 0;
 };
 
+/// The best of the corners and the centre of the rectangle, with first
+/// derivatives there: a contact sample without Newton iterations.
+/// `corners`, when given, are S at (u0,v0), (u1,v0), (u0,v1), (u1,v1).
+PatchMinimum best_sample_on_patch(const BSplineSurface& surface, double u0, double u1, double v0,
+                                  double v1,
+                                  const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
+                                  const std::array<Eigen::Vector3d, 4>* corners = nullptr);
+
 /// Minimises g(u, v) = f(S(u, v)) over [u0, u1] x [v0, v1] by projected
 /// Newton steps (Hessian J^T H_f J + grad f . S'', gradient steps where it is
 /// not positive definite) with backtracking, from the best of the corners and the centre.

@@ -1,5 +1,3 @@
-#include <cstdio>
-#include <cstdlib>
 #include "argil/core/surface_intersection.hpp"
 
 #include <Eigen/Dense>
@@ -290,7 +288,6 @@ RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b
     const Eigen::Vector3d f = da.point - db.point;
     out.iterations = it;
     const double residual = f.norm();
-    if (std::getenv("ARGIL_DBG")) std::fprintf(stderr, "  it %d residual %g x %.9f %.9f %.9f %.9f plane %g\n", it, residual, x[0], x[1], x[2], x[3], plane_normal.norm());
     if (residual <= stop) break;
     // Gauss-Newton stalls once rounding dominates: stop when |F| stops shrinking.
     if (it > 3 && residual >= 0.5 * previous) break;
