@@ -13,6 +13,9 @@ int run_info(const std::vector<std::string>& args);
 /// argil convert IN OUT [--tolerance T]
 int run_convert(const std::vector<std::string>& args);
 
+/// argil collide A B [--face-a I] [--face-b J] [--tolerance E] [--refine] [--json]
+int run_collide(const std::vector<std::string>& args);
+
 /// Exit statuses shared by the commands.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;

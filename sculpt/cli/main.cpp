@@ -20,6 +20,10 @@ void print_usage(std::FILE* out) {
       "                                    IGES (.iges .igs), JSON (.json) and meshes\n"
       "                                    (.stl .obj .ply .glb); T is the mesh chord\n"
       "                                    tolerance [mm], default 1e-3 of the model size\n"
+      "  collide A B [--face-a I] [--face-b J] [--tolerance E] [--refine] [--json]\n"
+      "                                    intersection curves and contact regions of\n"
+      "                                    face I of A and face J of B (default 0, 0);\n"
+      "                                    E is eps [mm], default 1e-4 of the faces' size\n"
       "  --help                            this text\n");
 }
 
@@ -34,6 +38,7 @@ int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 2, argv + argc);
   if (command == "info") return argil::cli::run_info(args);
   if (command == "convert") return argil::cli::run_convert(args);
+  if (command == "collide") return argil::cli::run_collide(args);
   std::fprintf(stderr, "argil: unknown command '%s'\n", argv[1]);
   print_usage(stderr);
   return argil::cli::kExitUsage;

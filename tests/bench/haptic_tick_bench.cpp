@@ -24,7 +24,9 @@ constexpr double kToolRadius = 10.0;  // [mm]
 constexpr double kPress = 1.0;        // sphere depth into the undeformed panel [mm]
 constexpr int kPathSteps = 1000;      // one second of ticks at 1 kHz
 
-double chord_tolerance() { return 0.05; }  // [mm], about 1e-4 of the panel diagonal
+/// Chord tolerance of the run [mm] from the benchmark argument [um]:
+/// 50 um is about 1e-4 of the panel diagonal, 500 um about 1e-3.
+double chord_tolerance(const benchmark::State& state) { return 1e-3 * static_cast<double>(state.range(0)); }
 
 /// Every control point moves every tick: a travelling wave of 0.5 mm.
 void deform(const argil::ControlNet& rest, int tick, argil::ControlNet& out) {
@@ -68,7 +70,7 @@ void argil_sphere_tick(benchmark::State& state) {
   argil::SurfaceHierarchy h = argil::SurfaceHierarchy::build(rest, cache).value();
   const std::vector<Eigen::Vector3d> path = tool_path(rest);
   argil::ControlNet moved;
-  const argil::CollisionRequest request{.tolerance = chord_tolerance()};
+  const argil::CollisionRequest request{.tolerance = chord_tolerance(state)};
   int tick = 0;
   long contacts = 0, leaves = 0, refreshed = 0, visited = 0;
   for (auto _ : state) {
@@ -92,7 +94,7 @@ void fcl_sphere_tick(benchmark::State& state) {
   const argil::BSplineSurface rest = argil::bench::bicubic_panel(kPoles);
   argil::OperatorCache cache;
   const argil::SurfaceOperators ops = argil::surface_operators(rest, cache).value();
-  const int n = grid_for_chord(rest, chord_tolerance());
+  const int n = grid_for_chord(rest, chord_tolerance(state));
   const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(n, 0.0, 1.0);
   const argil::SamplingRows rows = ops.u->sampling_rows(t);  // generous to FCL: our fast grid path
   argil::SurfaceGrid grid;
@@ -186,8 +188,8 @@ void occt_global_closest_point(benchmark::State& state) {
   }
 }
 
-BENCHMARK(argil_sphere_tick)->Name("tick32_sphere/argil")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
-BENCHMARK(fcl_sphere_tick)->Name("tick32_sphere/fcl_retessellate_refit")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
+BENCHMARK(argil_sphere_tick)->Name("tick32_sphere/argil")->Arg(50)->Arg(500)->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
+BENCHMARK(fcl_sphere_tick)->Name("tick32_sphere/fcl_retessellate_refit")->Arg(50)->Arg(500)->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
 BENCHMARK(argil_closest_point)->Name("closest_point/argil_global_eps1e-6")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
 BENCHMARK(occt_local_closest_point)->Name("closest_point/occt_local")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
 BENCHMARK(occt_global_closest_point)->Name("closest_point/occt_global")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
@@ -197,7 +199,8 @@ BENCHMARK(occt_global_closest_point)->Name("closest_point/occt_global")->Repetit
 int main(int argc, char** argv) {
   return argil::bench::run_with_ratios(
       argc, argv,
-      {{"tick32_sphere/fcl_retessellate_refit", "tick32_sphere/argil"},
+      {{"tick32_sphere/fcl_retessellate_refit/50", "tick32_sphere/argil/50"},
+       {"tick32_sphere/fcl_retessellate_refit/500", "tick32_sphere/argil/500"},
        {"closest_point/occt_local", "closest_point/argil_global_eps1e-6"},
        {"closest_point/occt_global", "closest_point/argil_global_eps1e-6"}});
 }

@@ -1,0 +1,272 @@
+// argil collide A B [--face-a I] [--face-b J] [--tolerance E] [--refine] [--json]:
+// intersection curves and contact regions between one face of each model.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "argil/core/bspline_surface.hpp"
+#include "argil/core/surface_hierarchy.hpp"
+#include "argil/core/surface_intersection.hpp"
+#include "argil/core/surface_operators.hpp"
+#include "argil/io/model_files.hpp"
+#include "commands.hpp"
+
+namespace argil::cli {
+namespace {
+
+// eps when none is given: fine enough to resolve curves of CAD-sized models,
+// coarse enough to stay interactive; scales with the two faces.
+constexpr double kDefaultRelativeTolerance = 1e-4;
+
+int usage() {
+  std::fprintf(stderr,
+               "usage: argil collide A B [--face-a I] [--face-b J] [--tolerance E] [--refine] [--json]\n"
+               "  I, J: face indices (default 0); E: eps in mm (> 0), default 1e-4 of the faces' size\n");
+  return kExitUsage;
+}
+
+struct Options {
+  std::string path_a, path_b;
+  long face_a = 0, face_b = 0;
+  double tolerance_mm = 0.0;  // 0: default
+  bool refine = false;
+  bool json = false;
+};
+
+bool parse_index(const std::string& text, long& out) {
+  char* end = nullptr;
+  out = std::strtol(text.c_str(), &end, 10);
+  return end != text.c_str() && *end == '\0';
+}
+
+/// Parses the arguments; returns -1 on success, else the exit status.
+int parse(const std::vector<std::string>& args, Options& o) {
+  std::vector<std::string> paths;
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    const bool has_value = k + 1 < args.size();
+    if (a == "--face-a" || a == "--face-b") {
+      if (!has_value) return usage();
+      long& face = a == "--face-a" ? o.face_a : o.face_b;
+      if (!parse_index(args[k + 1], face) || face < 0) {
+        std::fprintf(stderr, "argil collide: %s needs a face index >= 0, got '%s'\n", a.c_str(), args[k + 1].c_str());
+        return kExitUsage;
+      }
+      ++k;
+    } else if (a == "--tolerance") {
+      if (!has_value) return usage();
+      char* end = nullptr;
+      o.tolerance_mm = std::strtod(args[k + 1].c_str(), &end);
+      if (end == args[k + 1].c_str() || *end != '\0' || !std::isfinite(o.tolerance_mm) || o.tolerance_mm <= 0.0) {
+        std::fprintf(stderr, "argil collide: --tolerance needs a positive finite number [mm], got '%s'\n",
+                     args[k + 1].c_str());
+        return kExitUsage;
+      }
+      ++k;
+    } else if (a == "--refine") {
+      o.refine = true;
+    } else if (a == "--json") {
+      o.json = true;
+    } else if (a.size() > 1 && a[0] == '-') {
+      std::fprintf(stderr, "argil collide: unknown option '%s'\n", a.c_str());
+      return usage();
+    } else {
+      paths.push_back(a);
+    }
+  }
+  if (paths.size() != 2) return usage();
+  o.path_a = paths[0];
+  o.path_b = paths[1];
+  return -1;
+}
+
+/// Reads `path` and copies face `index` out of it; prints the error.
+bool load_face(const std::string& path, long index, const char* side, BSplineSurface& out) {
+  const Result<io::Model> read = io::read_model(path);
+  if (!read.ok()) {
+    std::fprintf(stderr, "argil collide: %s\n", read.status().message.c_str());
+    return false;
+  }
+  const auto& faces = read.value().faces;
+  if (index >= static_cast<long>(faces.size())) {
+    std::fprintf(stderr, "argil collide: --face-%s %ld is out of range: %s has %zu faces\n", side, index,
+                 path.c_str(), faces.size());
+    return false;
+  }
+  out = faces[static_cast<std::size_t>(index)].surface;
+  return true;
+}
+
+/// One region of contacts: contacts are grouped by region, deepest first, so
+/// the first contact of a region is its representative.
+struct RegionSummary {
+  int contacts = 0;
+  double deepest = 0.0;
+  const Contact* representative = nullptr;
+};
+
+std::vector<RegionSummary> summarize_regions(const CollisionResult& r) {
+  std::vector<RegionSummary> regions(static_cast<std::size_t>(r.region_count));
+  for (const Contact& c : r.contacts) {
+    if (c.region < 0 || c.region >= r.region_count) continue;
+    RegionSummary& s = regions[static_cast<std::size_t>(c.region)];
+    if (s.representative == nullptr || c.depth > s.deepest) s.deepest = c.depth;
+    if (s.representative == nullptr) s.representative = &c;
+    ++s.contacts;
+  }
+  return regions;
+}
+
+double curve_length(const IntersectionCurve& c) {
+  double l = 0.0;
+  for (std::size_t k = 0; k + 1 < c.points.size(); ++k) l += (c.points[k + 1] - c.points[k]).norm();
+  return l;
+}
+
+bool closed(const IntersectionCurve& c) { return c.points.size() > 2 && c.points.front() == c.points.back(); }
+
+// ---- text output ---------------------------------------------------------
+
+void print_text(const Options& o, double eps, const CollisionResult& r) {
+  std::printf("a: %s face %ld\nb: %s face %ld\n", o.path_a.c_str(), o.face_a, o.path_b.c_str(), o.face_b);
+  std::printf("tolerance: %.6g mm, refine: %s\n", eps, o.refine ? "yes" : "no");
+  const std::vector<RegionSummary> regions = summarize_regions(r);
+  std::printf("\ncontact regions: %zu (%zu contacts)\n", regions.size(), r.contacts.size());
+  for (std::size_t k = 0; k < regions.size(); ++k) {
+    const RegionSummary& s = regions[k];
+    if (s.representative == nullptr) continue;
+    const Contact& c = *s.representative;
+    std::printf("  region %zu: %d contacts, deepest depth %.6g mm, point (%.9g, %.9g, %.9g), "
+                "uv_a (%.9g, %.9g), uv_b (%.9g, %.9g)\n",
+                k, s.contacts, s.deepest, c.point.x(), c.point.y(), c.point.z(), c.uv_a[0], c.uv_a[1], c.uv_b[0],
+                c.uv_b[1]);
+  }
+  std::printf("\nintersection curves: %zu\n", r.curves.size());
+  for (std::size_t k = 0; k < r.curves.size(); ++k) {
+    const IntersectionCurve& c = r.curves[k];
+    std::printf("  curve %zu: %zu points, length %.9g mm%s\n", k, c.points.size(), curve_length(c),
+                closed(c) ? ", closed" : "");
+    for (std::size_t e = 0; e < 2 && !c.points.empty(); ++e) {
+      const std::size_t i = e == 0 ? 0 : c.points.size() - 1;
+      std::printf("    %s (%.9g, %.9g, %.9g)  uv_a (%.9g, %.9g)  uv_b (%.9g, %.9g)\n", e == 0 ? "start" : "end  ",
+                  c.points[i].x(), c.points[i].y(), c.points[i].z(), c.uv_a[i][0], c.uv_a[i][1], c.uv_b[i][0],
+                  c.uv_b[i][1]);
+    }
+  }
+  std::printf("\ncounters: nodes visited %ld, nodes refreshed %ld, leaf pairs %ld, triangle tests %ld\n",
+              r.counters.nodes_visited, r.counters.nodes_refreshed, r.counters.leaf_pairs,
+              r.counters.triangle_tests);
+}
+
+// ---- JSON output (hand-written: nlohmann stays inside argil::io) -----------
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    const auto u = static_cast<unsigned char>(ch);
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (u < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(u));
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
+
+/// 17 significant digits: reads back to the same double.
+std::string json_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+template <class V>
+std::string json_vector(const V& v) {
+  std::string out = "[";
+  for (Eigen::Index k = 0; k < v.size(); ++k) out += (k ? ", " : "") + json_number(v[k]);
+  return out + "]";
+}
+
+std::string json_curve_end(const IntersectionCurve& c, std::size_t i) {
+  return "{\"point\": " + json_vector(c.points[i]) + ", \"uv_a\": " + json_vector(c.uv_a[i]) +
+         ", \"uv_b\": " + json_vector(c.uv_b[i]) + "}";
+}
+
+void print_json(const Options& o, double eps, const CollisionResult& r) {
+  std::string out = "{\n";
+  out += "  \"a\": {\"file\": " + json_string(o.path_a) + ", \"face\": " + std::to_string(o.face_a) + "},\n";
+  out += "  \"b\": {\"file\": " + json_string(o.path_b) + ", \"face\": " + std::to_string(o.face_b) + "},\n";
+  out += "  \"tolerance\": " + json_number(eps) + ",\n";
+  out += std::string("  \"refine\": ") + (o.refine ? "true" : "false") + ",\n";
+  out += "  \"contact_count\": " + std::to_string(r.contacts.size()) + ",\n";
+  out += "  \"regions\": [";
+  const std::vector<RegionSummary> regions = summarize_regions(r);
+  bool first = true;
+  for (const RegionSummary& s : regions) {
+    if (s.representative == nullptr) continue;
+    const Contact& c = *s.representative;
+    out += first ? "\n" : ",\n";
+    first = false;
+    out += "    {\"contacts\": " + std::to_string(s.contacts) + ", \"deepest_depth\": " + json_number(s.deepest) +
+           ", \"point\": " + json_vector(c.point) + ", \"uv_a\": " + json_vector(c.uv_a) +
+           ", \"uv_b\": " + json_vector(c.uv_b) + "}";
+  }
+  out += first ? "],\n" : "\n  ],\n";
+  out += "  \"curves\": [";
+  first = true;
+  for (const IntersectionCurve& c : r.curves) {
+    if (c.points.empty()) continue;
+    out += first ? "\n" : ",\n";
+    first = false;
+    out += "    {\"points\": " + std::to_string(c.points.size()) + ", \"length\": " + json_number(curve_length(c)) +
+           ", \"closed\": " + (closed(c) ? "true" : "false") + ",\n     \"start\": " + json_curve_end(c, 0) +
+           ",\n     \"end\": " + json_curve_end(c, c.points.size() - 1) + "}";
+  }
+  out += first ? "],\n" : "\n  ],\n";
+  out += "  \"counters\": {\"nodes_visited\": " + std::to_string(r.counters.nodes_visited) +
+         ", \"nodes_refreshed\": " + std::to_string(r.counters.nodes_refreshed) +
+         ", \"leaf_pairs\": " + std::to_string(r.counters.leaf_pairs) +
+         ", \"triangle_tests\": " + std::to_string(r.counters.triangle_tests) + "}\n}\n";
+  std::fputs(out.c_str(), stdout);
+}
+
+}  // namespace
+
+int run_collide(const std::vector<std::string>& args) {
+  Options o;
+  if (const int status = parse(args, o); status >= 0) return status;
+  BSplineSurface a, b;
+  if (!load_face(o.path_a, o.face_a, "a", a) || !load_face(o.path_b, o.face_b, "b", b)) return kExitFailure;
+  OperatorCache cache;
+  Result<SurfaceHierarchy> ha = SurfaceHierarchy::build(a, cache);
+  Result<SurfaceHierarchy> hb = SurfaceHierarchy::build(b, cache);
+  if (!ha.ok() || !hb.ok()) {
+    std::fprintf(stderr, "argil collide: %s\n", (ha.ok() ? hb : ha).status().message.c_str());
+    return kExitFailure;
+  }
+  const double size = std::max(control_point_box(a).diagonal(), control_point_box(b).diagonal());
+  const double eps = o.tolerance_mm > 0.0 ? o.tolerance_mm : kDefaultRelativeTolerance * size;
+  if (!(eps > 0.0)) {
+    std::fprintf(stderr, "argil collide: both faces are degenerate (size 0); give --tolerance\n");
+    return kExitFailure;
+  }
+  CollisionRequest request;
+  request.tolerance = eps;
+  request.refine = o.refine;
+  const CollisionResult r = collide(ha.value(), hb.value(), request);
+  if (o.json) {
+    print_json(o, eps, r);
+  } else {
+    print_text(o, eps, r);
+  }
+  return kExitOk;
+}
+
+}  // namespace argil::cli

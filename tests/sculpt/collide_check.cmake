@@ -1,0 +1,56 @@
+# Runs `argil collide` on two crossing JSON faces for CTest: the text output
+# reports curves, and the --json output parses and holds the same curves with
+# parameters inside both faces' domains (both test faces are on [0, 1]^2).
+# Variables: ARGIL, A, B.
+cmake_minimum_required(VERSION 3.20)
+
+execute_process(COMMAND ${ARGIL} collide ${A} ${B} --refine OUTPUT_VARIABLE text
+                ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "collide failed (${rc}): ${err}")
+endif()
+if(NOT text MATCHES "intersection curves: ([0-9]+)")
+  message(FATAL_ERROR "no curve count in:\n${text}")
+endif()
+set(text_curves ${CMAKE_MATCH_1})
+if(text_curves LESS 1)
+  message(FATAL_ERROR "expected at least one curve:\n${text}")
+endif()
+
+execute_process(COMMAND ${ARGIL} collide ${A} ${B} --refine --json OUTPUT_VARIABLE json
+                ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "collide --json failed (${rc}): ${err}")
+endif()
+# string(JSON) stops with an error on malformed JSON or a missing member.
+string(JSON curves LENGTH "${json}" curves)
+if(NOT curves EQUAL text_curves)
+  message(FATAL_ERROR "--json has ${curves} curves, the text ${text_curves}:\n${json}")
+endif()
+math(EXPR last "${curves} - 1")
+foreach(c RANGE ${last})
+  string(JSON points GET "${json}" curves ${c} points)
+  if(points LESS 2)
+    message(FATAL_ERROR "curve ${c} has ${points} points")
+  endif()
+  foreach(end start end)
+    foreach(side uv_a uv_b)
+      foreach(k 0 1)
+        string(JSON t GET "${json}" curves ${c} ${end} ${side} ${k})
+        # Parameters are plain decimal numbers in [0, 1] (17 digits may add an exponent).
+        if(NOT t MATCHES "^-?[0-9.]+(e[-+]?[0-9]+)?$")
+          message(FATAL_ERROR "curve ${c} ${end} ${side}[${k}] is not a number: ${t}")
+        endif()
+        if(t LESS 0 OR t GREATER 1)
+          message(FATAL_ERROR "curve ${c} ${end} ${side}[${k}] = ${t} is outside [0, 1]")
+        endif()
+      endforeach()
+    endforeach()
+  endforeach()
+endforeach()
+string(JSON leaf_pairs GET "${json}" counters leaf_pairs)
+string(JSON regions LENGTH "${json}" regions)
+if(leaf_pairs LESS 1 OR regions LESS 1)
+  message(FATAL_ERROR "expected leaf pairs and a contact region:\n${json}")
+endif()
+message(STATUS "${curves} curves, ${regions} regions, ${leaf_pairs} leaf pairs")
