@@ -28,7 +28,11 @@ Status write_atomically(const std::filesystem::path& target, const FileWriter& w
   const std::filesystem::path folder =
       target.parent_path().empty() ? std::filesystem::path(".") : target.parent_path();
   // mkstemp reserves a unique name, so concurrent writers never share a temporary.
-  std::string pattern = (folder / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
+  // Appends, not operator+ on a literal: GCC 12 -O3 warns falsely (-Wrestrict) on the latter.
+  std::string hidden_name(".");
+  hidden_name += target.filename().string();
+  hidden_name += ".tmp-XXXXXX";
+  std::string pattern = (folder / hidden_name).string();
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
   const int fd = ::mkstemp(name.data());
