@@ -12,7 +12,7 @@
 
 namespace argil::test {
 
-/// ../shared/data beside the clone (bearing.iges, screw.step); set by CMake.
+/// tests/data (copies of ../shared/data: bearing.iges, screw.step); set by CMake.
 inline std::filesystem::path shared_data(const std::string& name) {
   return std::filesystem::path(ARGIL_SHARED_DATA_DIR) / name;
 }
