@@ -21,9 +21,10 @@ namespace {
 constexpr double kDefaultRelativeTolerance = 1e-4;
 
 int usage() {
-  std::fprintf(stderr,
-               "usage: argil collide A B [--face-a I] [--face-b J] [--tolerance E] [--refine] [--json]\n"
-               "  I, J: face indices (default 0); E: eps in mm (> 0), default 1e-4 of the faces' size\n");
+  std::fprintf(
+      stderr,
+      "usage: argil collide A B [--face-a I] [--face-b J] [--tolerance E] [--refine] [--json]\n"
+      "  I, J: face indices (default 0); E: eps in mm (> 0), default 1e-4 of the faces' size\n");
   return kExitUsage;
 }
 
@@ -51,7 +52,8 @@ int parse(const std::vector<std::string>& args, Options& o) {
       if (!has_value) return usage();
       long& face = a == "--face-a" ? o.face_a : o.face_b;
       if (!parse_index(args[k + 1], face) || face < 0) {
-        std::fprintf(stderr, "argil collide: %s needs a face index >= 0, got '%s'\n", a.c_str(), args[k + 1].c_str());
+        std::fprintf(stderr, "argil collide: %s needs a face index >= 0, got '%s'\n", a.c_str(),
+                     args[k + 1].c_str());
         return kExitUsage;
       }
       ++k;
@@ -59,8 +61,10 @@ int parse(const std::vector<std::string>& args, Options& o) {
       if (!has_value) return usage();
       char* end = nullptr;
       o.tolerance_mm = std::strtod(args[k + 1].c_str(), &end);
-      if (end == args[k + 1].c_str() || *end != '\0' || !std::isfinite(o.tolerance_mm) || o.tolerance_mm <= 0.0) {
-        std::fprintf(stderr, "argil collide: --tolerance needs a positive finite number [mm], got '%s'\n",
+      if (end == args[k + 1].c_str() || *end != '\0' || !std::isfinite(o.tolerance_mm) ||
+          o.tolerance_mm <= 0.0) {
+        std::fprintf(stderr,
+                     "argil collide: --tolerance needs a positive finite number [mm], got '%s'\n",
                      args[k + 1].c_str());
         return kExitUsage;
       }
@@ -91,8 +95,8 @@ bool load_face(const std::string& path, long index, const char* side, BSplineSur
   }
   const auto& faces = read.value().faces;
   if (index >= static_cast<long>(faces.size())) {
-    std::fprintf(stderr, "argil collide: --face-%s %ld is out of range: %s has %zu faces\n", side, index,
-                 path.c_str(), faces.size());
+    std::fprintf(stderr, "argil collide: --face-%s %ld is out of range: %s has %zu faces\n", side,
+                 index, path.c_str(), faces.size());
     return false;
   }
   out = faces[static_cast<std::size_t>(index)].surface;
@@ -125,12 +129,15 @@ double curve_length(const IntersectionCurve& c) {
   return l;
 }
 
-bool closed(const IntersectionCurve& c) { return c.points.size() > 2 && c.points.front() == c.points.back(); }
+bool closed(const IntersectionCurve& c) {
+  return c.points.size() > 2 && c.points.front() == c.points.back();
+}
 
 // ---- text output ---------------------------------------------------------
 
 void print_text(const Options& o, double eps, const CollisionResult& r) {
-  std::printf("a: %s face %ld\nb: %s face %ld\n", o.path_a.c_str(), o.face_a, o.path_b.c_str(), o.face_b);
+  std::printf("a: %s face %ld\nb: %s face %ld\n", o.path_a.c_str(), o.face_a, o.path_b.c_str(),
+              o.face_b);
   std::printf("tolerance: %.6g mm, refine: %s\n", eps, o.refine ? "yes" : "no");
   const std::vector<RegionSummary> regions = summarize_regions(r);
   std::printf("\ncontact regions: %zu (%zu contacts)\n", regions.size(), r.contacts.size());
@@ -138,10 +145,11 @@ void print_text(const Options& o, double eps, const CollisionResult& r) {
     const RegionSummary& s = regions[k];
     if (s.representative == nullptr) continue;
     const Contact& c = *s.representative;
-    std::printf("  region %zu: %d contacts, deepest depth %.6g mm, point (%.9g, %.9g, %.9g), "
-                "uv_a (%.9g, %.9g), uv_b (%.9g, %.9g)\n",
-                k, s.contacts, s.deepest, c.point.x(), c.point.y(), c.point.z(), c.uv_a[0], c.uv_a[1], c.uv_b[0],
-                c.uv_b[1]);
+    std::printf(
+        "  region %zu: %d contacts, deepest depth %.6g mm, point (%.9g, %.9g, %.9g), "
+        "uv_a (%.9g, %.9g), uv_b (%.9g, %.9g)\n",
+        k, s.contacts, s.deepest, c.point.x(), c.point.y(), c.point.z(), c.uv_a[0], c.uv_a[1],
+        c.uv_b[0], c.uv_b[1]);
   }
   std::printf("\nintersection curves: %zu\n", r.curves.size());
   for (std::size_t k = 0; k < r.curves.size(); ++k) {
@@ -150,14 +158,15 @@ void print_text(const Options& o, double eps, const CollisionResult& r) {
                 closed(c) ? ", closed" : "");
     for (std::size_t e = 0; e < 2 && !c.points.empty(); ++e) {
       const std::size_t i = e == 0 ? 0 : c.points.size() - 1;
-      std::printf("    %s (%.9g, %.9g, %.9g)  uv_a (%.9g, %.9g)  uv_b (%.9g, %.9g)\n", e == 0 ? "start" : "end  ",
-                  c.points[i].x(), c.points[i].y(), c.points[i].z(), c.uv_a[i][0], c.uv_a[i][1], c.uv_b[i][0],
-                  c.uv_b[i][1]);
+      std::printf("    %s (%.9g, %.9g, %.9g)  uv_a (%.9g, %.9g)  uv_b (%.9g, %.9g)\n",
+                  e == 0 ? "start" : "end  ", c.points[i].x(), c.points[i].y(), c.points[i].z(),
+                  c.uv_a[i][0], c.uv_a[i][1], c.uv_b[i][0], c.uv_b[i][1]);
     }
   }
-  std::printf("\ncounters: nodes visited %ld, nodes refreshed %ld, leaf pairs %ld, triangle tests %ld\n",
-              r.counters.nodes_visited, r.counters.nodes_refreshed, r.counters.leaf_pairs,
-              r.counters.triangle_tests);
+  std::printf(
+      "\ncounters: nodes visited %ld, nodes refreshed %ld, leaf pairs %ld, triangle tests %ld\n",
+      r.counters.nodes_visited, r.counters.nodes_refreshed, r.counters.leaf_pairs,
+      r.counters.triangle_tests);
 }
 
 // ---- JSON output (hand-written: nlohmann stays inside argil::io) -----------
@@ -201,8 +210,10 @@ std::string json_curve_end(const IntersectionCurve& c, std::size_t i) {
 
 void print_json(const Options& o, double eps, const CollisionResult& r) {
   std::string out = "{\n";
-  out += "  \"a\": {\"file\": " + json_string(o.path_a) + ", \"face\": " + std::to_string(o.face_a) + "},\n";
-  out += "  \"b\": {\"file\": " + json_string(o.path_b) + ", \"face\": " + std::to_string(o.face_b) + "},\n";
+  out += "  \"a\": {\"file\": " + json_string(o.path_a) +
+         ", \"face\": " + std::to_string(o.face_a) + "},\n";
+  out += "  \"b\": {\"file\": " + json_string(o.path_b) +
+         ", \"face\": " + std::to_string(o.face_b) + "},\n";
   out += "  \"tolerance\": " + json_number(eps) + ",\n";
   out += std::string("  \"refine\": ") + (o.refine ? "true" : "false") + ",\n";
   out += "  \"contact_count\": " + std::to_string(r.contacts.size()) + ",\n";
@@ -214,7 +225,8 @@ void print_json(const Options& o, double eps, const CollisionResult& r) {
     const Contact& c = *s.representative;
     out += first ? "\n" : ",\n";
     first = false;
-    out += "    {\"contacts\": " + std::to_string(s.contacts) + ", \"deepest_depth\": " + json_number(s.deepest) +
+    out += "    {\"contacts\": " + std::to_string(s.contacts) +
+           ", \"deepest_depth\": " + json_number(s.deepest) +
            ", \"point\": " + json_vector(c.point) + ", \"uv_a\": " + json_vector(c.uv_a) +
            ", \"uv_b\": " + json_vector(c.uv_b) + "}";
   }
@@ -225,8 +237,10 @@ void print_json(const Options& o, double eps, const CollisionResult& r) {
     if (c.points.empty()) continue;
     out += first ? "\n" : ",\n";
     first = false;
-    out += "    {\"points\": " + std::to_string(c.points.size()) + ", \"length\": " + json_number(curve_length(c)) +
-           ", \"closed\": " + (closed(c) ? "true" : "false") + ",\n     \"start\": " + json_curve_end(c, 0) +
+    out += "    {\"points\": " + std::to_string(c.points.size()) +
+           ", \"length\": " + json_number(curve_length(c)) +
+           ", \"closed\": " + (closed(c) ? "true" : "false") +
+           ",\n     \"start\": " + json_curve_end(c, 0) +
            ",\n     \"end\": " + json_curve_end(c, c.points.size() - 1) + "}";
   }
   out += first ? "],\n" : "\n  ],\n";
@@ -243,7 +257,8 @@ int run_collide(const std::vector<std::string>& args) {
   Options o;
   if (const int status = parse(args, o); status >= 0) return status;
   BSplineSurface a, b;
-  if (!load_face(o.path_a, o.face_a, "a", a) || !load_face(o.path_b, o.face_b, "b", b)) return kExitFailure;
+  if (!load_face(o.path_a, o.face_a, "a", a) || !load_face(o.path_b, o.face_b, "b", b))
+    return kExitFailure;
   OperatorCache cache;
   Result<SurfaceHierarchy> ha = SurfaceHierarchy::build(a, cache);
   Result<SurfaceHierarchy> hb = SurfaceHierarchy::build(b, cache);

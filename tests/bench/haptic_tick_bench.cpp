@@ -2,13 +2,13 @@
 // move every tick: argil's sphere tool on the lazy hierarchy against the FCL
 // route (re-tessellate to the same chord error, refit the AABB tree, collide).
 // Also closest-point queries against OpenCASCADE's local and global projection.
-#include <Extrema_GenLocateExtPS.hxx>
-#include <GeomAPI_ProjectPointOnSurf.hxx>
-#include <GeomAdaptor_Surface.hxx>
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
+#include <Extrema_GenLocateExtPS.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <GeomAdaptor_Surface.hxx>
 
 #include <cmath>
 #include <memory>
@@ -26,7 +26,9 @@ constexpr int kPathSteps = 1000;      // one second of ticks at 1 kHz
 
 /// Chord tolerance of the run [mm] from the benchmark argument [um]:
 /// 50 um is about 1e-4 of the panel diagonal, 500 um about 1e-3.
-double chord_tolerance(const benchmark::State& state) { return 1e-3 * static_cast<double>(state.range(0)); }
+double chord_tolerance(const benchmark::State& state) {
+  return 1e-3 * static_cast<double>(state.range(0));
+}
 
 /// Every control point moves every tick: a travelling wave of 0.5 mm. The
 /// frames are computed before timing (they stand for the deformation solver's
@@ -81,7 +83,8 @@ void argil_sphere_tick(benchmark::State& state) {
   long contacts = 0, leaves = 0, refreshed = 0, visited = 0;
   for (auto _ : state) {
     h.set_control_points(frames[static_cast<std::size_t>(tick % kPathSteps)]);
-    const auto tool = argil::make_sphere(path[static_cast<std::size_t>(tick % kPathSteps)], kToolRadius);
+    const auto tool =
+        argil::make_sphere(path[static_cast<std::size_t>(tick % kPathSteps)], kToolRadius);
     const argil::CollisionResult r = argil::collide(h, *tool, request);
     contacts += static_cast<long>(r.contacts.size());
     leaves += r.counters.leaf_pairs;
@@ -112,7 +115,8 @@ void fcl_sphere_tick(benchmark::State& state) {
       triangles.emplace_back(id(a, b), id(a + 1, b), id(a + 1, b + 1));
       triangles.emplace_back(id(a, b), id(a + 1, b + 1), id(a, b + 1));
     }
-  for (std::size_t k = 0; k < vertices.size(); ++k) vertices[k] = grid.points.row(static_cast<Eigen::Index>(k)).transpose();
+  for (std::size_t k = 0; k < vertices.size(); ++k)
+    vertices[k] = grid.points.row(static_cast<Eigen::Index>(k)).transpose();
   auto mesh = std::make_shared<fcl::BVHModel<fcl::AABBd>>();
   mesh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size()));
   mesh->addSubModel(vertices, triangles);
@@ -127,12 +131,15 @@ void fcl_sphere_tick(benchmark::State& state) {
   for (auto _ : state) {
     moved.control_points = frames[static_cast<std::size_t>(tick % kPathSteps)];
     argil::evaluate_grid(moved, rows, rows, 0, grid);  // re-tessellate
-    for (std::size_t k = 0; k < vertices.size(); ++k) vertices[k] = grid.points.row(static_cast<Eigen::Index>(k)).transpose();
+    for (std::size_t k = 0; k < vertices.size(); ++k)
+      vertices[k] = grid.points.row(static_cast<Eigen::Index>(k)).transpose();
     mesh->beginUpdateModel();
     mesh->updateSubModel(vertices);
     mesh->endUpdateModel(true, true);  // refit the AABB tree
     mesh_object.computeAABB();
-    fcl::CollisionObjectd tool(sphere, fcl::Transform3d(Eigen::Translation3d(path[static_cast<std::size_t>(tick % kPathSteps)])));
+    fcl::CollisionObjectd tool(
+        sphere,
+        fcl::Transform3d(Eigen::Translation3d(path[static_cast<std::size_t>(tick % kPathSteps)])));
     fcl::CollisionRequestd request(256, true);
     fcl::CollisionResultd result;
     fcl::collide(&tool, &mesh_object, request, result);
@@ -163,7 +170,8 @@ void argil_closest_point(benchmark::State& state) {
   const auto q = query_points(s);
   std::size_t k = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(argil::closest_point(h, q[k++ % q.size()], {.tolerance = 1e-6}).distance);
+    benchmark::DoNotOptimize(
+        argil::closest_point(h, q[k++ % q.size()], {.tolerance = 1e-6}).distance);
   }
 }
 
@@ -194,11 +202,35 @@ void occt_global_closest_point(benchmark::State& state) {
   }
 }
 
-BENCHMARK(argil_sphere_tick)->Name("tick32_sphere/argil")->Arg(50)->Arg(500)->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
-BENCHMARK(fcl_sphere_tick)->Name("tick32_sphere/fcl_retessellate_refit")->Arg(50)->Arg(500)->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
-BENCHMARK(argil_closest_point)->Name("closest_point/argil_global_eps1e-6")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
-BENCHMARK(occt_local_closest_point)->Name("closest_point/occt_local")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
-BENCHMARK(occt_global_closest_point)->Name("closest_point/occt_global")->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
+BENCHMARK(argil_sphere_tick)
+    ->Name("tick32_sphere/argil")
+    ->Arg(50)
+    ->Arg(500)
+    ->Repetitions(7)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(fcl_sphere_tick)
+    ->Name("tick32_sphere/fcl_retessellate_refit")
+    ->Arg(50)
+    ->Arg(500)
+    ->Repetitions(7)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(argil_closest_point)
+    ->Name("closest_point/argil_global_eps1e-6")
+    ->Repetitions(7)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(occt_local_closest_point)
+    ->Name("closest_point/occt_local")
+    ->Repetitions(7)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(occt_global_closest_point)
+    ->Name("closest_point/occt_global")
+    ->Repetitions(7)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -6,12 +6,12 @@
 // eps goes from 1e-1 to 1e-8 of the model size, the error measured with
 // OpenCASCADE (its curves' samples against our set, our points against its
 // surfaces). SISL is AGPL: it is linked into this benchmark only.
+#include <sisl.h>
 #include <GeomAPI_IntSS.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomInt_IntSS.hxx>
 #include <Geom_Curve.hxx>
 #include <Precision.hxx>
-#include <sisl.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -72,9 +72,12 @@ SISLSurf* to_sisl(const argil::BSplineSurface& s) {
   for (int j = 0; j < nv; ++j)
     for (int i = 0; i < nu; ++i)
       for (int d = 0; d < 3; ++d)
-        coef[(static_cast<std::size_t>(j) * static_cast<std::size_t>(nu) + static_cast<std::size_t>(i)) * 3 +
+        coef[(static_cast<std::size_t>(j) * static_cast<std::size_t>(nu) +
+              static_cast<std::size_t>(i)) *
+                 3 +
              static_cast<std::size_t>(d)] = s.control_points(s.pole_index(i, j), d);
-  return newSurf(nu, nv, s.degree[0] + 1, s.degree[1] + 1, ku.data(), kv.data(), coef.data(), 1, 3, 1);
+  return newSurf(nu, nv, s.degree[0] + 1, s.degree[1] + 1, ku.data(), kv.data(), coef.data(), 1, 3,
+                 1);
 }
 
 constexpr double kRelativeEps = 1e-6;
@@ -123,10 +126,12 @@ void run_sisl(benchmark::State& state, const Scene& s, bool march) {
     int jpt = 0, jcrv = 0;
     double *gpar1 = nullptr, *gpar2 = nullptr;
     SISLIntcurve** wcurve = nullptr;
-    s1859(a, b, kSislResolution, kRelativeEps * s.size, &jpt, &gpar1, &gpar2, &jcrv, &wcurve, &status);
+    s1859(a, b, kSislResolution, kRelativeEps * s.size, &jpt, &gpar1, &gpar2, &jcrv, &wcurve,
+          &status);
     if (march) {
       // icur = 1: make the 3D curve; amax = 0: no extra step limit; igraph = 0.
-      for (int k = 0; k < jcrv; ++k) s1310(a, b, wcurve[k], kRelativeEps * s.size, 0.0, 1, 0, &march_status);
+      for (int k = 0; k < jcrv; ++k)
+        s1310(a, b, wcurve[k], kRelativeEps * s.size, 0.0, 1, 0, &march_status);
     }
     curves = jcrv;
     std::free(gpar1);
@@ -151,10 +156,13 @@ void sisl_march_32_16(benchmark::State& st) { run_sisl(st, scene_32_16(), true);
 
 double sweep_eps(int exponent) { return std::pow(10.0, -exponent); }
 // One name per eps: the reporter keys medians by name without arguments.
-std::string sweep_name(int exponent) { return "ssi16x8_sweep/argil_eps1e-" + std::to_string(exponent); }
+std::string sweep_name(int exponent) {
+  return "ssi16x8_sweep/argil_eps1e-" + std::to_string(exponent);
+}
 
-#define ARGIL_SSI_BENCH(fn, name) \
-  BENCHMARK(fn)->Name(name)->Repetitions(7)->ReportAggregatesOnly(true)->Unit(benchmark::kMillisecond)
+#define ARGIL_SSI_BENCH(fn, name)                                              \
+  BENCHMARK(fn)->Name(name)->Repetitions(7)->ReportAggregatesOnly(true)->Unit( \
+      benchmark::kMillisecond)
 ARGIL_SSI_BENCH(argil_16_8, "ssi16x8/argil_refined_eps1e-6");
 ARGIL_SSI_BENCH(occt_16_8, "ssi16x8/occt_intss");
 ARGIL_SSI_BENCH(sisl_16_8, "ssi16x8/sisl_s1859");
@@ -200,30 +208,36 @@ void print_sweep(const argil::bench::MedianRatioReporter& reporter) {
   GeomAPI_ProjectPointOnSurf pa, pb;
   pa.Init(oa, 0.0, 1.0, 0.0, 1.0, Precision::Confusion());
   pb.Init(ob, 0.0, 1.0, 0.0, 1.0, Precision::Confusion());
-  std::printf("\nTime against achieved error, 16x16 vs 8x8, model size %.4g mm; OCCT reference: %d curves, "
-              "%zu samples, TolReached3d %.3g of size\n",
-              s.size, occt.IsDone() ? occt.NbLines() : -1, samples.size(), occt.TolReached3d() / s.size);
-  std::printf("%9s  %12s  %10s  %8s  %16s  %16s\n", "eps/size", "median [ms]", "leaf pairs", "points",
-              "OCCT->ours/size", "ours->surf/size");
+  std::printf(
+      "\nTime against achieved error, 16x16 vs 8x8, model size %.4g mm; OCCT reference: %d curves, "
+      "%zu samples, TolReached3d %.3g of size\n",
+      s.size, occt.IsDone() ? occt.NbLines() : -1, samples.size(), occt.TolReached3d() / s.size);
+  std::printf("%9s  %12s  %10s  %8s  %16s  %16s\n", "eps/size", "median [ms]", "leaf pairs",
+              "points", "OCCT->ours/size", "ours->surf/size");
   argil::OperatorCache cache;
   for (int e = 1; e <= 8; ++e) {
     argil::SurfaceHierarchy ha = argil::SurfaceHierarchy::build(s.a, cache).value();
     argil::SurfaceHierarchy hb = argil::SurfaceHierarchy::build(s.b, cache).value();
-    const argil::CollisionResult r = argil::collide(ha, hb, {.tolerance = sweep_eps(e) * s.size, .refine = true});
+    const argil::CollisionResult r =
+        argil::collide(ha, hb, {.tolerance = sweep_eps(e) * s.size, .refine = true});
     double occt_to_ours = 0.0, ours_to_surfaces = 0.0;
-    for (const Eigen::Vector3d& p : samples) occt_to_ours = std::max(occt_to_ours, distance_to_result(p, r));
+    for (const Eigen::Vector3d& p : samples)
+      occt_to_ours = std::max(occt_to_ours, distance_to_result(p, r));
     std::size_t points = 0;
     for (const auto& c : r.curves)
       for (const Eigen::Vector3d& p : c.points) {
         ++points;
         pa.Perform(gp_Pnt(p.x(), p.y(), p.z()));
         pb.Perform(gp_Pnt(p.x(), p.y(), p.z()));
-        const double da = pa.NbPoints() > 0 ? pa.LowerDistance() : std::numeric_limits<double>::infinity();
-        const double db = pb.NbPoints() > 0 ? pb.LowerDistance() : std::numeric_limits<double>::infinity();
+        const double da =
+            pa.NbPoints() > 0 ? pa.LowerDistance() : std::numeric_limits<double>::infinity();
+        const double db =
+            pb.NbPoints() > 0 ? pb.LowerDistance() : std::numeric_limits<double>::infinity();
         ours_to_surfaces = std::max({ours_to_surfaces, da, db});
       }
-    std::printf("%9.0e  %12.4g  %10ld  %8zu  %16.3g  %16.3g\n", sweep_eps(e), reporter.median(sweep_name(e)),
-                r.counters.leaf_pairs, points, occt_to_ours / s.size, ours_to_surfaces / s.size);
+    std::printf("%9.0e  %12.4g  %10ld  %8zu  %16.3g  %16.3g\n", sweep_eps(e),
+                reporter.median(sweep_name(e)), r.counters.leaf_pairs, points,
+                occt_to_ours / s.size, ours_to_surfaces / s.size);
   }
 }
 
@@ -231,18 +245,20 @@ void print_sweep(const argil::bench::MedianRatioReporter& reporter) {
 
 int main(int argc, char** argv) {
   for (int e = 1; e <= 8; ++e) {
-    benchmark::RegisterBenchmark(sweep_name(e).c_str(),
-                                 [e](benchmark::State& st) { run_argil(st, scene_16_8(), sweep_eps(e)); })
+    benchmark::RegisterBenchmark(
+        sweep_name(e).c_str(),
+        [e](benchmark::State& st) { run_argil(st, scene_16_8(), sweep_eps(e)); })
         ->Repetitions(5)
         ->ReportAggregatesOnly(true)
         ->Unit(benchmark::kMillisecond);
   }
-  return argil::bench::run_with_ratios(argc, argv,
-                                       {{"ssi16x8/occt_intss", "ssi16x8/argil_refined_eps1e-6"},
-                                        {"ssi16x8/sisl_s1859", "ssi16x8/argil_refined_eps1e-6"},
-                                        {"ssi16x8/sisl_s1859_s1310", "ssi16x8/argil_refined_eps1e-6"},
-                                        {"ssi32x16/occt_intss", "ssi32x16/argil_refined_eps1e-6"},
-                                        {"ssi32x16/sisl_s1859", "ssi32x16/argil_refined_eps1e-6"},
-                                        {"ssi32x16/sisl_s1859_s1310", "ssi32x16/argil_refined_eps1e-6"}},
-                                       print_sweep);
+  return argil::bench::run_with_ratios(
+      argc, argv,
+      {{"ssi16x8/occt_intss", "ssi16x8/argil_refined_eps1e-6"},
+       {"ssi16x8/sisl_s1859", "ssi16x8/argil_refined_eps1e-6"},
+       {"ssi16x8/sisl_s1859_s1310", "ssi16x8/argil_refined_eps1e-6"},
+       {"ssi32x16/occt_intss", "ssi32x16/argil_refined_eps1e-6"},
+       {"ssi32x16/sisl_s1859", "ssi32x16/argil_refined_eps1e-6"},
+       {"ssi32x16/sisl_s1859_s1310", "ssi32x16/argil_refined_eps1e-6"}},
+      print_sweep);
 }

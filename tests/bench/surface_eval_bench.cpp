@@ -12,7 +12,9 @@ constexpr int kPoles = 32;
 constexpr int kGrid = 64;
 
 argil::BSplineSurface bicubic() { return argil::bench::bicubic_panel(kPoles); }
-Handle(Geom_BSplineSurface) to_occt(const argil::BSplineSurface& s) { return argil::bench::to_occt(s); }
+Handle(Geom_BSplineSurface) to_occt(const argil::BSplineSurface& s) {
+  return argil::bench::to_occt(s);
+}
 
 Eigen::VectorXd grid_parameters() { return Eigen::VectorXd::LinSpaced(kGrid, 0.0, 1.0); }
 
@@ -68,9 +70,21 @@ void occt_d1(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * kGrid * kGrid);
 }
 
-BENCHMARK(operators)->Name("grid64_points_normals/argil_operators")->Repetitions(9)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
-BENCHMARK(direct)->Name("grid64_points_normals/argil_direct")->Repetitions(9)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
-BENCHMARK(occt_d1)->Name("grid64_points_normals/occt_D1")->Repetitions(9)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
+BENCHMARK(operators)
+    ->Name("grid64_points_normals/argil_operators")
+    ->Repetitions(9)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(direct)
+    ->Name("grid64_points_normals/argil_direct")
+    ->Repetitions(9)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(occt_d1)
+    ->Name("grid64_points_normals/occt_D1")
+    ->Repetitions(9)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -34,8 +34,10 @@ double brute_force_minimum(const BSplineSurface& s, const argil::ImplicitTool& t
   double best = std::numeric_limits<double>::infinity();
   for (int a = 0; a <= n; ++a)
     for (int b = 0; b <= n; ++b) {
-      const double u = s.domain_start(Direction::u) + (s.domain_end(Direction::u) - s.domain_start(Direction::u)) * a / n;
-      const double v = s.domain_start(Direction::v) + (s.domain_end(Direction::v) - s.domain_start(Direction::v)) * b / n;
+      const double u = s.domain_start(Direction::u) +
+                       (s.domain_end(Direction::u) - s.domain_start(Direction::u)) * a / n;
+      const double v = s.domain_start(Direction::v) +
+                       (s.domain_end(Direction::v) - s.domain_start(Direction::v)) * b / n;
       best = std::min(best, tool.distance(argil::evaluate(s, u, v)).value);
     }
   return best;
@@ -43,7 +45,8 @@ double brute_force_minimum(const BSplineSurface& s, const argil::ImplicitTool& t
 
 }  // namespace
 
-TEST_CASE("node spheres enclose their sub-patch and flatness bounds the distance to its triangles") {
+TEST_CASE(
+    "node spheres enclose their sub-patch and flatness bounds the distance to its triangles") {
   std::mt19937_64 rng(31);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int trial = 0; trial < 30; ++trial) {
@@ -66,9 +69,11 @@ TEST_CASE("node spheres enclose their sub-patch and flatness bounds the distance
       const auto& c = n.bound.corners;
       for (int k = 0; k < 12; ++k) {
         const double a = unit(rng), b = unit(rng);
-        const Eigen::Vector3d p = argil::evaluate(s, n.u0 + a * (n.u1 - n.u0), n.v0 + b * (n.v1 - n.v0));
-        const Eigen::Vector3d t = a >= b ? Eigen::Vector3d((1 - a) * c[0] + (a - b) * c[1] + b * c[3])
-                                         : Eigen::Vector3d((1 - b) * c[0] + (b - a) * c[2] + a * c[3]);
+        const Eigen::Vector3d p =
+            argil::evaluate(s, n.u0 + a * (n.u1 - n.u0), n.v0 + b * (n.v1 - n.v0));
+        const Eigen::Vector3d t = a >= b
+                                      ? Eigen::Vector3d((1 - a) * c[0] + (a - b) * c[1] + b * c[3])
+                                      : Eigen::Vector3d((1 - b) * c[0] + (b - a) * c[2] + a * c[3]);
         const double slack = 1e-12 * model_size(s);  // rounding of the subdivided nets
         INFO("trial " << trial << " node level " << n.level);
         CHECK((p - n.bound.center).norm() <= n.bound.radius + slack);
@@ -127,10 +132,13 @@ TEST_CASE("a plane tool against an exact cylinder patch gives the exact depth") 
   const auto tangent = argil::make_plane(Eigen::Vector3d(0, 0, 1), -10.0);
   const argil::CollisionResult r = argil::collide(h, *tangent, {.tolerance = 1e-5});
   REQUIRE(r.region_count == 1);
-  CHECK(r.contacts.front().depth == Approx(0.0).margin(1e-12));  // touching exactly: depth 0 up to rounding
+  CHECK(r.contacts.front().depth ==
+        Approx(0.0).margin(1e-12));  // touching exactly: depth 0 up to rounding
 }
 
-TEST_CASE("no penetration deeper than eps is missed and every contact is within eps, for every tool type") {
+TEST_CASE(
+    "no penetration deeper than eps is missed and every contact is within eps, for every tool "
+    "type") {
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   int with_contact = 0, without = 0;
@@ -145,29 +153,50 @@ TEST_CASE("no penetration deeper than eps is missed and every contact is within 
     const double eps = 1e-4 * size;
     // A tool centred near a random surface point, offset along z.
     const Eigen::Vector3d anchor = argil::evaluate(
-        s, s.domain_start(Direction::u) + unit(rng) * (s.domain_end(Direction::u) - s.domain_start(Direction::u)),
-        s.domain_start(Direction::v) + unit(rng) * (s.domain_end(Direction::v) - s.domain_start(Direction::v)));
+        s,
+        s.domain_start(Direction::u) +
+            unit(rng) * (s.domain_end(Direction::u) - s.domain_start(Direction::u)),
+        s.domain_start(Direction::v) +
+            unit(rng) * (s.domain_end(Direction::v) - s.domain_start(Direction::v)));
     const double r = (0.05 + 0.1 * unit(rng)) * size;
     const Eigen::Vector3d c = anchor + Eigen::Vector3d(0, 0, r * (unit(rng) * 1.6 - 0.3));
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(6.28 * unit(rng), Eigen::Vector3d(unit(rng), unit(rng), 1).normalized()).toRotationMatrix();
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(6.28 * unit(rng), Eigen::Vector3d(unit(rng), unit(rng), 1).normalized())
+            .toRotationMatrix();
     std::unique_ptr<argil::ImplicitTool> tool;
     switch (trial % 7) {
-      case 0: tool = argil::make_sphere(c, r); break;
-      case 1: tool = argil::make_plane(Eigen::Vector3d(0.1, -0.2, 1.0), Eigen::Vector3d(0.1, -0.2, 1.0).normalized().dot(c) - r); break;
-      case 2: tool = argil::make_capsule(c - R.col(0) * r, c + R.col(0) * r, 0.5 * r); break;
-      case 3: tool = argil::make_box(R, c, Eigen::Vector3d(r, 0.6 * r, 0.4 * r)); break;
-      case 4: tool = argil::make_ellipsoid(R, c, Eigen::Vector3d(r, 0.7 * r, 0.5 * r)); break;
-      case 5: tool = argil::make_torus(R, c, r, 0.3 * r); break;
+      case 0:
+        tool = argil::make_sphere(c, r);
+        break;
+      case 1:
+        tool = argil::make_plane(Eigen::Vector3d(0.1, -0.2, 1.0),
+                                 Eigen::Vector3d(0.1, -0.2, 1.0).normalized().dot(c) - r);
+        break;
+      case 2:
+        tool = argil::make_capsule(c - R.col(0) * r, c + R.col(0) * r, 0.5 * r);
+        break;
+      case 3:
+        tool = argil::make_box(R, c, Eigen::Vector3d(r, 0.6 * r, 0.4 * r));
+        break;
+      case 4:
+        tool = argil::make_ellipsoid(R, c, Eigen::Vector3d(r, 0.7 * r, 0.5 * r));
+        break;
+      case 5:
+        tool = argil::make_torus(R, c, r, 0.3 * r);
+        break;
       default: {
         const Eigen::Vector3d centre = c;
         const double radius = r;
         // A sphere given as a user SDF with a loose Lipschitz bound.
-        tool = argil::make_user_sdf([centre, radius](const Eigen::Vector3d& x) { return (x - centre).norm() - radius; }, 1.5);
+        tool = argil::make_user_sdf(
+            [centre, radius](const Eigen::Vector3d& x) { return (x - centre).norm() - radius; },
+            1.5);
       }
     }
     const argil::CollisionResult result = argil::collide(h, *tool, {.tolerance = eps});
     const double brute = brute_force_minimum(s, *tool, 150);
-    INFO("trial " << trial << " tool " << trial % 7 << " brute-force minimum " << brute << " eps " << eps);
+    INFO("trial " << trial << " tool " << trial % 7 << " brute-force minimum " << brute << " eps "
+                  << eps);
     if (brute <= -eps) {
       ++with_contact;
       REQUIRE_FALSE(result.contacts.empty());
@@ -193,11 +222,13 @@ TEST_CASE("after control points move, queries match a freshly built hierarchy (n
   std::normal_distribution<double> jitter(0.0, 1.0);
   BSplineSurface s = argil::test::asymmetric_surface(true);
   argil::SurfaceHierarchy persistent = hierarchy_of(s);
-  const auto tool = argil::make_sphere(argil::evaluate(s, 0.5, 0.5) + Eigen::Vector3d(0, 0, 4.0), 5.0);
+  const auto tool =
+      argil::make_sphere(argil::evaluate(s, 0.5, 0.5) + Eigen::Vector3d(0, 0, 4.0), 5.0);
   for (int move = 0; move < 15; ++move) {
     // Move a few control points by up to a few mm.
     for (int k = 0; k < 3; ++k) {
-      const Eigen::Index row = static_cast<Eigen::Index>(rng() % static_cast<std::uint64_t>(s.control_points.rows()));
+      const Eigen::Index row =
+          static_cast<Eigen::Index>(rng() % static_cast<std::uint64_t>(s.control_points.rows()));
       s.control_points.row(row) += 2.0 * Eigen::RowVector3d(jitter(rng), jitter(rng), jitter(rng));
     }
     persistent.set_control_points(s.control_points, s.weights);
@@ -219,7 +250,8 @@ TEST_CASE("after control points move, queries match a freshly built hierarchy (n
 TEST_CASE("a rigid motion of surface and tool moves the contacts with it") {
   const BSplineSurface s = argil::test::asymmetric_surface(true);
   const Eigen::Vector3d centre = argil::evaluate(s, 0.6, 0.2) + Eigen::Vector3d(0.3, -0.2, 1.5);
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const Eigen::Vector3d t(120.0, -45.0, 300.0);
   BSplineSurface moved = s;
   moved.control_points = ((s.control_points * R.transpose()).rowwise() + t.transpose()).eval();
@@ -232,17 +264,20 @@ TEST_CASE("a rigid motion of surface and tool moves the contacts with it") {
   REQUIRE(ra.region_count == rb.region_count);
   const argil::Contact& ca = ra.contacts.front();
   const argil::Contact& cb = rb.contacts.front();
-  CHECK((R * ca.point + t - cb.point).norm() < 1e-8);  // Newton converges to rounding of 300 mm coordinates
+  CHECK((R * ca.point + t - cb.point).norm() <
+        1e-8);  // Newton converges to rounding of 300 mm coordinates
   CHECK(ca.depth == Approx(cb.depth).margin(1e-9));
   CHECK((R * ca.normal - cb.normal).norm() < 1e-9);
 }
 
 TEST_CASE("nodes are built only where the query reaches") {
   std::mt19937_64 rng(9);
-  const BSplineSurface s = argil::test::random_surface(rng, {.min_degree = 3, .max_degree = 3, .max_extra_poles = 12});
+  const BSplineSurface s =
+      argil::test::random_surface(rng, {.min_degree = 3, .max_degree = 3, .max_extra_poles = 12});
   argil::SurfaceHierarchy h = hierarchy_of(s);
   const std::size_t roots = h.node_count();
-  const auto corner = argil::evaluate(s, s.domain_start(Direction::u), s.domain_start(Direction::v));
+  const auto corner =
+      argil::evaluate(s, s.domain_start(Direction::u), s.domain_start(Direction::v));
   const auto r = argil::collide(h, *argil::make_sphere(corner, 0.5), {.tolerance = 1e-4});
   CHECK(r.region_count == 1);
   // A small tool at a corner refines a handful of nodes, not the surface.
@@ -259,7 +294,9 @@ TEST_CASE("two separate touches give two contact regions") {
   // modelled as two spheres through a user SDF).
   const Eigen::Vector3d a = argil::evaluate(s, 0.2, 0.0) + Eigen::Vector3d(0, 0, 0.9);
   const Eigen::Vector3d b = argil::evaluate(s, 0.8, 1.5) + Eigen::Vector3d(0, 0, 0.9);
-  const auto two = argil::make_user_sdf([a, b](const Eigen::Vector3d& x) { return std::min((x - a).norm(), (x - b).norm()) - 1.0; }, 1.0);
+  const auto two = argil::make_user_sdf(
+      [a, b](const Eigen::Vector3d& x) { return std::min((x - a).norm(), (x - b).norm()) - 1.0; },
+      1.0);
   const auto r = argil::collide(h, *two, {.tolerance = 1e-6});
   REQUIRE(r.region_count == 2);
   // Each region lists its deepest contact first: 0.1 mm at the bottom of each sphere.
@@ -282,7 +319,8 @@ TEST_CASE("the closest point agrees with brute force on a dense sampling") {
     const BSplineSurface s = argil::test::random_surface(rng, options);
     argil::SurfaceHierarchy h = hierarchy_of(s);
     const double size = model_size(s);
-    const Eigen::Vector3d q = argil::control_point_box(s).min + Eigen::Vector3d(size * 0.5, size * 0.4, 0) +
+    const Eigen::Vector3d q = argil::control_point_box(s).min +
+                              Eigen::Vector3d(size * 0.5, size * 0.4, 0) +
                               0.3 * size * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
     const double eps = 1e-6 * size;
     const argil::ClosestPoint cp = argil::closest_point(h, q, {.tolerance = eps});

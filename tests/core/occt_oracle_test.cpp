@@ -23,7 +23,8 @@ using argil::Direction;
 namespace {
 
 /// Distinct knot values and multiplicities, 1-based as OCCT wants them.
-void to_occt_knots(const Eigen::VectorXd& knots, TColStd_Array1OfReal& values, TColStd_Array1OfInteger& mults) {
+void to_occt_knots(const Eigen::VectorXd& knots, TColStd_Array1OfReal& values,
+                   TColStd_Array1OfInteger& mults) {
   std::vector<double> v;
   std::vector<int> m;
   for (Eigen::Index k = 0; k < knots.size(); ++k) {
@@ -50,7 +51,9 @@ Handle(Geom_BSplineSurface) to_occt(const BSplineSurface& s) {
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
       const Eigen::Index k = s.pole_index(i, j);
-      poles.SetValue(i + 1, j + 1, gp_Pnt(s.control_points(k, 0), s.control_points(k, 1), s.control_points(k, 2)));
+      poles.SetValue(
+          i + 1, j + 1,
+          gp_Pnt(s.control_points(k, 0), s.control_points(k, 1), s.control_points(k, 2)));
       weights.SetValue(i + 1, j + 1, s.is_rational() ? s.weights[k] : 1.0);
     }
   }
@@ -58,7 +61,8 @@ Handle(Geom_BSplineSurface) to_occt(const BSplineSurface& s) {
   TColStd_Array1OfInteger um(1, 1), vm(1, 1);
   to_occt_knots(s.knots[0], uk, um);
   to_occt_knots(s.knots[1], vk, vm);
-  if (s.is_rational()) return new Geom_BSplineSurface(poles, weights, uk, vk, um, vm, s.degree[0], s.degree[1]);
+  if (s.is_rational())
+    return new Geom_BSplineSurface(poles, weights, uk, vk, um, vm, s.degree[0], s.degree[1]);
   return new Geom_BSplineSurface(poles, uk, vk, um, vm, s.degree[0], s.degree[1]);
 }
 
@@ -96,11 +100,15 @@ TEST_CASE("points and derivatives up to order 2 agree with OpenCASCADE to 1e-12 
       // Sample inside the domain, on its ends and exactly on the knots.
       std::vector<double> us, vs;
       for (int k = 0; k < 12; ++k) {
-        us.push_back(s.domain_start(Direction::u) + unit(rng) * (s.domain_end(Direction::u) - s.domain_start(Direction::u)));
-        vs.push_back(s.domain_start(Direction::v) + unit(rng) * (s.domain_end(Direction::v) - s.domain_start(Direction::v)));
+        us.push_back(s.domain_start(Direction::u) +
+                     unit(rng) * (s.domain_end(Direction::u) - s.domain_start(Direction::u)));
+        vs.push_back(s.domain_start(Direction::v) +
+                     unit(rng) * (s.domain_end(Direction::v) - s.domain_start(Direction::v)));
       }
-      for (Eigen::Index k = s.degree[0]; k <= s.count(Direction::u); ++k) us.push_back(s.knots[0][k]);
-      for (Eigen::Index k = s.degree[1]; k <= s.count(Direction::v); ++k) vs.push_back(s.knots[1][k]);
+      for (Eigen::Index k = s.degree[0]; k <= s.count(Direction::u); ++k)
+        us.push_back(s.knots[0][k]);
+      for (Eigen::Index k = s.degree[1]; k <= s.count(Direction::v); ++k)
+        vs.push_back(s.knots[1][k]);
       double d1_scale = 0.0, d2_scale = 0.0;
       double err[3] = {0, 0, 0};
       for (double u : us) {
@@ -111,14 +119,17 @@ TEST_CASE("points and derivatives up to order 2 agree with OpenCASCADE to 1e-12 
           const argil::SurfaceDerivatives d = argil::evaluate_derivatives(s, u, v, 2);
           err[0] = std::max(err[0], (d.point - eig(p)).norm());
           err[1] = std::max({err[1], (d.du - eig(du)).norm(), (d.dv - eig(dv)).norm()});
-          err[2] = std::max({err[2], (d.duu - eig(duu)).norm(), (d.duv - eig(duv)).norm(), (d.dvv - eig(dvv)).norm()});
+          err[2] = std::max({err[2], (d.duu - eig(duu)).norm(), (d.duv - eig(duv)).norm(),
+                             (d.dvv - eig(dvv)).norm()});
           // Rounding in a derivative scales with its terms, sum |N'| |P|, not with
           // the (possibly cancelling) result: measure relative to that.
           const auto pu = term_scale(s, Direction::u, u);
           const auto pv = term_scale(s, Direction::v, v);
-          d1_scale = std::max({d1_scale, eig(du).norm(), eig(dv).norm(), pole_size * pu.first, pole_size * pv.first});
+          d1_scale = std::max({d1_scale, eig(du).norm(), eig(dv).norm(), pole_size * pu.first,
+                               pole_size * pv.first});
           d2_scale = std::max({d2_scale, eig(duu).norm(), eig(duv).norm(), eig(dvv).norm(),
-                               pole_size * pu.second, pole_size * pv.second, pole_size * pu.first * pv.first});
+                               pole_size * pu.second, pole_size * pv.second,
+                               pole_size * pu.first * pv.first});
           // D0 and D1 through their own entry points agree with D2's.
           gp_Pnt p0;
           oc->D0(u, v, p0);
@@ -126,9 +137,9 @@ TEST_CASE("points and derivatives up to order 2 agree with OpenCASCADE to 1e-12 
         }
       }
       const double rel[3] = {err[0] / size, err[1] / d1_scale, err[2] / d2_scale};
-      INFO("degree " << s.degree[0] << "x" << s.degree[1] << (s.is_rational() ? " rational" : "") << " poles "
-                     << s.count(Direction::u) << "x" << s.count(Direction::v) << ": relative errors " << rel[0] << ", "
-                     << rel[1] << ", " << rel[2]);
+      INFO("degree " << s.degree[0] << "x" << s.degree[1] << (s.is_rational() ? " rational" : "")
+                     << " poles " << s.count(Direction::u) << "x" << s.count(Direction::v)
+                     << ": relative errors " << rel[0] << ", " << rel[1] << ", " << rel[2]);
       // Two independent implementations of the same sums: rounding only.
       CHECK(rel[0] <= 1e-12);
       CHECK(rel[1] <= 1e-12);
@@ -136,7 +147,8 @@ TEST_CASE("points and derivatives up to order 2 agree with OpenCASCADE to 1e-12 
       for (int o = 0; o < 3; ++o) worst[o] = std::max(worst[o], rel[o]);
     }
   }
-  WARN(surfaces << " surfaces; worst relative error vs OpenCASCADE: D0 " << worst[0] << ", D1 " << worst[1] << ", D2 " << worst[2]);
+  WARN(surfaces << " surfaces; worst relative error vs OpenCASCADE: D0 " << worst[0] << ", D1 "
+                << worst[1] << ", D2 " << worst[2]);
 }
 
 TEST_CASE("the closest point is within eps of OpenCASCADE's global projection") {
@@ -157,8 +169,9 @@ TEST_CASE("the closest point is within eps of OpenCASCADE's global projection") 
     const double size = box.diagonal();
     const double eps = 1e-7 * size;
     for (int k = 0; k < 5; ++k) {
-      const Eigen::Vector3d q = 0.5 * (box.min + box.max) +
-                                0.4 * size * Eigen::Vector3d(gauss(rng), gauss(rng), 0.5 * gauss(rng));
+      const Eigen::Vector3d q =
+          0.5 * (box.min + box.max) +
+          0.4 * size * Eigen::Vector3d(gauss(rng), gauss(rng), 0.5 * gauss(rng));
       const argil::ClosestPoint ours = argil::closest_point(h.value(), q, {.tolerance = eps});
       GeomAPI_ProjectPointOnSurf projection(gp_Pnt(q.x(), q.y(), q.z()), oc);
       if (projection.NbPoints() == 0) continue;  // OCCT found no orthogonal foot

@@ -40,7 +40,8 @@ TEST_CASE("a grid evaluated through the operators agrees with direct evaluation 
     argil::test::RandomSurfaceOptions options;
     options.max_degree = 7;
     options.rational = trial % 2 == 1;
-    const BSplineSurface s = trial == 0 ? argil::test::asymmetric_surface() : argil::test::random_surface(rng, options);
+    const BSplineSurface s =
+        trial == 0 ? argil::test::asymmetric_surface() : argil::test::random_surface(rng, options);
     const auto ops = argil::surface_operators(s, cache).value();
     const int level = trial % 3;
     const argil::SamplingRows& ru = ops.u->level_rows(level);
@@ -54,8 +55,10 @@ TEST_CASE("a grid evaluated through the operators agrees with direct evaluation 
         const auto d = argil::evaluate_derivatives(s, ru.params[a], rv.params[b], 2);
         const Eigen::Index r = a * grid.count_v + b;
         worst_point = std::max(worst_point, (grid.points.row(r).transpose() - d.point).norm());
-        worst_d1 = std::max({worst_d1, (grid.du.row(r).transpose() - d.du).norm(), (grid.dv.row(r).transpose() - d.dv).norm()});
-        worst_d2 = std::max({worst_d2, (grid.duu.row(r).transpose() - d.duu).norm(), (grid.duv.row(r).transpose() - d.duv).norm(),
+        worst_d1 = std::max({worst_d1, (grid.du.row(r).transpose() - d.du).norm(),
+                             (grid.dv.row(r).transpose() - d.dv).norm()});
+        worst_d2 = std::max({worst_d2, (grid.duu.row(r).transpose() - d.duu).norm(),
+                             (grid.duv.row(r).transpose() - d.duv).norm(),
                              (grid.dvv.row(r).transpose() - d.dvv).norm()});
         d1_scale = std::max({d1_scale, d.du.norm(), d.dv.norm()});
         d2_scale = std::max({d2_scale, d.duu.norm(), d.duv.norm(), d.dvv.norm()});
@@ -72,7 +75,8 @@ TEST_CASE("a grid evaluated through the operators agrees with direct evaluation 
   }
 }
 
-TEST_CASE("fitting nodes to control points and evaluating back reproduces the nodes, degrees 1 to 10") {
+TEST_CASE(
+    "fitting nodes to control points and evaluating back reproduces the nodes, degrees 1 to 10") {
   std::mt19937_64 rng(29);
   argil::OperatorCache cache;
   double worst = 0.0;
@@ -87,7 +91,8 @@ TEST_CASE("fitting nodes to control points and evaluating back reproduces the no
       s.knots = {uniform_knots(p, n), uniform_knots(q, m)};
       s.control_points.resize(static_cast<Eigen::Index>(n) * m, 3);
       if (n % 2 == 0) s.weights = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(n) * m, 1.0);
-      for (Eigen::Index k = 0; k < s.weights.size(); ++k) s.weights[k] = 0.5 + std::fmod(0.37 * static_cast<double>(k), 1.5);
+      for (Eigen::Index k = 0; k < s.weights.size(); ++k)
+        s.weights[k] = 0.5 + std::fmod(0.37 * static_cast<double>(k), 1.5);
       const auto ops = argil::surface_operators(s, cache);
       INFO("degree " << p << "x" << q << " poles " << n << "x" << m << " " << ops.status().message);
       REQUIRE(ops.ok());
@@ -134,7 +139,8 @@ TEST_CASE("the collocation at Greville abscissae stays well conditioned") {
 
 TEST_CASE("the banded LU solves agree with a dense solve of the collocation matrix") {
   std::mt19937_64 rng(2);
-  const BSplineSurface s = argil::test::random_surface(rng, {.min_degree = 4, .max_degree = 6, .max_extra_poles = 20});
+  const BSplineSurface s =
+      argil::test::random_surface(rng, {.min_degree = 4, .max_degree = 6, .max_extra_poles = 20});
   for (Direction d : argil::kDirections) {
     auto built = argil::CurveOperators::build(s.degree_in(d), s.knots_in(d));
     REQUIRE(built.ok());
@@ -142,7 +148,9 @@ TEST_CASE("the banded LU solves agree with a dense solve of the collocation matr
     const int n = ops.count();
     Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
     for (int i = 0; i < n; ++i)
-      for (int r = 0; r <= ops.degree(); ++r) dense(i, ops.greville_rows().first_pole[static_cast<std::size_t>(i)] + r) = ops.greville_rows().values(i, r);
+      for (int r = 0; r <= ops.degree(); ++r)
+        dense(i, ops.greville_rows().first_pole[static_cast<std::size_t>(i)] + r) =
+            ops.greville_rows().values(i, r);
     const Eigen::MatrixXd rhs = Eigen::MatrixXd::Random(n, 3);
     Eigen::MatrixXd x = rhs;
     ops.collocation().solve_in_place(x);
@@ -184,7 +192,9 @@ TEST_CASE("operators are built once per structure and survive control point chan
   argil::evaluate_grid(s, second.u->level_rows(1), second.v->level_rows(1), 0, grid);
   const auto& ru = second.u->level_rows(1);
   const auto& rv = second.v->level_rows(1);
-  CHECK((grid.points.row(3 * grid.count_v + 2).transpose() - argil::evaluate(s, ru.params[3], rv.params[2])).norm() < 1e-12 * model_size(s));
+  CHECK((grid.points.row(3 * grid.count_v + 2).transpose() -
+         argil::evaluate(s, ru.params[3], rv.params[2]))
+            .norm() < 1e-12 * model_size(s));
 }
 
 TEST_CASE("level rows put every element's start on its knot and end on the domain end") {

@@ -35,7 +35,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-void to_occt_knots(const Eigen::VectorXd& knots, TColStd_Array1OfReal& values, TColStd_Array1OfInteger& mults) {
+void to_occt_knots(const Eigen::VectorXd& knots, TColStd_Array1OfReal& values,
+                   TColStd_Array1OfInteger& mults) {
   std::vector<double> v;
   std::vector<int> m;
   for (Eigen::Index k = 0; k < knots.size(); ++k) {
@@ -62,7 +63,9 @@ Handle(Geom_BSplineSurface) to_occt(const BSplineSurface& s) {
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
       const Eigen::Index k = s.pole_index(i, j);
-      poles.SetValue(i + 1, j + 1, gp_Pnt(s.control_points(k, 0), s.control_points(k, 1), s.control_points(k, 2)));
+      poles.SetValue(
+          i + 1, j + 1,
+          gp_Pnt(s.control_points(k, 0), s.control_points(k, 1), s.control_points(k, 2)));
       weights.SetValue(i + 1, j + 1, s.is_rational() ? s.weights[k] : 1.0);
     }
   }
@@ -70,7 +73,8 @@ Handle(Geom_BSplineSurface) to_occt(const BSplineSurface& s) {
   TColStd_Array1OfInteger um(1, 1), vm(1, 1);
   to_occt_knots(s.knots[0], uk, um);
   to_occt_knots(s.knots[1], vk, vm);
-  if (s.is_rational()) return new Geom_BSplineSurface(poles, weights, uk, vk, um, vm, s.degree[0], s.degree[1]);
+  if (s.is_rational())
+    return new Geom_BSplineSurface(poles, weights, uk, vk, um, vm, s.degree[0], s.degree[1]);
   return new Geom_BSplineSurface(poles, uk, vk, um, vm, s.degree[0], s.degree[1]);
 }
 
@@ -114,8 +118,9 @@ struct Foot {
   bool found = false;
 };
 
-Foot feet(GeomAPI_ProjectPointOnSurf& pa, GeomAPI_ProjectPointOnSurf& pb, const Handle(Geom_BSplineSurface)& sa,
-          const Handle(Geom_BSplineSurface)& sb, const Eigen::Vector3d& p) {
+Foot feet(GeomAPI_ProjectPointOnSurf& pa, GeomAPI_ProjectPointOnSurf& pb,
+          const Handle(Geom_BSplineSurface) & sa, const Handle(Geom_BSplineSurface) & sb,
+          const Eigen::Vector3d& p) {
   Foot f;
   const gp_Pnt q(p.x(), p.y(), p.z());
   pa.Perform(q);
@@ -141,7 +146,8 @@ double distance_to_polyline(const Eigen::Vector3d& p, const std::vector<Eigen::V
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k + 1 < poly.size(); ++k) {
     const Eigen::Vector3d d = poly[k + 1] - poly[k];
-    const double t = d.squaredNorm() > 0 ? std::clamp((p - poly[k]).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    const double t =
+        d.squaredNorm() > 0 ? std::clamp((p - poly[k]).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
     best = std::min(best, (poly[k] + t * d - p).norm());
   }
   return best;
@@ -155,8 +161,9 @@ double polyline_length(const argil::IntersectionCurve& c) {
 
 }  // namespace
 
-TEST_CASE("OpenCASCADE intersection curves lie within eps of ours at crossings steeper than 10 degrees, "
-          "and our refined curve points lie on both surfaces") {
+TEST_CASE(
+    "OpenCASCADE intersection curves lie within eps of ours at crossings steeper than 10 degrees, "
+    "and our refined curve points lie on both surfaces") {
   constexpr int kPairs = 120;
   // Relative eps of the query: leaves 1e-4 of the model size, then refinement.
   constexpr double kRelativeEps = 1e-4;
@@ -170,7 +177,8 @@ TEST_CASE("OpenCASCADE intersection curves lie within eps of ours at crossings s
   std::mt19937_64 rng(4242);
   long samples = 0, samples_steep = 0, misses_steep = 0, misses_grazing = 0, samples_grazing = 0;
   long occt_off_surface = 0, occt_unprojected = 0, infinite_curves = 0, occt_failures = 0;
-  long our_points = 0, our_points_steep = 0, refined_points = 0, steep_unrefined = 0, unprojected = 0, projected = 0;
+  long our_points = 0, our_points_steep = 0, refined_points = 0, steep_unrefined = 0,
+       unprojected = 0, projected = 0;
   long occt_gaps = 0;
   double worst_occt_gap = 0.0;
   double worst_steep = 0.0, worst_grazing = 0.0, worst_point = 0.0, worst_point_steep = 0.0;
@@ -181,7 +189,8 @@ TEST_CASE("OpenCASCADE intersection curves lie within eps of ours at crossings s
     const Pair pair = crossing_pair(rng, index);
     REQUIRE(argil::validate(pair.a).ok());
     REQUIRE(argil::validate(pair.b).ok());
-    const double size = std::max(argil::control_point_box(pair.a).diagonal(), argil::control_point_box(pair.b).diagonal());
+    const double size = std::max(argil::control_point_box(pair.a).diagonal(),
+                                 argil::control_point_box(pair.b).diagonal());
     const double eps = kRelativeEps * size;
     auto ha = argil::test::hierarchy_for(pair.a);
     auto hb = argil::test::hierarchy_for(pair.b);
@@ -190,10 +199,12 @@ TEST_CASE("OpenCASCADE intersection curves lie within eps of ours at crossings s
     const Handle(Geom_BSplineSurface) oa = to_occt(pair.a);
     const Handle(Geom_BSplineSurface) ob = to_occt(pair.b);
     GeomAPI_ProjectPointOnSurf pa, pb;
-    pa.Init(oa, pair.a.domain_start(Direction::u), pair.a.domain_end(Direction::u), pair.a.domain_start(Direction::v),
-            pair.a.domain_end(Direction::v), Precision::Confusion());
-    pb.Init(ob, pair.b.domain_start(Direction::u), pair.b.domain_end(Direction::u), pair.b.domain_start(Direction::v),
-            pair.b.domain_end(Direction::v), Precision::Confusion());
+    pa.Init(oa, pair.a.domain_start(Direction::u), pair.a.domain_end(Direction::u),
+            pair.a.domain_start(Direction::v), pair.a.domain_end(Direction::v),
+            Precision::Confusion());
+    pb.Init(ob, pair.b.domain_start(Direction::u), pair.b.domain_end(Direction::u),
+            pair.b.domain_start(Direction::v), pair.b.domain_end(Direction::v),
+            Precision::Confusion());
 
     GeomInt_IntSS occt(oa, ob, Precision::Confusion());
     if (!occt.IsDone()) {
@@ -235,8 +246,9 @@ TEST_CASE("OpenCASCADE intersection curves lie within eps of ours at crossings s
           misses_steep += miss ? 1 : 0;
           worst_steep = std::max(worst_steep, d / size);
           if (miss) {
-            UNSCOPED_INFO("pair " << index << " OCCT curve " << i << " sample " << k << ": distance " << d
-                                  << " > eps + tol3d = " << eps + tol3d << ", crossing angle " << f.angle_deg);
+            UNSCOPED_INFO("pair " << index << " OCCT curve " << i << " sample " << k
+                                  << ": distance " << d << " > eps + tol3d = " << eps + tol3d
+                                  << ", crossing angle " << f.angle_deg);
           }
         } else {
           ++samples_grazing;
@@ -254,7 +266,8 @@ TEST_CASE("OpenCASCADE intersection curves lie within eps of ours at crossings s
       if (Precision::IsInfinite(t0) || Precision::IsInfinite(t1)) continue;
       occt_polylines.emplace_back();
       for (int k = 0; k <= 4 * kSamplesPerCurve; ++k)
-        occt_polylines.back().push_back(eig(line->Value(t0 + (t1 - t0) * k / (4 * kSamplesPerCurve))));
+        occt_polylines.back().push_back(
+            eig(line->Value(t0 + (t1 - t0) * k / (4 * kSamplesPerCurve))));
     }
     double our_length = 0.0, ours_to_occt = 0.0;
     for (const argil::IntersectionCurve& c : ours.curves) {
@@ -289,19 +302,22 @@ TEST_CASE("OpenCASCADE intersection curves lie within eps of ours at crossings s
         const auto da = argil::evaluate_derivatives(pair.a, c.uv_a[k][0], c.uv_a[k][1], 1);
         const auto db = argil::evaluate_derivatives(pair.b, c.uv_b[k][0], c.uv_b[k][1], 1);
         const double angle =
-            std::asin(std::min(1.0, argil::unit_normal(da).cross(argil::unit_normal(db)).norm())) * 180.0 / kPi;
+            std::asin(std::min(1.0, argil::unit_normal(da).cross(argil::unit_normal(db)).norm())) *
+            180.0 / kPi;
         if (angle >= kWellConditionedDeg) {
           ++our_points_steep;
           worst_point_steep = std::max(worst_point_steep, d / size);
           if (!refined) {
             ++steep_unrefined;
-            std::printf("  unrefined at a %.1f degree crossing: pair %d, point %zu, %.3g of the size off\n", angle,
-                        index, k, d / size);
+            std::printf(
+                "  unrefined at a %.1f degree crossing: pair %d, point %zu, %.3g of the size off\n",
+                angle, index, k, d / size);
           }
         }
         if (k % 4 == 0) {
           double to_occt = std::numeric_limits<double>::infinity();
-          for (const auto& poly : occt_polylines) to_occt = std::min(to_occt, distance_to_polyline(p, poly));
+          for (const auto& poly : occt_polylines)
+            to_occt = std::min(to_occt, distance_to_polyline(p, poly));
           ours_to_occt = std::max(ours_to_occt, to_occt);
         }
       }
@@ -319,23 +335,29 @@ TEST_CASE("OpenCASCADE intersection curves lie within eps of ours at crossings s
   }
   std::sort(length_ratios.begin(), length_ratios.end());
   const auto quantile = [&](double q) {
-    return length_ratios.empty() ? 0.0 : length_ratios[static_cast<std::size_t>(q * static_cast<double>(length_ratios.size() - 1))];
+    return length_ratios.empty() ? 0.0
+                                 : length_ratios[static_cast<std::size_t>(
+                                       q * static_cast<double>(length_ratios.size() - 1))];
   };
   std::printf(
       "OCCT SSI oracle, %d pairs (%d with OCCT curves, %ld OCCT failures, %ld infinite curves):\n"
       "  OCCT samples judged %ld (%ld off OCCT's own surfaces, %ld unprojected)\n"
       "  steep (>= %.0f deg): %ld samples, %ld farther than eps + tol3d, worst %.3g of size\n"
       "  grazing (< %.0f deg): %ld samples, %ld farther than eps + tol3d, worst %.3g of size\n"
-      "  our curve points %ld: %ld within %.0e of both surfaces, worst %.3g of size; at steep crossings %ld "
-      "points, %ld unrefined, worst %.3g; worst OCCT-evaluated uv error of refined points %.3g; %ld projected, "
+      "  our curve points %ld: %ld within %.0e of both surfaces, worst %.3g of size; at steep "
+      "crossings %ld "
+      "points, %ld unrefined, worst %.3g; worst OCCT-evaluated uv error of refined points %.3g; "
+      "%ld projected, "
       "%ld unprojected\n"
-      "  length ours / OCCT: min %.4f, median %.4f, max %.4f; pairs where OCCT misses a piece of our curve by "
+      "  length ours / OCCT: min %.4f, median %.4f, max %.4f; pairs where OCCT misses a piece of "
+      "our curve by "
       "more than 1e-3 of the size: %ld (worst %.3g)\n",
-      kPairs, pairs_with_curves, occt_failures, infinite_curves, samples, occt_off_surface, occt_unprojected,
-      kWellConditionedDeg, samples_steep, misses_steep, worst_steep, kWellConditionedDeg, samples_grazing,
-      misses_grazing, worst_grazing, our_points, refined_points, kRefinedRelative, worst_point, our_points_steep,
-      steep_unrefined, worst_point_steep, worst_uv, projected, unprojected, quantile(0.0), quantile(0.5), quantile(1.0),
-      occt_gaps, worst_occt_gap);
+      kPairs, pairs_with_curves, occt_failures, infinite_curves, samples, occt_off_surface,
+      occt_unprojected, kWellConditionedDeg, samples_steep, misses_steep, worst_steep,
+      kWellConditionedDeg, samples_grazing, misses_grazing, worst_grazing, our_points,
+      refined_points, kRefinedRelative, worst_point, our_points_steep, steep_unrefined,
+      worst_point_steep, worst_uv, projected, unprojected, quantile(0.0), quantile(0.5),
+      quantile(1.0), occt_gaps, worst_occt_gap);
   CHECK(samples_steep > 1000);  // the check has material: most of OCCT's samples are steep
   CHECK(misses_steep == 0);
   // Refinement keeps a point's leaf value where Gauss-Newton across the curve

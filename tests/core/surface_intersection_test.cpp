@@ -7,8 +7,8 @@
 
 #include "argil/core.hpp"
 #include "argil/core/triangle_distance.hpp"
-#include "support/random_surface.hpp"
 #include "core/surface_pairs.hpp"
+#include "support/random_surface.hpp"
 
 using argil::BSplineSurface;
 using argil::CollisionResult;
@@ -22,7 +22,9 @@ Eigen::Vector3d random_point(std::mt19937_64& rng, double size) {
   return size * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
 }
 
-Eigen::Vector3d on_triangle(const Triangle& t, const Eigen::Vector3d& w) { return w[0] * t[0] + w[1] * t[1] + w[2] * t[2]; }
+Eigen::Vector3d on_triangle(const Triangle& t, const Eigen::Vector3d& w) {
+  return w[0] * t[0] + w[1] * t[1] + w[2] * t[2];
+}
 
 /// Oracle: non-coplanar triangles meet iff an edge of one crosses the
 /// other. Returns +1 (meet), -1 (apart) or 0 (within 1e-9 of a decision:
@@ -56,13 +58,15 @@ double distance_to_triangle(const Eigen::Vector3d& p, const Triangle& t) {
 }
 
 /// Every curve point and contact: parameters map back within `bound` of the point on both surfaces.
-double worst_parameter_gap(const BSplineSurface& a, const BSplineSurface& b, const CollisionResult& r, bool curves) {
+double worst_parameter_gap(const BSplineSurface& a, const BSplineSurface& b,
+                           const CollisionResult& r, bool curves) {
   double worst = 0.0;
   if (curves) {
     for (const auto& c : r.curves)
       for (std::size_t k = 0; k < c.points.size(); ++k)
-        worst = std::max({worst, (argil::evaluate(a, c.uv_a[k][0], c.uv_a[k][1]) - c.points[k]).norm(),
-                          (argil::evaluate(b, c.uv_b[k][0], c.uv_b[k][1]) - c.points[k]).norm()});
+        worst =
+            std::max({worst, (argil::evaluate(a, c.uv_a[k][0], c.uv_a[k][1]) - c.points[k]).norm(),
+                      (argil::evaluate(b, c.uv_b[k][0], c.uv_b[k][1]) - c.points[k]).norm()});
   } else {
     for (const auto& c : r.contacts)
       worst = std::max({worst, (argil::evaluate(a, c.uv_a[0], c.uv_a[1]) - c.point).norm(),
@@ -73,12 +77,16 @@ double worst_parameter_gap(const BSplineSurface& a, const BSplineSurface& b, con
 
 /// Crossings of z_a - z_b along the edges of a g x g parameter grid, each
 /// bisected to a point on both graphs.
-std::vector<Eigen::Vector3d> brute_force_crossings(const BSplineSurface& a, const BSplineSurface& b, int g) {
-  const auto h = [&](double u, double v) { return argil::evaluate(a, u, v).z() - argil::evaluate(b, u, v).z(); };
+std::vector<Eigen::Vector3d> brute_force_crossings(const BSplineSurface& a, const BSplineSurface& b,
+                                                   int g) {
+  const auto h = [&](double u, double v) {
+    return argil::evaluate(a, u, v).z() - argil::evaluate(b, u, v).z();
+  };
   std::vector<Eigen::Vector3d> out;
   std::vector<double> values(static_cast<std::size_t>((g + 1) * (g + 1)));
   for (int i = 0; i <= g; ++i)
-    for (int j = 0; j <= g; ++j) values[static_cast<std::size_t>(i * (g + 1) + j)] = h(double(i) / g, double(j) / g);
+    for (int j = 0; j <= g; ++j)
+      values[static_cast<std::size_t>(i * (g + 1) + j)] = h(double(i) / g, double(j) / g);
   const auto bisect = [&](Eigen::Vector2d p, Eigen::Vector2d q, double hp) {
     for (int it = 0; it < 60; ++it) {
       const Eigen::Vector2d m = 0.5 * (p + q);
@@ -98,11 +106,13 @@ std::vector<Eigen::Vector3d> brute_force_crossings(const BSplineSurface& a, cons
       const Eigen::Vector2d p(double(i) / g, double(j) / g);
       if (i < g) {
         const double there = values[static_cast<std::size_t>((i + 1) * (g + 1) + j)];
-        if (here * there < 0) out.push_back(bisect(p, Eigen::Vector2d(double(i + 1) / g, double(j) / g), here));
+        if (here * there < 0)
+          out.push_back(bisect(p, Eigen::Vector2d(double(i + 1) / g, double(j) / g), here));
       }
       if (j < g) {
         const double there = values[static_cast<std::size_t>(i * (g + 1) + j + 1)];
-        if (here * there < 0) out.push_back(bisect(p, Eigen::Vector2d(double(i) / g, double(j + 1) / g), here));
+        if (here * there < 0)
+          out.push_back(bisect(p, Eigen::Vector2d(double(i) / g, double(j + 1) / g), here));
       }
     }
   }
@@ -111,7 +121,9 @@ std::vector<Eigen::Vector3d> brute_force_crossings(const BSplineSurface& a, cons
 
 }  // namespace
 
-TEST_CASE("triangle intersection agrees with the edge-crossing oracle and its segment lies on both triangles") {
+TEST_CASE(
+    "triangle intersection agrees with the edge-crossing oracle and its segment lies on both "
+    "triangles") {
   std::mt19937_64 rng(11);
   int crossing = 0, apart = 0;
   for (int trial = 0; trial < 20000; ++trial) {
@@ -142,18 +154,23 @@ TEST_CASE("triangle intersection agrees with the edge-crossing oracle and its se
 TEST_CASE("triangle intersection handles touching and coplanar triangles deterministically") {
   const Triangle base{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)};
   // A corner resting on the face: touching counts, at that corner.
-  const Triangle corner{Eigen::Vector3d(0.25, 0.25, 0), Eigen::Vector3d(0.3, 0.2, 1), Eigen::Vector3d(0.2, 0.4, 1)};
+  const Triangle corner{Eigen::Vector3d(0.25, 0.25, 0), Eigen::Vector3d(0.3, 0.2, 1),
+                        Eigen::Vector3d(0.2, 0.4, 1)};
   const auto t = argil::intersect_triangles(base, corner);
   REQUIRE(t.kind == argil::TriangleIntersection::Kind::segment);
-  CHECK((t.points[0] - Eigen::Vector3d(0.25, 0.25, 0)).norm() < 1e-16);  // rounding of the barycentric evaluation
+  CHECK((t.points[0] - Eigen::Vector3d(0.25, 0.25, 0)).norm() <
+        1e-16);                                      // rounding of the barycentric evaluation
   CHECK((t.points[1] - t.points[0]).norm() == 0.0);  // both ends come from the same cut point
   // An edge lying in the face: the shared segment.
-  const Triangle edge{Eigen::Vector3d(0.1, 0.1, 0), Eigen::Vector3d(0.5, 0.1, 0), Eigen::Vector3d(0.3, 0.1, 1)};
+  const Triangle edge{Eigen::Vector3d(0.1, 0.1, 0), Eigen::Vector3d(0.5, 0.1, 0),
+                      Eigen::Vector3d(0.3, 0.1, 1)};
   const auto e = argil::intersect_triangles(base, edge);
   REQUIRE(e.kind == argil::TriangleIntersection::Kind::segment);
-  CHECK(std::abs((e.points[1] - e.points[0]).norm() - 0.4) < 1e-15);  // segment from exact corner coordinates
+  CHECK(std::abs((e.points[1] - e.points[0]).norm() - 0.4) <
+        1e-15);  // segment from exact corner coordinates
   // Coplanar overlap: the overlap polygon's centroid, the same on every call.
-  const Triangle shifted{Eigen::Vector3d(0.2, 0.2, 0), Eigen::Vector3d(1.2, 0.2, 0), Eigen::Vector3d(0.2, 1.2, 0)};
+  const Triangle shifted{Eigen::Vector3d(0.2, 0.2, 0), Eigen::Vector3d(1.2, 0.2, 0),
+                         Eigen::Vector3d(0.2, 1.2, 0)};
   const auto c1 = argil::intersect_triangles(base, shifted);
   const auto c2 = argil::intersect_triangles(base, shifted);
   REQUIRE(c1.kind == argil::TriangleIntersection::Kind::coplanar);
@@ -163,7 +180,8 @@ TEST_CASE("triangle intersection handles touching and coplanar triangles determi
   // Coplanar but apart, and parallel planes: nothing.
   const Triangle far{Eigen::Vector3d(2, 2, 0), Eigen::Vector3d(3, 2, 0), Eigen::Vector3d(2, 3, 0)};
   CHECK(argil::intersect_triangles(base, far).kind == argil::TriangleIntersection::Kind::none);
-  const Triangle above{Eigen::Vector3d(0, 0, 1e-100), Eigen::Vector3d(1, 0, 1e-100), Eigen::Vector3d(0, 1, 1e-100)};
+  const Triangle above{Eigen::Vector3d(0, 0, 1e-100), Eigen::Vector3d(1, 0, 1e-100),
+                       Eigen::Vector3d(0, 1, 1e-100)};
   CHECK(argil::intersect_triangles(base, above).kind == argil::TriangleIntersection::Kind::none);
   CHECK(argil::triangle_distance(base, above).distance == 1e-100);
 }
@@ -189,7 +207,8 @@ TEST_CASE("two crossing planar patches intersect in the exact line, end to end")
   const auto& curve = r.curves.front();
   REQUIRE(curve.points.size() >= 2);
   for (std::size_t k = 0; k < curve.points.size(); ++k) {
-    CHECK(std::abs(curve.points[k].x() - 40.3) < 1e-12);  // planes are exact triangles: rounding only
+    CHECK(std::abs(curve.points[k].x() - 40.3) <
+          1e-12);  // planes are exact triangles: rounding only
     CHECK(std::abs(curve.points[k].z()) < 1e-12);
     CHECK(std::abs(curve.uv_a[k][0] - 0.403) < 1e-13);
   }
@@ -204,8 +223,10 @@ TEST_CASE("two exact cylinder patches intersect on both cylinders; refined point
   // y^2 + z^2 = 100 (axis x) against x^2 + z^2 = 64 (axis y), both z <= 0.
   const BSplineSurface a = argil::test::cylinder_x(10.0, -20.0, 20.0);
   const Eigen::Matrix3d swap_xy = (Eigen::Matrix3d() << 0, 1, 0, 1, 0, 0, 0, 0, 1).finished();
-  BSplineSurface b = argil::test::moved(argil::test::cylinder_x(8.0, -20.0, 20.0), swap_xy, Eigen::Vector3d::Zero());
-  // The quarter arc of b runs over x in [0, 8]; extend it to a half cylinder by mirroring is not needed.
+  BSplineSurface b = argil::test::moved(argil::test::cylinder_x(8.0, -20.0, 20.0), swap_xy,
+                                        Eigen::Vector3d::Zero());
+  // The quarter arc of b runs over x in [0, 8]; extend it to a half cylinder by mirroring is not
+  // needed.
   auto ha = hierarchy_for(a);
   auto hb = hierarchy_for(b);
   for (double eps : {1e-2, 1e-4, 1e-6}) {
@@ -214,8 +235,12 @@ TEST_CASE("two exact cylinder patches intersect on both cylinders; refined point
     INFO("eps " << eps);
     REQUIRE(raw.curves.size() == 1);
     REQUIRE(fine.curves.size() == 1);
-    const auto on_a = [](const Eigen::Vector3d& p) { return std::abs(std::hypot(p.y(), p.z()) - 10.0); };
-    const auto on_b = [](const Eigen::Vector3d& p) { return std::abs(std::hypot(p.x(), p.z()) - 8.0); };
+    const auto on_a = [](const Eigen::Vector3d& p) {
+      return std::abs(std::hypot(p.y(), p.z()) - 10.0);
+    };
+    const auto on_b = [](const Eigen::Vector3d& p) {
+      return std::abs(std::hypot(p.x(), p.z()) - 8.0);
+    };
     for (const auto& p : raw.curves.front().points) {
       CHECK(on_a(p) <= eps / 3 * (1 + 1e-9));  // triangles within eps/3 of each surface
       CHECK(on_b(p) <= eps / 3 * (1 + 1e-9));
@@ -224,11 +249,14 @@ TEST_CASE("two exact cylinder patches intersect on both cylinders; refined point
       CHECK(on_a(p) <= 1e-12 * 20);  // refinement stops at 1e-14 of the model size (about 28 mm)
       CHECK(on_b(p) <= 1e-12 * 20);
     }
-    CHECK(worst_parameter_gap(a, b, fine, true) <= 1e-12 * 28);  // refined (u, v) evaluate to the point
+    CHECK(worst_parameter_gap(a, b, fine, true) <=
+          1e-12 * 28);  // refined (u, v) evaluate to the point
   }
 }
 
-TEST_CASE("random graph pairs: no crossing missed, reported points within eps of both surfaces, gaps beyond eps report nothing") {
+TEST_CASE(
+    "random graph pairs: no crossing missed, reported points within eps of both surfaces, gaps "
+    "beyond eps report nothing") {
   std::mt19937_64 rng(2025);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double size = 100.0;
@@ -249,25 +277,31 @@ TEST_CASE("random graph pairs: no crossing missed, reported points within eps of
     auto ha = hierarchy_for(a);
     auto hb = hierarchy_for(b);
     const bool refine = trial % 8 < 4;
-    const CollisionResult r = argil::collide(ha, hb, {.tolerance = eps, .max_contacts = 1 << 20, .refine = refine});
+    const CollisionResult r =
+        argil::collide(ha, hb, {.tolerance = eps, .max_contacts = 1 << 20, .refine = refine});
     INFO("trial " << trial << " kind " << kind << " refine " << refine);
     if (!refine) {
       const double raw = worst_parameter_gap(a, b, r, true);
       worst_raw = std::max(worst_raw, raw);
       CHECK(raw <= eps / 3 * (1 + 1e-9));  // curve points: on both triangles, each within eps/3
-      CHECK(worst_parameter_gap(a, b, r, false) <= 5 * eps / 6 * (1 + 1e-9));  // near-touch midpoints
+      CHECK(worst_parameter_gap(a, b, r, false) <=
+            5 * eps / 6 * (1 + 1e-9));  // near-touch midpoints
     } else {
       for (const auto& c : r.curves)
         for (std::size_t k = 0; k < c.points.size(); ++k) {
-          const double gap = (argil::evaluate(a, c.uv_a[k][0], c.uv_a[k][1]) - argil::evaluate(b, c.uv_b[k][0], c.uv_b[k][1])).norm();
-          // Refined (to 1e-12 of the size), or kept unrefined where Newton found no crossing (then at most 2 eps/3 apart).
+          const double gap = (argil::evaluate(a, c.uv_a[k][0], c.uv_a[k][1]) -
+                              argil::evaluate(b, c.uv_b[k][0], c.uv_b[k][1]))
+                                 .norm();
+          // Refined (to 1e-12 of the size), or kept unrefined where Newton found no crossing (then
+          // at most 2 eps/3 apart).
           if (gap <= 1e-10 * size) worst_refined = std::max(worst_refined, gap);
           CHECK((gap <= 1e-10 * size || gap <= 2 * eps / 3));
         }
     }
     // Every contact pairs surface points at most eps/3 + eps + eps/3 apart.
     for (const auto& c : r.contacts)
-      CHECK((argil::evaluate(a, c.uv_a[0], c.uv_a[1]) - argil::evaluate(b, c.uv_b[0], c.uv_b[1])).norm() <= 5 * eps / 3 * (1 + 1e-9));
+      CHECK((argil::evaluate(a, c.uv_a[0], c.uv_a[1]) - argil::evaluate(b, c.uv_b[0], c.uv_b[1]))
+                .norm() <= 5 * eps / 3 * (1 + 1e-9));
     if (kind == 0) {
       const auto truth = brute_force_crossings(a, b, 30);
       if (!truth.empty()) ++crossing_pairs;
@@ -289,13 +323,15 @@ TEST_CASE("random graph pairs: no crossing missed, reported points within eps of
       CHECK(r.curves.empty());
     }
   }
-  WARN("crossing pairs " << crossing_pairs << ", near " << near_pairs << ", disjoint " << apart_pairs
-                         << "; worst miss " << worst_miss << ", worst raw curve gap " << worst_raw
-                         << ", worst refined gap " << worst_refined << " (eps " << eps << ")");
+  WARN("crossing pairs " << crossing_pairs << ", near " << near_pairs << ", disjoint "
+                         << apart_pairs << "; worst miss " << worst_miss << ", worst raw curve gap "
+                         << worst_raw << ", worst refined gap " << worst_refined << " (eps " << eps
+                         << ")");
   CHECK(crossing_pairs > 150);
 }
 
-TEST_CASE("after control points move, surface-surface results equal those on freshly built hierarchies") {
+TEST_CASE(
+    "after control points move, surface-surface results equal those on freshly built hierarchies") {
   std::mt19937_64 rng(8);
   std::normal_distribution<double> jitter(0.0, 1.0);
   BSplineSurface a = argil::test::asymmetric_surface(true);
@@ -307,9 +343,11 @@ TEST_CASE("after control points move, surface-surface results equal those on fre
   auto persistent_b = hierarchy_for(b);
   for (int move = 0; move < 40; ++move) {
     for (int k = 0; k < 3; ++k) {
-      const auto row_a = static_cast<Eigen::Index>(rng() % static_cast<std::uint64_t>(a.control_points.rows()));
+      const auto row_a =
+          static_cast<Eigen::Index>(rng() % static_cast<std::uint64_t>(a.control_points.rows()));
       a.control_points.row(row_a) += Eigen::RowVector3d(jitter(rng), jitter(rng), jitter(rng));
-      const auto row_b = static_cast<Eigen::Index>(rng() % static_cast<std::uint64_t>(b.control_points.rows()));
+      const auto row_b =
+          static_cast<Eigen::Index>(rng() % static_cast<std::uint64_t>(b.control_points.rows()));
       b.control_points(row_b, 2) += jitter(rng);
     }
     persistent_a.set_control_points(a.control_points, a.weights);
@@ -324,12 +362,14 @@ TEST_CASE("after control points move, surface-surface results equal those on fre
     for (std::size_t c = 0; c < x.curves.size(); ++c) {
       REQUIRE(x.curves[c].points.size() == y.curves[c].points.size());
       for (std::size_t k = 0; k < x.curves[c].points.size(); ++k) {
-        CHECK(x.curves[c].points[k] == y.curves[c].points[k]);  // same nets, same arithmetic: bit-identical
+        CHECK(x.curves[c].points[k] ==
+              y.curves[c].points[k]);  // same nets, same arithmetic: bit-identical
         CHECK(x.curves[c].uv_b[k] == y.curves[c].uv_b[k]);
       }
     }
     REQUIRE(x.contacts.size() == y.contacts.size());
-    for (std::size_t k = 0; k < x.contacts.size(); ++k) CHECK(x.contacts[k].point == y.contacts[k].point);
+    for (std::size_t k = 0; k < x.contacts.size(); ++k)
+      CHECK(x.contacts[k].point == y.contacts[k].point);
     CHECK(x.region_count == y.region_count);
     CHECK(x.counters.leaf_pairs == y.counters.leaf_pairs);
   }
@@ -341,7 +381,8 @@ TEST_CASE("a rigid motion of both surfaces moves the intersection curves with th
   BSplineSurface b = argil::test::graph_surface(rng, 60.0, 3.0, 0.5, 3, 3);
   b.control_points.col(0).array() -= 5.0;
   b.control_points.col(1).array() -= 10.0;
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 3).normalized()).toRotationMatrix();
   const Eigen::Vector3d t(150.0, -40.0, 220.0);
   auto ha = hierarchy_for(a);
   auto hb = hierarchy_for(b);
@@ -362,9 +403,11 @@ TEST_CASE("a rigid motion of both surfaces moves the intersection curves with th
   CollisionResult y_curves = y;
   y_curves.contacts.clear();
   for (const auto& c : y.curves)
-    for (const auto& p : c.points) CHECK(argil::test::distance_to_result(p, x_moved) <= 1e-4 / 3 + 1e-9);
+    for (const auto& p : c.points)
+      CHECK(argil::test::distance_to_result(p, x_moved) <= 1e-4 / 3 + 1e-9);
   for (const auto& c : x_moved.curves)
-    for (const auto& p : c.points) CHECK(argil::test::distance_to_result(p, y_curves) <= 1e-4 / 3 + 1e-9);
+    for (const auto& p : c.points)
+      CHECK(argil::test::distance_to_result(p, y_curves) <= 1e-4 / 3 + 1e-9);
 }
 
 TEST_CASE("conforming contact: leaf pairs stop growing with depth once the flatness meets eps") {
@@ -378,7 +421,8 @@ TEST_CASE("conforming contact: leaf pairs stop growing with depth once the flatn
   auto hb = hierarchy_for(b);
   std::vector<long> leaf_pairs;
   for (int max_level = 0; max_level <= 14; ++max_level) {
-    const CollisionResult r = argil::collide(ha, hb, {.tolerance = eps, .refine = false, .max_level = max_level});
+    const CollisionResult r =
+        argil::collide(ha, hb, {.tolerance = eps, .refine = false, .max_level = max_level});
     leaf_pairs.push_back(r.counters.leaf_pairs);
     CHECK(r.region_count == 1);  // one conforming region
   }

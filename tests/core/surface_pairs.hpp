@@ -23,7 +23,8 @@ inline Eigen::VectorXd unit_knots(std::mt19937_64& rng, int degree, int count) {
   const int interior = count - degree - 1;
   while (static_cast<int>(inner.size()) < interior) {
     const double t = 0.05 + 0.9 * unit(rng);
-    const int copies = std::min({unit(rng) < 0.2 ? 2 : 1, degree, interior - static_cast<int>(inner.size())});
+    const int copies =
+        std::min({unit(rng) < 0.2 ? 2 : 1, degree, interior - static_cast<int>(inner.size())});
     for (int c = 0; c < copies; ++c) inner.push_back(t);
   }
   std::sort(inner.begin(), inner.end());
@@ -38,8 +39,8 @@ inline Eigen::VectorXd unit_knots(std::mt19937_64& rng, int degree, int count) {
 /// A polynomial graph z(x, y) over [0, size]^2 with (x, y) = size (u, v):
 /// x and y control values at the Greville abscissae (linear precision).
 /// z control values are random in [offset - amplitude, offset + amplitude].
-inline BSplineSurface graph_surface(std::mt19937_64& rng, double size, double amplitude, double offset,
-                                    int max_degree = 5, int max_extra = 3) {
+inline BSplineSurface graph_surface(std::mt19937_64& rng, double size, double amplitude,
+                                    double offset, int max_degree = 5, int max_extra = 3) {
   std::uniform_int_distribution<int> degree(1, max_degree);
   std::uniform_int_distribution<int> extra(0, max_extra);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -53,7 +54,8 @@ inline BSplineSurface graph_surface(std::mt19937_64& rng, double size, double am
   s.control_points.resize(gu.size() * gv.size(), 3);
   for (int i = 0; i < gu.size(); ++i)
     for (int j = 0; j < gv.size(); ++j)
-      s.control_points.row(s.pole_index(i, j)) << size * gu[i], size * gv[j], offset + amplitude * unit(rng);
+      s.control_points.row(s.pole_index(i, j)) << size * gu[i], size * gv[j],
+          offset + amplitude * unit(rng);
   return s;
 }
 
@@ -74,7 +76,8 @@ inline BSplineSurface cylinder_x(double r, double x0, double x1) {
 }
 
 /// The surface moved rigidly: x -> R x + t (weights kept).
-inline BSplineSurface moved(const BSplineSurface& s, const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
+inline BSplineSurface moved(const BSplineSurface& s, const Eigen::Matrix3d& R,
+                            const Eigen::Vector3d& t) {
   BSplineSurface m = s;
   m.control_points = ((s.control_points * R.transpose()).rowwise() + t.transpose()).eval();
   return m;

@@ -58,10 +58,16 @@ TEST_CASE("the surface interpolates its corner control points and boundary curve
     const double tol = 1e-13 * model_size(s);  // a few roundings of mm-sized sums
     const double u0 = s.domain_start(Direction::u), u1 = s.domain_end(Direction::u);
     const double v0 = s.domain_start(Direction::v), v1 = s.domain_end(Direction::v);
-    CHECK((argil::evaluate(s, u0, v0) - s.control_points.row(s.pole_index(0, 0)).transpose()).norm() < tol);
-    CHECK((argil::evaluate(s, u1, v0) - s.control_points.row(s.pole_index(nu - 1, 0)).transpose()).norm() < tol);
-    CHECK((argil::evaluate(s, u0, v1) - s.control_points.row(s.pole_index(0, nv - 1)).transpose()).norm() < tol);
-    CHECK((argil::evaluate(s, u1, v1) - s.control_points.row(s.pole_index(nu - 1, nv - 1)).transpose()).norm() < tol);
+    CHECK(
+        (argil::evaluate(s, u0, v0) - s.control_points.row(s.pole_index(0, 0)).transpose()).norm() <
+        tol);
+    CHECK((argil::evaluate(s, u1, v0) - s.control_points.row(s.pole_index(nu - 1, 0)).transpose())
+              .norm() < tol);
+    CHECK((argil::evaluate(s, u0, v1) - s.control_points.row(s.pole_index(0, nv - 1)).transpose())
+              .norm() < tol);
+    CHECK((argil::evaluate(s, u1, v1) -
+           s.control_points.row(s.pole_index(nu - 1, nv - 1)).transpose())
+              .norm() < tol);
   }
 }
 
@@ -74,8 +80,9 @@ TEST_CASE("knot insertion leaves the surface unchanged, in u and in v") {
       // A new knot, an existing single knot, and one inserted to full multiplicity.
       const double a = s.domain_start(d), b = s.domain_end(d);
       const Eigen::VectorXd& U = s.knots_in(d);
-      const std::vector<std::pair<double, int>> inserts = {
-          {a + 0.37 * (b - a), 1}, {U[s.degree_in(d) + 1], 1}, {a + 0.61 * (b - a), s.degree_in(d)}};
+      const std::vector<std::pair<double, int>> inserts = {{a + 0.37 * (b - a), 1},
+                                                           {U[s.degree_in(d) + 1], 1},
+                                                           {a + 0.61 * (b - a), s.degree_in(d)}};
       for (auto [t, times] : inserts) {
         argil::Result<BSplineSurface> refined = argil::insert_knot(s, d, t, times);
         INFO("direction " << argil::to_string(d) << " t = " << t << " times " << times << ": "
@@ -88,7 +95,8 @@ TEST_CASE("knot insertion leaves the surface unchanged, in u and in v") {
         double worst = 0.0;
         for (double along : parameters(s, d, 23))
           for (double across : parameters(s, argil::other(d), 19))
-            worst = std::max(worst, (point_at(r, d, along, across) - point_at(s, d, along, across)).norm());
+            worst = std::max(
+                worst, (point_at(r, d, along, across) - point_at(s, d, along, across)).norm());
         CHECK(worst < tol);
       }
     }
@@ -97,10 +105,13 @@ TEST_CASE("knot insertion leaves the surface unchanged, in u and in v") {
 
 TEST_CASE("knot insertion rejects parameters outside the domain and excess multiplicity") {
   const BSplineSurface s = argil::test::asymmetric_surface();
-  CHECK(argil::insert_knot(s, Direction::u, 1.5).status().code == argil::StatusCode::invalid_argument);
-  CHECK(argil::insert_knot(s, Direction::v, -1.0).status().code == argil::StatusCode::invalid_argument);
+  CHECK(argil::insert_knot(s, Direction::u, 1.5).status().code ==
+        argil::StatusCode::invalid_argument);
+  CHECK(argil::insert_knot(s, Direction::v, -1.0).status().code ==
+        argil::StatusCode::invalid_argument);
   // u has 0.3 twice already and degree 3: two more copies would make 4.
-  CHECK(argil::insert_knot(s, Direction::u, 0.3, 2).status().code == argil::StatusCode::invalid_argument);
+  CHECK(argil::insert_knot(s, Direction::u, 0.3, 2).status().code ==
+        argil::StatusCode::invalid_argument);
   CHECK(argil::insert_knot(s, Direction::u, 0.3, 1).ok());
 }
 
@@ -111,7 +122,8 @@ TEST_CASE("Bezier extraction reproduces the surface on every element") {
     argil::test::RandomSurfaceOptions options;
     options.max_degree = 6;
     options.rational = trial % 2 == 1;
-    const BSplineSurface s = trial == 0 ? argil::test::asymmetric_surface() : argil::test::random_surface(rng, options);
+    const BSplineSurface s =
+        trial == 0 ? argil::test::asymmetric_surface() : argil::test::random_surface(rng, options);
     const auto ops = argil::surface_operators(s, cache);
     REQUIRE(ops.ok());
     const double tol = 1e-12 * model_size(s);  // extraction and Bernstein sums: rounding
@@ -124,7 +136,8 @@ TEST_CASE("Bezier extraction reproduces the surface on every element") {
           for (double b : {0.0, 0.33, 0.8, 1.0}) {
             const double u = s.knots[0][su] + a * (s.knots[0][su + 1] - s.knots[0][su]);
             const double v = s.knots[1][sv] + b * (s.knots[1][sv + 1] - s.knots[1][sv]);
-            INFO("trial " << trial << " element (" << eu << ", " << ev << ") at (" << a << ", " << b << ")");
+            INFO("trial " << trial << " element (" << eu << ", " << ev << ") at (" << a << ", " << b
+                          << ")");
             CHECK((argil::evaluate(patch, a, b) - argil::evaluate(s, u, v)).norm() < tol);
           }
         }
@@ -147,8 +160,11 @@ TEST_CASE("subdivision matrices split a Bezier patch into halves of the same sur
       const argil::BezierPatch strip = argil::subdivide(parent, su, sv, false, 0, true, hv);
       for (double a : {0.0, 0.2, 0.7, 1.0}) {
         for (double b : {0.0, 0.45, 1.0}) {
-          CHECK((argil::evaluate(child, a, b) - argil::evaluate(parent, 0.5 * (hu + a), 0.5 * (hv + b))).norm() < tol);
-          CHECK((argil::evaluate(strip, a, b) - argil::evaluate(parent, a, 0.5 * (hv + b))).norm() < tol);
+          CHECK((argil::evaluate(child, a, b) -
+                 argil::evaluate(parent, 0.5 * (hu + a), 0.5 * (hv + b)))
+                    .norm() < tol);
+          CHECK((argil::evaluate(strip, a, b) - argil::evaluate(parent, a, 0.5 * (hv + b))).norm() <
+                tol);
         }
       }
     }
@@ -162,17 +178,22 @@ TEST_CASE("first and second derivatives agree with central finite differences, i
     options.min_degree = 2;
     options.rational = trial % 2 == 0;
     options.repeated_knots = false;
-    const BSplineSurface s = trial < 2 ? argil::test::asymmetric_surface(trial == 0) : argil::test::random_surface(rng, options);
+    const BSplineSurface s = trial < 2 ? argil::test::asymmetric_surface(trial == 0)
+                                       : argil::test::random_surface(rng, options);
     std::uniform_real_distribution<double> unit(0.05, 0.95);
     for (int sample = 0; sample < 10; ++sample) {
-      const double u = s.domain_start(Direction::u) + unit(rng) * (s.domain_end(Direction::u) - s.domain_start(Direction::u));
-      const double v = s.domain_start(Direction::v) + unit(rng) * (s.domain_end(Direction::v) - s.domain_start(Direction::v));
+      const double u = s.domain_start(Direction::u) +
+                       unit(rng) * (s.domain_end(Direction::u) - s.domain_start(Direction::u));
+      const double v = s.domain_start(Direction::v) +
+                       unit(rng) * (s.domain_end(Direction::v) - s.domain_start(Direction::v));
       // Stay inside one knot span so the difference quotients see a polynomial.
       const double hu = 1e-5 * (s.domain_end(Direction::u) - s.domain_start(Direction::u));
       const double hv = 1e-5 * (s.domain_end(Direction::v) - s.domain_start(Direction::v));
       const int su = argil::find_span(s.degree[0], s.knots[0], s.count(Direction::u), u);
       const int sv = argil::find_span(s.degree[1], s.knots[1], s.count(Direction::v), v);
-      if (u - hu < s.knots[0][su] || u + hu > s.knots[0][su + 1] || v - hv < s.knots[1][sv] || v + hv > s.knots[1][sv + 1]) continue;
+      if (u - hu < s.knots[0][su] || u + hu > s.knots[0][su + 1] || v - hv < s.knots[1][sv] ||
+          v + hv > s.knots[1][sv + 1])
+        continue;
       const argil::SurfaceDerivatives d = argil::evaluate_derivatives(s, u, v, 2);
       const argil::SurfaceDerivatives pu = argil::evaluate_derivatives(s, u + hu, v, 1);
       const argil::SurfaceDerivatives mu = argil::evaluate_derivatives(s, u - hu, v, 1);
@@ -196,13 +217,16 @@ TEST_CASE("first and second derivatives agree with central finite differences, i
 TEST_CASE("a rational surface with unit weights equals the polynomial one") {
   std::mt19937_64 rng(3);
   for (int trial = 0; trial < 20; ++trial) {
-    BSplineSurface poly = trial == 0 ? argil::test::asymmetric_surface(false) : argil::test::random_surface(rng);
+    BSplineSurface poly =
+        trial == 0 ? argil::test::asymmetric_surface(false) : argil::test::random_surface(rng);
     BSplineSurface rational = poly;
     rational.weights = Eigen::VectorXd::Ones(poly.control_points.rows());
     for (double a : {0.0, 0.3, 0.77, 1.0}) {
       for (double b : {0.0, 0.5, 1.0}) {
-        const double u = poly.domain_start(Direction::u) + a * (poly.domain_end(Direction::u) - poly.domain_start(Direction::u));
-        const double v = poly.domain_start(Direction::v) + b * (poly.domain_end(Direction::v) - poly.domain_start(Direction::v));
+        const double u = poly.domain_start(Direction::u) +
+                         a * (poly.domain_end(Direction::u) - poly.domain_start(Direction::u));
+        const double v = poly.domain_start(Direction::v) +
+                         b * (poly.domain_end(Direction::v) - poly.domain_start(Direction::v));
         const auto dp = argil::evaluate_derivatives(poly, u, v, 2);
         const auto dr = argil::evaluate_derivatives(rational, u, v, 2);
         // Dividing by w = 1 (up to the rounding of sum N = 1).
@@ -226,7 +250,8 @@ TEST_CASE("the normal is the unit cross product of the tangents and zero at a co
   CHECK(std::abs(n.dot(d.du)) < 1e-12 * d.du.norm());
   CHECK(std::abs(n.dot(d.dv)) < 1e-12 * d.dv.norm());
   // Collapse the u = start edge to one point: S_v vanishes there.
-  for (int j = 0; j < s.count(Direction::v); ++j) s.control_points.row(s.pole_index(0, j)) << 1.0, 2.0, 3.0;
+  for (int j = 0; j < s.count(Direction::v); ++j)
+    s.control_points.row(s.pole_index(0, j)) << 1.0, 2.0, 3.0;
   const auto pole = argil::evaluate_derivatives(s, 0.0, 0.5, 1);
   CHECK(argil::unit_normal(pole).isZero());
 }
@@ -250,8 +275,12 @@ TEST_CASE("the control point box encloses the surface") {
     const argil::Box3 box = argil::control_point_box(s);
     for (double a : {0.0, 0.13, 0.5, 0.81, 1.0}) {
       for (double b : {0.0, 0.29, 0.64, 1.0}) {
-        const Eigen::Vector3d p = argil::evaluate(s, s.domain_start(Direction::u) + a * (s.domain_end(Direction::u) - s.domain_start(Direction::u)),
-                                                  s.domain_start(Direction::v) + b * (s.domain_end(Direction::v) - s.domain_start(Direction::v)));
+        const Eigen::Vector3d p =
+            argil::evaluate(s,
+                            s.domain_start(Direction::u) +
+                                a * (s.domain_end(Direction::u) - s.domain_start(Direction::u)),
+                            s.domain_start(Direction::v) +
+                                b * (s.domain_end(Direction::v) - s.domain_start(Direction::v)));
         const double slack = 1e-12 * box.diagonal();  // rounding of the convex combination
         CHECK((p.array() >= box.min.array() - slack).all());
         CHECK((p.array() <= box.max.array() + slack).all());
@@ -275,24 +304,40 @@ TEST_CASE("invalid surfaces are rejected with the status that names the defect")
   static double nan_value;
   nan_value = nan;
   const Case cases[] = {
-      {"degree 0", [](BSplineSurface& s) { s.degree[1] = 0; }, SurfaceDefect::degree_out_of_range, "degree_v"},
-      {"degree too high", [](BSplineSurface& s) { s.degree[0] = argil::kMaxDegree + 1; }, SurfaceDefect::degree_out_of_range, "degree_u"},
-      {"too few knots", [](BSplineSurface& s) { s.knots[1] = Eigen::VectorXd::LinSpaced(4, 0, 1); }, SurfaceDefect::too_few_knots, "knots_v"},
-      {"nan knot", [](BSplineSurface& s) { s.knots[0][5] = nan_value; }, SurfaceDefect::non_finite_knot, "knots_u[5]"},
-      {"decreasing knots", [](BSplineSurface& s) { s.knots[1][4] = -0.5; }, SurfaceDefect::knots_decreasing, "knots_v[4]"},
-      {"unclamped", [](BSplineSurface& s) { s.knots[0][0] = -0.1; }, SurfaceDefect::knots_not_clamped, "knots_u"},
-      {"multiplicity", [](BSplineSurface& s) {
+      {"degree 0", [](BSplineSurface& s) { s.degree[1] = 0; }, SurfaceDefect::degree_out_of_range,
+       "degree_v"},
+      {"degree too high", [](BSplineSurface& s) { s.degree[0] = argil::kMaxDegree + 1; },
+       SurfaceDefect::degree_out_of_range, "degree_u"},
+      {"too few knots", [](BSplineSurface& s) { s.knots[1] = Eigen::VectorXd::LinSpaced(4, 0, 1); },
+       SurfaceDefect::too_few_knots, "knots_v"},
+      {"nan knot", [](BSplineSurface& s) { s.knots[0][5] = nan_value; },
+       SurfaceDefect::non_finite_knot, "knots_u[5]"},
+      {"decreasing knots", [](BSplineSurface& s) { s.knots[1][4] = -0.5; },
+       SurfaceDefect::knots_decreasing, "knots_v[4]"},
+      {"unclamped", [](BSplineSurface& s) { s.knots[0][0] = -0.1; },
+       SurfaceDefect::knots_not_clamped, "knots_u"},
+      {"multiplicity",
+       [](BSplineSurface& s) {
          s.degree[1] = 1;
          s.knots[1].resize(6);
          s.knots[1] << -1.0, -1.0, 0.1, 0.1, 2.0, 2.0;
-       }, SurfaceDefect::multiplicity_too_high, "knots_v"},
-      {"empty domain", [](BSplineSurface& s) { s.knots[1].setConstant(2.0); }, SurfaceDefect::empty_domain, "knots_v"},
-      {"wrong count", [](BSplineSurface& s) { s.control_points.conservativeResize(34, 3); }, SurfaceDefect::control_point_count, "control_points"},
-      {"nan point", [](BSplineSurface& s) { s.control_points(12, 2) = nan_value; }, SurfaceDefect::non_finite_control_point, "control_points[12]"},
-      {"weight count", [](BSplineSurface& s) { s.weights.conservativeResize(3); }, SurfaceDefect::weight_count, "weights"},
-      {"inf weight", [](BSplineSurface& s) { s.weights[9] = std::numeric_limits<double>::infinity(); }, SurfaceDefect::non_finite_weight, "weights[9]"},
-      {"zero weight", [](BSplineSurface& s) { s.weights[4] = 0.0; }, SurfaceDefect::non_positive_weight, "weights[4]"},
-      {"negative weight", [](BSplineSurface& s) { s.weights[0] = -1.0; }, SurfaceDefect::non_positive_weight, "weights[0]"},
+       },
+       SurfaceDefect::multiplicity_too_high, "knots_v"},
+      {"empty domain", [](BSplineSurface& s) { s.knots[1].setConstant(2.0); },
+       SurfaceDefect::empty_domain, "knots_v"},
+      {"wrong count", [](BSplineSurface& s) { s.control_points.conservativeResize(34, 3); },
+       SurfaceDefect::control_point_count, "control_points"},
+      {"nan point", [](BSplineSurface& s) { s.control_points(12, 2) = nan_value; },
+       SurfaceDefect::non_finite_control_point, "control_points[12]"},
+      {"weight count", [](BSplineSurface& s) { s.weights.conservativeResize(3); },
+       SurfaceDefect::weight_count, "weights"},
+      {"inf weight",
+       [](BSplineSurface& s) { s.weights[9] = std::numeric_limits<double>::infinity(); },
+       SurfaceDefect::non_finite_weight, "weights[9]"},
+      {"zero weight", [](BSplineSurface& s) { s.weights[4] = 0.0; },
+       SurfaceDefect::non_positive_weight, "weights[4]"},
+      {"negative weight", [](BSplineSurface& s) { s.weights[0] = -1.0; },
+       SurfaceDefect::non_positive_weight, "weights[0]"},
   };
   for (const Case& c : cases) {
     BSplineSurface s = good;

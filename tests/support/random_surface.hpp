@@ -11,12 +11,12 @@ namespace argil::test {
 struct RandomSurfaceOptions {
   int min_degree = 1;
   int max_degree = 5;
-  int max_extra_poles = 6;        // count = degree + 1 + uniform[0, max_extra_poles]
+  int max_extra_poles = 6;  // count = degree + 1 + uniform[0, max_extra_poles]
   bool rational = false;
-  double min_weight = 0.3;        // weights uniform in [min_weight, max_weight]
+  double min_weight = 0.3;  // weights uniform in [min_weight, max_weight]
   double max_weight = 3.0;
-  bool repeated_knots = true;     // some interior knots get multiplicity up to degree
-  double size = 100.0;            // control points within a box this wide [mm]
+  bool repeated_knots = true;  // some interior knots get multiplicity up to degree
+  double size = 100.0;         // control points within a box this wide [mm]
 };
 
 /// A valid surface with random non-uniform clamped knots (domain not [0, 1]),

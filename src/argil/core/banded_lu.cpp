@@ -16,8 +16,8 @@ Result<BandedLU> BandedLU::factorize(BandedMatrix a) {
     if (!(std::abs(pivot) > tiny)) {
       std::ostringstream m;
       m.precision(17);
-      m << "banded LU: pivot " << k << " of " << n << " is " << pivot
-        << " (matrix 1-norm " << norm << "): the matrix is singular to working precision";
+      m << "banded LU: pivot " << k << " of " << n << " is " << pivot << " (matrix 1-norm " << norm
+        << "): the matrix is singular to working precision";
       return Status::error(StatusCode::numerical_failure, m.str());
     }
     const int last_row = std::min(n - 1, k + a.lower);

@@ -13,8 +13,8 @@ namespace argil {
 /// inside the band j - upper <= i <= j + lower, zero outside.
 struct BandedMatrix {
   int size = 0;
-  int lower = 0;  // sub-diagonals
-  int upper = 0;  // super-diagonals
+  int lower = 0;         // sub-diagonals
+  int upper = 0;         // super-diagonals
   Eigen::MatrixXd band;  // (lower + upper + 1) x size
 
   BandedMatrix() = default;

@@ -45,7 +45,8 @@ void basis_derivatives(int p, const Eigen::VectorXd& U, int span, double t, int 
   assert(p >= 1 && p <= kMaxDegree);
   assert(out.rows() == order + 1 && out.cols() == p + 1);
   constexpr int kN = kMaxDegree + 1;
-  std::array<std::array<double, kN>, kN> ndu;  // basis values and knot differences (no zero fill: hot path)
+  std::array<std::array<double, kN>, kN>
+      ndu;  // basis values and knot differences (no zero fill: hot path)
   std::array<double, kN> left;
   std::array<double, kN> right;
   ndu[0][0] = 1.0;

@@ -17,12 +17,12 @@ int knot_multiplicity(const Eigen::VectorXd& knots, double t);
 /// `out(k, r)` = d^k/dt^k N_{span-degree+r, degree}(t), k = 0..order,
 /// r = 0..degree. `out` is resized to (order+1) x (degree+1). Derivatives of
 /// order above the degree are zero. The NURBS Book A2.3.
-void basis_derivatives(int degree, const Eigen::VectorXd& knots, int span, double t,
-                       int order, Eigen::Ref<Eigen::MatrixXd> out);
+void basis_derivatives(int degree, const Eigen::VectorXd& knots, int span, double t, int order,
+                       Eigen::Ref<Eigen::MatrixXd> out);
 
 /// Convenience form that allocates.
-Eigen::MatrixXd basis_derivatives(int degree, const Eigen::VectorXd& knots, int span,
-                                  double t, int order);
+Eigen::MatrixXd basis_derivatives(int degree, const Eigen::VectorXd& knots, int span, double t,
+                                  int order);
 
 /// Bernstein polynomials B_{i,degree}(t), i = 0..degree, t in [0, 1].
 Eigen::VectorXd bernstein(int degree, double t);

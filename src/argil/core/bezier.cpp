@@ -8,9 +8,7 @@ namespace argil {
 
 namespace {
 
-int count_equal(const Eigen::VectorXd& knots, double t) {
-  return knot_multiplicity(knots, t);
-}
+int count_equal(const Eigen::VectorXd& knots, double t) { return knot_multiplicity(knots, t); }
 
 int last_index_of(const Eigen::VectorXd& knots, double t) {
   for (Eigen::Index k = knots.size() - 1; k >= 0; --k) {
@@ -52,7 +50,8 @@ SubdivisionMatrices subdivision_matrices(int p) {
   Eigen::MatrixXd binomial = Eigen::MatrixXd::Zero(p + 1, p + 1);
   for (int i = 0; i <= p; ++i) {
     binomial(i, 0) = 1.0;
-    for (int j = 1; j <= i; ++j) binomial(i, j) = binomial(i - 1, j - 1) + (j < i ? binomial(i - 1, j) : 0.0);
+    for (int j = 1; j <= i; ++j)
+      binomial(i, j) = binomial(i - 1, j - 1) + (j < i ? binomial(i - 1, j) : 0.0);
   }
   SubdivisionMatrices m{Eigen::MatrixXd::Zero(p + 1, p + 1), Eigen::MatrixXd::Zero(p + 1, p + 1)};
   for (int i = 0; i <= p; ++i) {

@@ -10,19 +10,32 @@ const char* to_string(Direction d) { return d == Direction::u ? "u" : "v"; }
 
 const char* to_string(SurfaceDefect defect) {
   switch (defect) {
-    case SurfaceDefect::none: return "none";
-    case SurfaceDefect::degree_out_of_range: return "degree_out_of_range";
-    case SurfaceDefect::too_few_knots: return "too_few_knots";
-    case SurfaceDefect::non_finite_knot: return "non_finite_knot";
-    case SurfaceDefect::knots_decreasing: return "knots_decreasing";
-    case SurfaceDefect::knots_not_clamped: return "knots_not_clamped";
-    case SurfaceDefect::multiplicity_too_high: return "multiplicity_too_high";
-    case SurfaceDefect::empty_domain: return "empty_domain";
-    case SurfaceDefect::control_point_count: return "control_point_count";
-    case SurfaceDefect::non_finite_control_point: return "non_finite_control_point";
-    case SurfaceDefect::weight_count: return "weight_count";
-    case SurfaceDefect::non_finite_weight: return "non_finite_weight";
-    case SurfaceDefect::non_positive_weight: return "non_positive_weight";
+    case SurfaceDefect::none:
+      return "none";
+    case SurfaceDefect::degree_out_of_range:
+      return "degree_out_of_range";
+    case SurfaceDefect::too_few_knots:
+      return "too_few_knots";
+    case SurfaceDefect::non_finite_knot:
+      return "non_finite_knot";
+    case SurfaceDefect::knots_decreasing:
+      return "knots_decreasing";
+    case SurfaceDefect::knots_not_clamped:
+      return "knots_not_clamped";
+    case SurfaceDefect::multiplicity_too_high:
+      return "multiplicity_too_high";
+    case SurfaceDefect::empty_domain:
+      return "empty_domain";
+    case SurfaceDefect::control_point_count:
+      return "control_point_count";
+    case SurfaceDefect::non_finite_control_point:
+      return "non_finite_control_point";
+    case SurfaceDefect::weight_count:
+      return "weight_count";
+    case SurfaceDefect::non_finite_weight:
+      return "non_finite_weight";
+    case SurfaceDefect::non_positive_weight:
+      return "non_positive_weight";
   }
   return "unknown";
 }
@@ -43,12 +56,12 @@ SurfaceValidation validate_knots(const BSplineSurface& s, Direction d) {
   const Eigen::VectorXd& t = s.knots_in(d);
   const Eigen::Index m = t.size();
   if (p < 1 || p > kMaxDegree) {
-    return defect(SurfaceDefect::degree_out_of_range, "degree_", dir, " is ", p,
-                  ", expected 1 to ", kMaxDegree);
+    return defect(SurfaceDefect::degree_out_of_range, "degree_", dir, " is ", p, ", expected 1 to ",
+                  kMaxDegree);
   }
   if (m < 2 * (p + 1)) {
-    return defect(SurfaceDefect::too_few_knots, "knots_", dir, " has ", m,
-                  " values, degree ", p, " needs at least ", 2 * (p + 1));
+    return defect(SurfaceDefect::too_few_knots, "knots_", dir, " has ", m, " values, degree ", p,
+                  " needs at least ", 2 * (p + 1));
   }
   for (Eigen::Index k = 0; k < m; ++k) {
     if (!std::isfinite(t[k])) {
@@ -69,8 +82,8 @@ SurfaceValidation validate_knots(const BSplineSurface& s, Direction d) {
     }
   }
   if (!(t[0] < t[m - 1])) {
-    return defect(SurfaceDefect::empty_domain, "knots_", dir, " spans an empty domain [",
-                  t[0], ", ", t[m - 1], "]");
+    return defect(SurfaceDefect::empty_domain, "knots_", dir, " spans an empty domain [", t[0],
+                  ", ", t[m - 1], "]");
   }
   // Interior runs: indices p+1 .. m-p-2 hold the interior knots of a clamped vector.
   for (Eigen::Index k = p + 1; k < m - p - 1;) {
@@ -78,8 +91,7 @@ SurfaceValidation validate_knots(const BSplineSurface& s, Direction d) {
     while (k + run < m - p - 1 && t[k + run] == t[k]) ++run;
     if (run > p) {
       return defect(SurfaceDefect::multiplicity_too_high, "knots_", dir, " value ", t[k],
-                    " at index ", k, " repeats ", run, " times, degree ", p, " allows at most ",
-                    p);
+                    " at index ", k, " repeats ", run, " times, degree ", p, " allows at most ", p);
     }
     k += run;
   }
@@ -96,13 +108,13 @@ SurfaceValidation validate(const BSplineSurface& s) {
   const Eigen::Index n = static_cast<Eigen::Index>(s.count(Direction::u)) * s.count(Direction::v);
   if (s.control_points.rows() != n) {
     return defect(SurfaceDefect::control_point_count, "control_points has ",
-                  s.control_points.rows(), " rows, the knots need ", s.count(Direction::u),
-                  " x ", s.count(Direction::v), " = ", n);
+                  s.control_points.rows(), " rows, the knots need ", s.count(Direction::u), " x ",
+                  s.count(Direction::v), " = ", n);
   }
   for (Eigen::Index r = 0; r < n; ++r) {
     if (!s.control_points.row(r).allFinite()) {
-      return defect(SurfaceDefect::non_finite_control_point, "control_points[", r, "] (i = ",
-                    r / s.count(Direction::v), ", j = ", r % s.count(Direction::v),
+      return defect(SurfaceDefect::non_finite_control_point, "control_points[", r,
+                    "] (i = ", r / s.count(Direction::v), ", j = ", r % s.count(Direction::v),
                     ") is not finite");
     }
   }
@@ -152,8 +164,7 @@ Eigen::MatrixX4d homogeneous_control_points(const BSplineSurface& s) {
   return pw;
 }
 
-void set_homogeneous_control_points(BSplineSurface& s, const Eigen::MatrixX4d& pw,
-                                    bool rational) {
+void set_homogeneous_control_points(BSplineSurface& s, const Eigen::MatrixX4d& pw, bool rational) {
   if (rational) {
     s.weights = pw.col(3);
     s.control_points = pw.leftCols<3>().array().colwise() / pw.col(3).array();

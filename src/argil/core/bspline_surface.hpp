@@ -43,9 +43,7 @@ struct BSplineSurface {
   int degree_in(Direction d) const { return degree[index_of(d)]; }
   const Eigen::VectorXd& knots_in(Direction d) const { return knots[index_of(d)]; }
   /// Number of control points in direction d (from the knot count).
-  int count(Direction d) const {
-    return static_cast<int>(knots_in(d).size()) - degree_in(d) - 1;
-  }
+  int count(Direction d) const { return static_cast<int>(knots_in(d).size()) - degree_in(d) - 1; }
   /// Row of pole (i, j) in `control_points` and `weights`.
   Eigen::Index pole_index(int i, int j) const {
     return static_cast<Eigen::Index>(i) * count(Direction::v) + j;
@@ -61,16 +59,16 @@ using ControlNet = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 /// What validate() found wrong, the first problem in a fixed order.
 enum class SurfaceDefect {
   none,
-  degree_out_of_range,     // below 1 or above kMaxDegree
-  too_few_knots,           // fewer than 2 * (degree + 1) knots
+  degree_out_of_range,  // below 1 or above kMaxDegree
+  too_few_knots,        // fewer than 2 * (degree + 1) knots
   non_finite_knot,
   knots_decreasing,
-  knots_not_clamped,       // end knots not repeated degree + 1 times
-  multiplicity_too_high,   // interior knot repeated more than degree times
-  empty_domain,            // first and last knot equal
-  control_point_count,     // rows != n_u * n_v
+  knots_not_clamped,      // end knots not repeated degree + 1 times
+  multiplicity_too_high,  // interior knot repeated more than degree times
+  empty_domain,           // first and last knot equal
+  control_point_count,    // rows != n_u * n_v
   non_finite_control_point,
-  weight_count,            // neither empty nor n_u * n_v
+  weight_count,  // neither empty nor n_u * n_v
   non_finite_weight,
   non_positive_weight,
 };

@@ -15,7 +15,8 @@ bool rectangles_touch(const LeafContact& a, const LeafContact& b) {
 
 int find(std::vector<int>& parent, int i) {
   while (parent[static_cast<std::size_t>(i)] != i) {
-    parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    parent[static_cast<std::size_t>(i)] =
+        parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
     i = parent[static_cast<std::size_t>(i)];
   }
   return i;
@@ -40,19 +41,24 @@ void group_regions(std::vector<LeafContact>& leaves, int max_contacts, Collision
     for (std::size_t y = x + 1; y < by_u0.size(); ++y) {
       const LeafContact& lj = leaves[static_cast<std::size_t>(by_u0[y])];
       if (lj.u0 > li.u1) break;
-      if (rectangles_touch(li, lj)) parent[static_cast<std::size_t>(find(parent, by_u0[x]))] = find(parent, by_u0[y]);
+      if (rectangles_touch(li, lj))
+        parent[static_cast<std::size_t>(find(parent, by_u0[x]))] = find(parent, by_u0[y]);
     }
   }
   std::vector<int> region_of_root(static_cast<std::size_t>(n), -1);
   int regions = 0;
   for (int i = 0; i < n; ++i) {
     const int root = find(parent, i);
-    if (region_of_root[static_cast<std::size_t>(root)] < 0) region_of_root[static_cast<std::size_t>(root)] = regions++;
-    leaves[static_cast<std::size_t>(i)].contact.region = region_of_root[static_cast<std::size_t>(root)];
+    if (region_of_root[static_cast<std::size_t>(root)] < 0)
+      region_of_root[static_cast<std::size_t>(root)] = regions++;
+    leaves[static_cast<std::size_t>(i)].contact.region =
+        region_of_root[static_cast<std::size_t>(root)];
   }
-  std::vector<double> deepest(static_cast<std::size_t>(regions), -std::numeric_limits<double>::infinity());
+  std::vector<double> deepest(static_cast<std::size_t>(regions),
+                              -std::numeric_limits<double>::infinity());
   for (const LeafContact& l : leaves)
-    deepest[static_cast<std::size_t>(l.contact.region)] = std::max(deepest[static_cast<std::size_t>(l.contact.region)], l.contact.depth);
+    deepest[static_cast<std::size_t>(l.contact.region)] =
+        std::max(deepest[static_cast<std::size_t>(l.contact.region)], l.contact.depth);
   // Regions by deepest point, then contacts by depth; ties by parameters so the
   // order is deterministic.
   std::vector<int> order(static_cast<std::size_t>(regions));
@@ -61,12 +67,14 @@ void group_regions(std::vector<LeafContact>& leaves, int max_contacts, Collision
     return deepest[static_cast<std::size_t>(a)] > deepest[static_cast<std::size_t>(b)];
   });
   std::vector<int> rank(static_cast<std::size_t>(regions));
-  for (int r = 0; r < regions; ++r) rank[static_cast<std::size_t>(order[static_cast<std::size_t>(r)])] = r;
+  for (int r = 0; r < regions; ++r)
+    rank[static_cast<std::size_t>(order[static_cast<std::size_t>(r)])] = r;
   for (LeafContact& l : leaves) l.contact.region = rank[static_cast<std::size_t>(l.contact.region)];
   std::stable_sort(leaves.begin(), leaves.end(), [](const LeafContact& a, const LeafContact& b) {
     if (a.contact.region != b.contact.region) return a.contact.region < b.contact.region;
     if (a.contact.depth != b.contact.depth) return a.contact.depth > b.contact.depth;
-    return std::tie(a.contact.uv_a[0], a.contact.uv_a[1]) < std::tie(b.contact.uv_a[0], b.contact.uv_a[1]);
+    return std::tie(a.contact.uv_a[0], a.contact.uv_a[1]) <
+           std::tie(b.contact.uv_a[0], b.contact.uv_a[1]);
   });
   out.region_count = regions;
   // Keep every region's deepest contact, then fill up to max_contacts in

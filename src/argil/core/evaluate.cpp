@@ -23,8 +23,10 @@ SurfaceDerivatives evaluate_derivatives(const BSplineSurface& s, double u, doubl
   const int sv = find_span(q, s.knots[1], nv, v);
 
   constexpr int kN = kMaxDegree + 1;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 3, kN> bu(order + 1, p + 1);
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 3, kN> bv(order + 1, q + 1);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 3, kN> bu(order + 1,
+                                                                                   p + 1);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 3, kN> bv(order + 1,
+                                                                                   q + 1);
   basis_derivatives(p, s.knots[0], su, u, order, bu);
   basis_derivatives(q, s.knots[1], sv, v, order, bv);
 

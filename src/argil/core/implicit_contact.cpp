@@ -1,8 +1,8 @@
 #include "argil/core/implicit_contact.hpp"
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <queue>
@@ -37,8 +37,7 @@ constexpr int kExtraLevels = 4;
 /// lower bounds), stopping when no leaf can be deeper than the best found.
 void refine_region_heads(SurfaceHierarchy& h,
                          const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
-                         const std::vector<LeafContact>& leaves,
-                         CollisionResult& result) {
+                         const std::vector<LeafContact>& leaves, CollisionResult& result) {
   std::size_t begin = 0;
   while (begin < leaves.size()) {
     std::size_t end = begin;
@@ -51,7 +50,8 @@ void refine_region_heads(SurfaceHierarchy& h,
     Contact best = leaves[begin].contact;  // the deepest sample
     for (const LeafContact* leaf : order) {
       if (-leaf->value_lower_bound <= best.depth) break;
-      const PatchMinimum m = minimize_on_patch(h.surface(), leaf->u0, leaf->u1, leaf->v0, leaf->v1, f);
+      const PatchMinimum m =
+          minimize_on_patch(h.surface(), leaf->u0, leaf->u1, leaf->v0, leaf->v1, f);
       if (-m.value > best.depth) {
         best = make_contact(m);
         best.region = leaves[begin].contact.region;
@@ -107,7 +107,8 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
       // The whole sub-patch is inside the tool: one contact stands for it;
       // descending would only multiply contacts.
       ++result.counters.leaf_pairs;
-      const PatchMinimum m = best_sample_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f, &node.bound.corners);
+      const PatchMinimum m = best_sample_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1,
+                                                  f, &node.bound.corners);
       leaves.push_back({make_contact(m), node.u0, node.u1, node.v0, node.v1, lower});
       continue;
     }
@@ -123,12 +124,14 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
       ++result.counters.triangle_tests;
       // A sample in contact settles the leaf; Newton only decides the others
       // (region heads are refined after grouping).
-      const PatchMinimum sample = best_sample_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f, &node.bound.corners);
+      const PatchMinimum sample = best_sample_on_patch(h.surface(), node.u0, node.u1, node.v0,
+                                                       node.v1, f, &node.bound.corners);
       if (sample.value <= eps) {
         leaves.push_back({make_contact(sample), node.u0, node.u1, node.v0, node.v1, leaf_lower});
         continue;
       }
-      const PatchMinimum m = minimize_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f, &node.bound.corners);
+      const PatchMinimum m = minimize_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f,
+                                               &node.bound.corners);
       if (m.value <= eps) {
         leaves.push_back({make_contact(m), node.u0, node.u1, node.v0, node.v1, leaf_lower});
         continue;
@@ -177,8 +180,9 @@ ClosestPoint closest_point(SurfaceHierarchy& h, const Eigen::Vector3d& p,
     double lower = (p - b.center).norm() - b.radius;
     if (std::isfinite(b.flatness)) {
       const auto& c = b.corners;
-      const double triangles = std::min((closest_point_on_triangle(p, c[0], c[1], c[3]) - p).norm(),
-                                        (closest_point_on_triangle(p, c[0], c[3], c[2]) - p).norm());
+      const double triangles =
+          std::min((closest_point_on_triangle(p, c[0], c[1], c[3]) - p).norm(),
+                   (closest_point_on_triangle(p, c[0], c[3], c[2]) - p).norm());
       lower = std::max(lower, triangles - b.flatness);
     }
     return std::max(0.0, lower);
@@ -187,7 +191,8 @@ ClosestPoint closest_point(SurfaceHierarchy& h, const Eigen::Vector3d& p,
   using Entry = std::pair<double, int>;  // lower bound, entry
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
   queue.push({node_lower(h.block(0, &best.counters).bound), -1});
-  Eigen::Vector2d best_uv(h.surface().domain_start(Direction::u), h.surface().domain_start(Direction::v));
+  Eigen::Vector2d best_uv(h.surface().domain_start(Direction::u),
+                          h.surface().domain_start(Direction::v));
   const auto offer = [&](const Eigen::Vector3d& x, const Eigen::Vector2d& uv) {
     const double d = (x - p).norm();
     if (d < best.distance) {
@@ -224,7 +229,8 @@ ClosestPoint closest_point(SurfaceHierarchy& h, const Eigen::Vector3d& p,
                       node.level >= SurfaceHierarchy::kMaxLevel;
     if (leaf) {
       ++best.counters.leaf_pairs;
-      const PatchMinimum m = minimize_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f, &node.bound.corners);
+      const PatchMinimum m = minimize_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f,
+                                               &node.bound.corners);
       offer(m.derivatives.point, m.uv);
       continue;
     }

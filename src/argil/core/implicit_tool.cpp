@@ -56,7 +56,9 @@ class Plane final : public ImplicitTool {
 class Sphere final : public ImplicitTool {
  public:
   Sphere(const Eigen::Vector3d& c, double r) : c_(c), r_(r) {}
-  DistanceSample distance(const Eigen::Vector3d& p) const override { return ball_distance(p, c_, r_); }
+  DistanceSample distance(const Eigen::Vector3d& p) const override {
+    return ball_distance(p, c_, r_);
+  }
   double value(const Eigen::Vector3d& p) const override { return (p - c_).norm() - r_; }
   double lower_bound_on_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                  const Eigen::Vector3d& c) const override {
@@ -119,8 +121,9 @@ class ValueTool : public ImplicitTool {
       for (int j = i + 1; j < 3; ++j) {
         const Eigen::Vector3d ei = Eigen::Vector3d::Unit(i) * h_;
         const Eigen::Vector3d ej = Eigen::Vector3d::Unit(j) * h_;
-        const double mixed = (value(p + ei + ej) - value(p + ei - ej) - value(p - ei + ej) +
-                              value(p - ei - ej)) / (4 * h_ * h_);
+        const double mixed =
+            (value(p + ei + ej) - value(p + ei - ej) - value(p - ei + ej) + value(p - ei - ej)) /
+            (4 * h_ * h_);
         s.hessian(i, j) = s.hessian(j, i) = mixed;
       }
     }

@@ -11,7 +11,7 @@ CurveNet insert_knot(const CurveNet& c, double t, int times) {
   const int p = c.degree;
   const Eigen::VectorXd& U = c.knots;
   const int m = static_cast<int>(U.size());  // knots: 0 .. m-1
-  const int n = m - p - 2;                    // last control point index
+  const int n = m - p - 2;                   // last control point index
   if (times <= 0) return c;
   // Span k with U[k] <= t < U[k+1]; for t equal to a knot, the last copy.
   int k = p;
@@ -80,9 +80,8 @@ Result<BSplineSurface> insert_knot(const BSplineSurface& s, Direction d, double 
     const CurveNet refined = insert_knot(line, t, times);
     if (a == 0) out.knots[index_of(d)] = refined.knots;
     for (int i = 0; i < n_new; ++i) {
-      const Eigen::Index row =
-          d == Direction::u ? static_cast<Eigen::Index>(i) * n_o + a
-                            : static_cast<Eigen::Index>(a) * n_new + i;
+      const Eigen::Index row = d == Direction::u ? static_cast<Eigen::Index>(i) * n_o + a
+                                                 : static_cast<Eigen::Index>(a) * n_new + i;
       pw_new.row(row) = refined.points.row(i);
     }
   }

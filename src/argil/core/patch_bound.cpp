@@ -16,7 +16,9 @@ PatchBound bound_patch(const BezierPatch& patch) {
     const double w = patch.points(k, 3);
     xyz.row(k) = patch.points.row(k).head<3>() / w;
   }
-  const auto cartesian = [&xyz](Eigen::Index k) -> Eigen::Vector3d { return xyz.row(k).transpose(); };
+  const auto cartesian = [&xyz](Eigen::Index k) -> Eigen::Vector3d {
+    return xyz.row(k).transpose();
+  };
   PatchBound out;
   Eigen::Vector3d lo = cartesian(0), hi = lo;
   for (Eigen::Index k = 1; k < count; ++k) {
@@ -27,7 +29,8 @@ PatchBound bound_patch(const BezierPatch& patch) {
   out.box = {lo, hi};
   out.center = 0.5 * (lo + hi);
   double r2 = 0.0;
-  for (Eigen::Index k = 0; k < count; ++k) r2 = std::max(r2, (cartesian(k) - out.center).squaredNorm());
+  for (Eigen::Index k = 0; k < count; ++k)
+    r2 = std::max(r2, (cartesian(k) - out.center).squaredNorm());
   out.radius = std::sqrt(r2);
 
   const Eigen::Vector3d c00 = cartesian(0), c10 = cartesian(p * (q + 1));
@@ -54,8 +57,8 @@ PatchBound bound_patch(const BezierPatch& patch) {
   double rational_gap = 0.0;
   if (w_max > w_min) {
     const Eigen::Vector3d mid = 0.25 * (c00 + c10 + c01 + c11);
-    const double corner_radius = std::max({(c00 - mid).norm(), (c10 - mid).norm(),
-                                           (c01 - mid).norm(), (c11 - mid).norm()});
+    const double corner_radius =
+        std::max({(c00 - mid).norm(), (c10 - mid).norm(), (c01 - mid).norm(), (c11 - mid).norm()});
     rational_gap = (w_max / w_min - 1.0) * corner_radius;
   }
   // Bilinear to two triangles: L - T = t (1 - s) (c10 + c01 - c00 - c11) on

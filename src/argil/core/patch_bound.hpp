@@ -14,7 +14,7 @@ namespace argil {
 /// sphere and the box enclose it; never built from sample points.
 struct PatchBound {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // sphere centre [mm]
-  double radius = 0.0;                                // sphere radius [mm]
+  double radius = 0.0;                               // sphere radius [mm]
   Box3 box{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   /// Bound [mm] on |S(s, t) - T(s, t)| over [0, 1]^2, where T is the pair of
   /// triangles (c00, c10, c11), (c00, c11, c01) through the corners with the

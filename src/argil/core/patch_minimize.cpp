@@ -20,7 +20,8 @@ PatchMinimum best_start(const BSplineSurface& s, double u0, double u1, double v0
     for (int b = 0; b <= 2; b += 2) {
       const double u = a == 0 ? u0 : u1;
       const double v = b == 0 ? v0 : v1;
-      const Eigen::Vector3d x = corners ? (*corners)[static_cast<std::size_t>(a / 2 + b)] : evaluate(s, u, v);
+      const Eigen::Vector3d x =
+          corners ? (*corners)[static_cast<std::size_t>(a / 2 + b)] : evaluate(s, u, v);
       const double value = f(x).value;
       if (value < best.value) {
         best.value = value;

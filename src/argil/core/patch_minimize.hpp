@@ -14,7 +14,7 @@ namespace argil {
 
 struct PatchMinimum {
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();
-  double value = 0.0;             // f(S(uv))
+  double value = 0.0;              // f(S(uv))
   SurfaceDerivatives derivatives;  // of S at uv, to first order
   int iterations = 0;
 };

@@ -30,16 +30,14 @@ struct Status {
 
   bool ok() const { return code == StatusCode::ok; }
   static Status success() { return {}; }
-  static Status error(StatusCode code, std::string message) {
-    return {code, std::move(message)};
-  }
+  static Status error(StatusCode code, std::string message) { return {code, std::move(message)}; }
 };
 
 /// A value, or the Status that explains why there is none.
 template <class T>
 class Result {
  public:
-  Result(T value) : data_(std::move(value)) {}  // NOLINT: implicit by design
+  Result(T value) : data_(std::move(value)) {}        // NOLINT: implicit by design
   Result(Status status) : data_(std::move(status)) {  // NOLINT: implicit by design
     assert(!std::get<Status>(data_).ok() && "Result needs a value or an error");
   }

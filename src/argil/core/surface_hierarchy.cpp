@@ -44,7 +44,8 @@ int SurfaceHierarchy::build_block(int eu0, int eu1, int ev0, int ev1) {
   blocks_.push_back(fresh);
   const int elements_v = ops_.v->element_count();
   if (eu1 - eu0 == 1 && ev1 - ev0 == 1) {
-    blocks_[static_cast<std::size_t>(id)].element_node = roots_[static_cast<std::size_t>(eu0 * elements_v + ev0)];
+    blocks_[static_cast<std::size_t>(id)].element_node =
+        roots_[static_cast<std::size_t>(eu0 * elements_v + ev0)];
     return id;
   }
   // Halve every range that has more than one element.
@@ -142,7 +143,8 @@ const HierarchyNode& SurfaceHierarchy::node(int id, QueryCounters* counters) {
 
 int SurfaceHierarchy::child(int id, int half_u, int half_v) {
   const int slot = half_u * 2 + half_v;
-  const int existing = nodes_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(slot)];
+  const int existing =
+      nodes_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(slot)];
   if (existing >= 0) return existing;
   const HierarchyNode& parent = nodes_[static_cast<std::size_t>(id)];
   HierarchyNode c;

@@ -41,7 +41,8 @@ class Side {
     const PatchBound& b = n.bound;
     // The patch and its corner triangles both lie in the sphere, so they are
     // within 2 r of each other whatever the flatness bound says.
-    const bool flat = b.flatness <= flat_tolerance_ || 2.0 * b.radius <= flat_tolerance_ || n.level >= max_level_;
+    const bool flat =
+        b.flatness <= flat_tolerance_ || 2.0 * b.radius <= flat_tolerance_ || n.level >= max_level_;
     return {b.center, b.radius, b.box.min, b.box.max, flat};
   }
 
@@ -86,7 +87,8 @@ LeafTriangles leaf_triangles(const HierarchyNode& n) {
   LeafTriangles t;
   // The same split as PatchBound::flatness: (c00, c10, c11), (c00, c11, c01).
   t.triangles = {Triangle{c[0], c[1], c[3]}, Triangle{c[0], c[3], c[2]}};
-  t.params = {std::array<Eigen::Vector2d, 3>{p00, p10, p11}, std::array<Eigen::Vector2d, 3>{p00, p11, p01}};
+  t.params = {std::array<Eigen::Vector2d, 3>{p00, p10, p11},
+              std::array<Eigen::Vector2d, 3>{p00, p11, p01}};
   t.u0 = n.u0;
   t.u1 = n.u1;
   t.v0 = n.v0;
@@ -130,11 +132,17 @@ bool ends_coincide(const Segment& s, int es, const Segment& t, int et, double ep
 std::vector<IntersectionCurve> chain_segments(const std::vector<Segment>& segments, double eps,
                                               std::vector<std::vector<double>>& reaches) {
   const int ends = static_cast<int>(2 * segments.size());
-  const auto seg = [&](int e) -> const Segment& { return segments[static_cast<std::size_t>(e / 2)]; };
-  const auto pos = [&](int e) -> const Eigen::Vector3d& { return seg(e).points[static_cast<std::size_t>(e % 2)]; };
+  const auto seg = [&](int e) -> const Segment& {
+    return segments[static_cast<std::size_t>(e / 2)];
+  };
+  const auto pos = [&](int e) -> const Eigen::Vector3d& {
+    return seg(e).points[static_cast<std::size_t>(e % 2)];
+  };
   std::vector<int> by_x(static_cast<std::size_t>(ends));
   for (int e = 0; e < ends; ++e) by_x[static_cast<std::size_t>(e)] = e;
-  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return std::make_pair(pos(a).x(), a) < std::make_pair(pos(b).x(), b); });
+  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) {
+    return std::make_pair(pos(a).x(), a) < std::make_pair(pos(b).x(), b);
+  });
   std::vector<std::tuple<double, int, int>> candidates;
   for (std::size_t x = 0; x < by_x.size(); ++x) {
     const int e = by_x[x];
@@ -193,13 +201,15 @@ std::vector<IntersectionCurve> chain_segments(const std::vector<Segment>& segmen
 
 /// Model size [mm] that refinement tolerances scale with.
 double scale_of(const BSplineSurface& a, const BSplineSurface& b) {
-  return std::max({control_point_box(a).diagonal(), control_point_box(b).diagonal(), std::numeric_limits<double>::min()});
+  return std::max({control_point_box(a).diagonal(), control_point_box(b).diagonal(),
+                   std::numeric_limits<double>::min()});
 }
 
 /// Refines one point pair; keeps the input when refinement leaves its leaves'
 /// neighbourhood or does not converge (on_curve).
-bool refine_in_place(const BSplineSurface& a, const BSplineSurface& b, Eigen::Vector3d& point, Eigen::Vector2d& uv_a,
-                     Eigen::Vector2d& uv_b, bool on_curve, double reach, double scale, double* gap = nullptr) {
+bool refine_in_place(const BSplineSurface& a, const BSplineSurface& b, Eigen::Vector3d& point,
+                     Eigen::Vector2d& uv_a, Eigen::Vector2d& uv_b, bool on_curve, double reach,
+                     double scale, double* gap = nullptr) {
   const RefinedPair r = refine_surface_pair(a, b, uv_a, uv_b, on_curve, scale);
   if (!((r.point - point).norm() <= reach)) return false;
   // Converged means on both surfaces up to rounding of the model size.
@@ -215,8 +225,8 @@ bool refine_in_place(const BSplineSurface& a, const BSplineSurface& b, Eigen::Ve
 /// the curve strays more than `tolerance` from the chord: the leaf segments
 /// are as long as the flat leaves, and the exact curve bends away from them
 /// by up to its curvature times their length squared over 8.
-void densify(const BSplineSurface& a, const BSplineSurface& b, IntersectionCurve& c, const std::vector<bool>& refined,
-             double tolerance, double scale) {
+void densify(const BSplineSurface& a, const BSplineSurface& b, IntersectionCurve& c,
+             const std::vector<bool>& refined, double tolerance, double scale) {
   constexpr int kMaxDepth = 10;  // at most 2^10 pieces per leaf segment
   IntersectionCurve out;
   const auto push = [&out, &c](std::size_t k) {
@@ -233,7 +243,9 @@ void densify(const BSplineSurface& a, const BSplineSurface& b, IntersectionCurve
     if (depth >= kMaxDepth) return;
     Piece mid{0.5 * (lo.p + hi.p), 0.5 * (lo.ua + hi.ua), 0.5 * (lo.ub + hi.ub)};
     const Eigen::Vector3d chord_mid = mid.p;
-    if (!refine_in_place(a, b, mid.p, mid.ua, mid.ub, true, (hi.p - lo.p).norm() + tolerance, scale)) return;
+    if (!refine_in_place(a, b, mid.p, mid.ua, mid.ub, true, (hi.p - lo.p).norm() + tolerance,
+                         scale))
+      return;
     if ((mid.p - chord_mid).norm() <= tolerance) return;
     self(self, lo, mid, depth + 1);
     out.points.push_back(mid.p);
@@ -244,20 +256,22 @@ void densify(const BSplineSurface& a, const BSplineSurface& b, IntersectionCurve
   for (std::size_t k = 0; k < c.points.size(); ++k) {
     push(k);
     if (k + 1 < c.points.size() && refined[k] && refined[k + 1])
-      fill(fill, Piece{c.points[k], c.uv_a[k], c.uv_b[k]}, Piece{c.points[k + 1], c.uv_a[k + 1], c.uv_b[k + 1]}, 0);
+      fill(fill, Piece{c.points[k], c.uv_a[k], c.uv_b[k]},
+           Piece{c.points[k + 1], c.uv_a[k + 1], c.uv_b[k + 1]}, 0);
   }
   c = std::move(out);
 }
 
 }  // namespace
 
-RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b, const Eigen::Vector2d& uv_a,
-                                const Eigen::Vector2d& uv_b, bool on_curve, double scale) {
+RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b,
+                                const Eigen::Vector2d& uv_a, const Eigen::Vector2d& uv_b,
+                                bool on_curve, double scale) {
   Eigen::Vector4d x(uv_a[0], uv_a[1], uv_b[0], uv_b[1]);
-  const Eigen::Vector4d lo(a.domain_start(Direction::u), a.domain_start(Direction::v), b.domain_start(Direction::u),
-                           b.domain_start(Direction::v));
-  const Eigen::Vector4d hi(a.domain_end(Direction::u), a.domain_end(Direction::v), b.domain_end(Direction::u),
-                           b.domain_end(Direction::v));
+  const Eigen::Vector4d lo(a.domain_start(Direction::u), a.domain_start(Direction::v),
+                           b.domain_start(Direction::u), b.domain_start(Direction::v));
+  const Eigen::Vector4d hi(a.domain_end(Direction::u), a.domain_end(Direction::v),
+                           b.domain_end(Direction::u), b.domain_end(Direction::v));
   std::array<bool, 4> fixed{false, false, false, false};
   int fixed_count = 0;
   Eigen::Vector3d plane_normal = Eigen::Vector3d::Zero();
@@ -333,7 +347,8 @@ RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b
   return out;
 }
 
-CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb, const CollisionRequest& request) {
+CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb,
+                        const CollisionRequest& request) {
   CollisionResult result;
   const double eps = request.tolerance;
   const double flat_tolerance = eps / 3.0;
@@ -436,7 +451,8 @@ CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb, const Collis
       const bool closed = n > 2 && c.points[n - 1] == c.points[0] && c.uv_a[n - 1] == c.uv_a[0];
       std::vector<bool> refined(n, false);
       for (std::size_t k = 0; k < (closed ? n - 1 : n); ++k)
-        refined[k] = refine_in_place(a, b, c.points[k], c.uv_a[k], c.uv_b[k], true, reaches[ci][k], scale);
+        refined[k] =
+            refine_in_place(a, b, c.points[k], c.uv_a[k], c.uv_b[k], true, reaches[ci][k], scale);
       if (closed) {
         c.points[n - 1] = c.points[0];
         c.uv_a[n - 1] = c.uv_a[0];
@@ -455,10 +471,12 @@ CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb, const Collis
         refine_in_place(a, b, c.point, c.uv_a, p.uv_b, true, p.reach, scale);
       } else {
         double gap = 0.0;
-        const double before = (evaluate(a, c.uv_a[0], c.uv_a[1]) - evaluate(b, p.uv_b[0], p.uv_b[1])).norm();
+        const double before =
+            (evaluate(a, c.uv_a[0], c.uv_a[1]) - evaluate(b, p.uv_b[0], p.uv_b[1])).norm();
         Eigen::Vector3d point = c.point;
         Eigen::Vector2d uv_a = c.uv_a, uv_b = p.uv_b;
-        if (refine_in_place(a, b, point, uv_a, uv_b, false, p.reach, scale, &gap) && gap <= before) {
+        if (refine_in_place(a, b, point, uv_a, uv_b, false, p.reach, scale, &gap) &&
+            gap <= before) {
           c.point = point;
           c.uv_a = uv_a;
           p.uv_b = uv_b;

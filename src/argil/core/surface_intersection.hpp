@@ -46,7 +46,8 @@ namespace argil {
 /// the model size; near-touch contacts move to a local closest pair, with
 /// depth = -gap (0 when the surfaces turn out to cross there). A point whose
 /// iteration does not converge near its leaf keeps its unrefined value.
-CollisionResult collide(SurfaceHierarchy& a, SurfaceHierarchy& b, const CollisionRequest& request = {});
+CollisionResult collide(SurfaceHierarchy& a, SurfaceHierarchy& b,
+                        const CollisionRequest& request = {});
 
 /// A pair of surface points after refine_surface_pair().
 struct RefinedPair {
@@ -66,7 +67,8 @@ struct RefinedPair {
 /// surfaces are tangent) the iteration converges to a local minimum of |F|:
 /// a local closest pair. Stops when |F| <= 1e-14 of `scale` [mm] or the step
 /// stalls, after at most 40 iterations.
-RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b, const Eigen::Vector2d& uv_a,
-                                const Eigen::Vector2d& uv_b, bool on_curve, double scale);
+RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b,
+                                const Eigen::Vector2d& uv_a, const Eigen::Vector2d& uv_b,
+                                bool on_curve, double scale);
 
 }  // namespace argil

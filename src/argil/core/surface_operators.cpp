@@ -31,8 +31,8 @@ void resize(ControlNet& m, Eigen::Index rows) {
 
 }  // namespace
 
-void evaluate_grid(const BSplineSurface& s, const SamplingRows& u_rows,
-                   const SamplingRows& v_rows, int order, SurfaceGrid& out) {
+void evaluate_grid(const BSplineSurface& s, const SamplingRows& u_rows, const SamplingRows& v_rows,
+                   int order, SurfaceGrid& out) {
   assert(order >= 0 && order <= 2);
   const int p = s.degree[0];
   const int q = s.degree[1];
@@ -197,7 +197,8 @@ ControlNet fit_control_points(const BSplineSurface& s, const SurfaceOperators& o
   Eigen::MatrixXd by_u(nu, 3 * nv);
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j < nv; ++j)
-      for (int c = 0; c < 3; ++c) by_u(i, 3 * j + c) = w[s.pole_index(i, j)] * nodes(s.pole_index(i, j), c);
+      for (int c = 0; c < 3; ++c)
+        by_u(i, 3 * j + c) = w[s.pole_index(i, j)] * nodes(s.pole_index(i, j), c);
   ops.u->collocation().solve_in_place(by_u);
   // Along v: rows are j, columns (i, coordinate).
   Eigen::MatrixXd by_v(nv, 3 * nu);

@@ -40,8 +40,8 @@ void evaluate_grid(const BSplineSurface& surface, const SamplingRows& u_rows,
 
 /// Bezier patch of element (element_u, element_v) (indices into
 /// extraction().spans): B = E_u * P_local * E_v^T in homogeneous coordinates.
-BezierPatch bezier_patch(const BSplineSurface& surface, const SurfaceOperators& ops,
-                         int element_u, int element_v);
+BezierPatch bezier_patch(const BSplineSurface& surface, const SurfaceOperators& ops, int element_u,
+                         int element_v);
 
 /// Node positions: the surface at the Greville grid (xi_u_i, xi_v_j), row i * n_v + j.
 ControlNet evaluate_nodes(const BSplineSurface& surface, const SurfaceOperators& ops);

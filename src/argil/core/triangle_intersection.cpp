@@ -57,7 +57,9 @@ Eigen::Vector2d drop_axis(const Eigen::Vector3d& p, int axis) {
                    : (axis == 1 ? Eigen::Vector2d(p.z(), p.x()) : Eigen::Vector2d(p.x(), p.y()));
 }
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 /// Overlap of coplanar triangles: a clipped by b's three edge half-planes
 /// (Sutherland-Hodgman, boundary inclusive), reported at the polygon's centroid.
@@ -155,15 +157,20 @@ TriangleIntersection intersect_triangles(const Triangle& a, const Triangle& b) {
   const Eigen::Vector3d nb = (b[1] - b[0]).cross(b[2] - b[0]);
   Eigen::Vector3d axis = na.cross(nb);
   if (axis.squaredNorm() <= 1e-24 * na.squaredNorm() * nb.squaredNorm()) {
-    const Eigen::Vector3d da = cut_a.points[static_cast<std::size_t>(cut_a.count - 1)] - cut_a.points[0];
-    const Eigen::Vector3d db = cut_b.points[static_cast<std::size_t>(cut_b.count - 1)] - cut_b.points[0];
+    const Eigen::Vector3d da =
+        cut_a.points[static_cast<std::size_t>(cut_a.count - 1)] - cut_a.points[0];
+    const Eigen::Vector3d db =
+        cut_b.points[static_cast<std::size_t>(cut_b.count - 1)] - cut_b.points[0];
     axis = da.squaredNorm() >= db.squaredNorm() ? da : db;
-    if (axis.squaredNorm() == 0.0) return out;  // two single points: touching is left to the distance test
+    if (axis.squaredNorm() == 0.0)
+      return out;  // two single points: touching is left to the distance test
   }
   const auto interval = [&axis](const PlaneCut& c, int& lo, int& hi) {
     lo = 0;
     hi = c.count - 1;
-    if (axis.dot(c.points[static_cast<std::size_t>(hi)]) < axis.dot(c.points[static_cast<std::size_t>(lo)])) std::swap(lo, hi);
+    if (axis.dot(c.points[static_cast<std::size_t>(hi)]) <
+        axis.dot(c.points[static_cast<std::size_t>(lo)]))
+      std::swap(lo, hi);
   };
   int a_lo, a_hi, b_lo, b_hi;
   interval(cut_a, a_lo, a_hi);
@@ -176,7 +183,8 @@ TriangleIntersection intersect_triangles(const Triangle& a, const Triangle& b) {
   // Barycentric coordinates of the point at axis value x on a cut.
   const auto along = [](const PlaneCut& c, int lo, int hi, double t0, double t1, double x) {
     const double f = t1 > t0 ? std::clamp((x - t0) / (t1 - t0), 0.0, 1.0) : 0.0;
-    return Eigen::Vector3d((1.0 - f) * c.bary[static_cast<std::size_t>(lo)] + f * c.bary[static_cast<std::size_t>(hi)]);
+    return Eigen::Vector3d((1.0 - f) * c.bary[static_cast<std::size_t>(lo)] +
+                           f * c.bary[static_cast<std::size_t>(hi)]);
   };
   const auto point_of = [](const Triangle& t, const Eigen::Vector3d& w) {
     return Eigen::Vector3d(w[0] * t[0] + w[1] * t[1] + w[2] * t[2]);
@@ -232,8 +240,8 @@ Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Triangle& t) {
 TriangleDistance triangle_distance(const Triangle& a, const Triangle& b) {
   TriangleDistance best;
   best.distance = std::numeric_limits<double>::infinity();
-  const auto consider = [&best](const Eigen::Vector3d& pa, const Eigen::Vector3d& pb, const Eigen::Vector3d& wa,
-                                const Eigen::Vector3d& wb) {
+  const auto consider = [&best](const Eigen::Vector3d& pa, const Eigen::Vector3d& pb,
+                                const Eigen::Vector3d& wa, const Eigen::Vector3d& wb) {
     const double d = (pa - pb).norm();
     if (d < best.distance) best = {d, pa, pb, wa, wb};
   };
