@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "argil/core.hpp"
+#include "support/occt_surface.hpp"
 
 namespace argil::bench {
 
@@ -36,39 +37,7 @@ inline BSplineSurface bicubic_panel(int n) {
   return s;
 }
 
-/// The same polynomial surface as an OpenCASCADE Geom_BSplineSurface (uniform knots).
-inline Handle(Geom_BSplineSurface) to_occt(const BSplineSurface& s) {
-  const int nu = s.count(Direction::u), nv = s.count(Direction::v);
-  TColgp_Array2OfPnt poles(1, nu, 1, nv);
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const auto p = s.control_points.row(s.pole_index(i, j));
-      poles.SetValue(i + 1, j + 1, gp_Pnt(p[0], p[1], p[2]));
-    }
-  const auto distinct = [](const Eigen::VectorXd& k, TColStd_Array1OfReal& values,
-                           TColStd_Array1OfInteger& mults) {
-    std::vector<double> v;
-    std::vector<int> m;
-    for (Eigen::Index i = 0; i < k.size(); ++i) {
-      if (v.empty() || k[i] != v.back()) {
-        v.push_back(k[i]);
-        m.push_back(1);
-      } else {
-        ++m.back();
-      }
-    }
-    values.Resize(1, static_cast<int>(v.size()), false);
-    mults.Resize(1, static_cast<int>(v.size()), false);
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      values.SetValue(static_cast<int>(i) + 1, v[i]);
-      mults.SetValue(static_cast<int>(i) + 1, m[i]);
-    }
-  };
-  TColStd_Array1OfReal uk(1, 1), vk(1, 1);
-  TColStd_Array1OfInteger um(1, 1), vm(1, 1);
-  distinct(s.knots[0], uk, um);
-  distinct(s.knots[1], vk, vm);
-  return new Geom_BSplineSurface(poles, uk, vk, um, vm, s.degree[0], s.degree[1]);
-}
+/// The same surface as an OpenCASCADE Geom_BSplineSurface.
+inline Handle(Geom_BSplineSurface) to_occt(const BSplineSurface& s) { return test::to_occt(s); }
 
 }  // namespace argil::bench

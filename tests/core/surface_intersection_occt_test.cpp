@@ -27,56 +27,16 @@
 
 #include "argil/core.hpp"
 #include "core/surface_pairs.hpp"
+#include "support/occt_surface.hpp"
 
 using argil::BSplineSurface;
 using argil::Direction;
 
 namespace {
 
+using argil::test::to_occt;
+
 constexpr double kPi = 3.14159265358979323846;
-
-void to_occt_knots(const Eigen::VectorXd& knots, TColStd_Array1OfReal& values,
-                   TColStd_Array1OfInteger& mults) {
-  std::vector<double> v;
-  std::vector<int> m;
-  for (Eigen::Index k = 0; k < knots.size(); ++k) {
-    if (v.empty() || knots[k] != v.back()) {
-      v.push_back(knots[k]);
-      m.push_back(1);
-    } else {
-      ++m.back();
-    }
-  }
-  values.Resize(1, static_cast<int>(v.size()), false);
-  mults.Resize(1, static_cast<int>(m.size()), false);
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    values.SetValue(static_cast<int>(i) + 1, v[i]);
-    mults.SetValue(static_cast<int>(i) + 1, m[i]);
-  }
-}
-
-Handle(Geom_BSplineSurface) to_occt(const BSplineSurface& s) {
-  const int nu = s.count(Direction::u);
-  const int nv = s.count(Direction::v);
-  TColgp_Array2OfPnt poles(1, nu, 1, nv);
-  TColStd_Array2OfReal weights(1, nu, 1, nv);
-  for (int i = 0; i < nu; ++i) {
-    for (int j = 0; j < nv; ++j) {
-      const Eigen::Index k = s.pole_index(i, j);
-      poles.SetValue(
-          i + 1, j + 1,
-          gp_Pnt(s.control_points(k, 0), s.control_points(k, 1), s.control_points(k, 2)));
-      weights.SetValue(i + 1, j + 1, s.is_rational() ? s.weights[k] : 1.0);
-    }
-  }
-  TColStd_Array1OfReal uk(1, 1), vk(1, 1);
-  TColStd_Array1OfInteger um(1, 1), vm(1, 1);
-  to_occt_knots(s.knots[0], uk, um);
-  to_occt_knots(s.knots[1], vk, vm);
-  if (s.is_rational())
-    return new Geom_BSplineSurface(poles, weights, uk, vk, um, vm, s.degree[0], s.degree[1]);
-  return new Geom_BSplineSurface(poles, uk, vk, um, vm, s.degree[0], s.degree[1]);
-}
 
 Eigen::Vector3d eig(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 Eigen::Vector3d eig(const gp_Vec& v) { return {v.X(), v.Y(), v.Z()}; }
