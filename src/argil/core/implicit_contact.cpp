@@ -113,6 +113,14 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
       continue;
     }
     const bool flat = node.bound.flatness <= eps || node.level >= SurfaceHierarchy::kMaxLevel;
+    if (!flat && tool.exact_triangle_bound() && node.bound.flatness < node.bound.radius) {
+      // Corner triangles less the flatness bound the patch more tightly than
+      // its sphere once it is moderately flat: prune before splitting.
+      const auto& c = node.bound.corners;
+      const double triangles = std::min(tool.lower_bound_on_triangle(c[0], c[1], c[3]),
+                                        tool.lower_bound_on_triangle(c[0], c[3], c[2]));
+      if (triangles - lipschitz * node.bound.flatness > eps) continue;
+    }
     if (flat) {
       // The patch is within `flatness` of its two corner triangles.
       const auto& c = node.bound.corners;
