@@ -75,39 +75,42 @@ Eigen::Vector3d evaluate(const BezierPatch& patch, double s, double t) {
   return h.head<3>() / h[3];
 }
 
-BezierPatch subdivide(const BezierPatch& patch, const SubdivisionMatrices& su,
-                      const SubdivisionMatrices& sv, bool split_u, int half_u, bool split_v,
-                      int half_v) {
-  const int p = patch.degree_u;
-  const int q = patch.degree_v;
-  const Eigen::MatrixXd& hu = half_u == 0 ? su.left : su.right;
-  const Eigen::MatrixXd& hv = half_v == 0 ? sv.left : sv.right;
-  // Child = Hu * B * Hv^T on the homogeneous rows, as two passes of 4-vector
-  // sums (no temporaries: this runs for every refreshed node every tick).
-  BezierPatch across_u{p, q, patch.points};
-  if (split_u) {
+Eigen::MatrixX4d transform_net(const Eigen::MatrixXd* m_u, const Eigen::MatrixXd* m_v,
+                               const Eigen::MatrixX4d& net, int p, int q) {
+  Eigen::MatrixX4d along_u = net;
+  if (m_u) {
     for (int a = 0; a <= p; ++a) {
       for (int b = 0; b <= q; ++b) {
         Eigen::RowVector4d sum = Eigen::RowVector4d::Zero();
         for (int i = 0; i <= p; ++i) {
-          if (hu(a, i) != 0.0) sum += hu(a, i) * patch.points.row(i * (q + 1) + b);
+          if ((*m_u)(a, i) != 0.0) sum += (*m_u)(a, i) * net.row(i * (q + 1) + b);
         }
-        across_u.points.row(a * (q + 1) + b) = sum;
+        along_u.row(a * (q + 1) + b) = sum;
       }
     }
   }
-  if (!split_v) return across_u;
-  BezierPatch child{p, q, Eigen::MatrixX4d(across_u.points.rows(), 4)};
+  if (!m_v) return along_u;
+  Eigen::MatrixX4d out(along_u.rows(), 4);
   for (int a = 0; a <= p; ++a) {
     for (int b = 0; b <= q; ++b) {
       Eigen::RowVector4d sum = Eigen::RowVector4d::Zero();
       for (int j = 0; j <= q; ++j) {
-        if (hv(b, j) != 0.0) sum += hv(b, j) * across_u.points.row(a * (q + 1) + j);
+        if ((*m_v)(b, j) != 0.0) sum += (*m_v)(b, j) * along_u.row(a * (q + 1) + j);
       }
-      child.points.row(a * (q + 1) + b) = sum;
+      out.row(a * (q + 1) + b) = sum;
     }
   }
-  return child;
+  return out;
+}
+
+BezierPatch subdivide(const BezierPatch& patch, const SubdivisionMatrices& su,
+                      const SubdivisionMatrices& sv, bool split_u, int half_u, bool split_v,
+                      int half_v) {
+  const Eigen::MatrixXd& hu = half_u == 0 ? su.left : su.right;
+  const Eigen::MatrixXd& hv = half_v == 0 ? sv.left : sv.right;
+  return {patch.degree_u, patch.degree_v,
+          transform_net(split_u ? &hu : nullptr, split_v ? &hv : nullptr, patch.points,
+                        patch.degree_u, patch.degree_v)};
 }
 
 }  // namespace argil

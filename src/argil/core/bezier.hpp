@@ -35,6 +35,12 @@ struct BezierPatch {
 /// Point of the patch at local (s, t) in [0, 1]^2.
 Eigen::Vector3d evaluate(const BezierPatch& patch, double s, double t);
 
+/// M_u * B * M_v^T applied to a homogeneous net with rows a * (q + 1) + b;
+/// a null matrix leaves that direction as it is. Two passes of 4-vector sums
+/// without temporaries: node refreshes run it every tick.
+Eigen::MatrixX4d transform_net(const Eigen::MatrixXd* m_u, const Eigen::MatrixXd* m_v,
+                               const Eigen::MatrixX4d& net, int p, int q);
+
 /// Child patch: `half_u`, `half_v` in {0 (lower half), 1 (upper half)}; a
 /// direction is split only when its `split_*` flag is set.
 BezierPatch subdivide(const BezierPatch& patch, const SubdivisionMatrices& su,

@@ -104,21 +104,6 @@ void SurfaceHierarchy::set_control_points(const ControlNet& points,
   ++version_;
 }
 
-const PatchBound& SurfaceHierarchy::root_bound() {
-  if (root_bound_version_ != version_) {
-    // Convex hull property of the whole net (positive weights).
-    const ControlNet& pts = surface_.control_points;
-    PatchBound b;
-    b.box = {pts.colwise().minCoeff().transpose(), pts.colwise().maxCoeff().transpose()};
-    b.center = 0.5 * (b.box.min + b.box.max);
-    b.radius = (pts.rowwise() - b.center.transpose()).rowwise().norm().maxCoeff();
-    b.flatness = std::numeric_limits<double>::infinity();
-    root_bound_ = b;
-    root_bound_version_ = version_;
-  }
-  return root_bound_;
-}
-
 void SurfaceHierarchy::refresh(int id, QueryCounters* counters) {
   HierarchyNode& self = nodes_[static_cast<std::size_t>(id)];
   if (self.version == version_) return;

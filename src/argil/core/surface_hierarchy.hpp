@@ -67,13 +67,10 @@ class SurfaceHierarchy {
   /// O(n) copy; every node becomes stale and is refreshed when next reached.
   void set_control_points(const ControlNet& points, const Eigen::VectorXd& weights = {});
 
-  /// Sphere around all control points: the broad-phase bound of the surface.
-  const PatchBound& root_bound();
-
   /// One node per Bezier element: the hierarchy's roots.
   const std::vector<int>& roots() const { return roots_; }
   /// The block tree over the elements (built with the structure; bounds lazy).
-  /// Block 0 covers every element.
+  /// Block 0 covers every element: its bound is the broad-phase bound of the surface.
   const ElementBlock& block(int id, QueryCounters* counters = nullptr);
   /// The node with fresh bounds (refreshing its ancestors first if needed).
   const HierarchyNode& node(int id, QueryCounters* counters = nullptr);
@@ -97,8 +94,6 @@ class SurfaceHierarchy {
   std::vector<HierarchyNode> nodes_;
   std::vector<int> roots_;
   std::vector<ElementBlock> blocks_;
-  PatchBound root_bound_;
-  std::uint64_t root_bound_version_ = 0;
 };
 
 }  // namespace argil

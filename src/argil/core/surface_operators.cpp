@@ -121,32 +121,17 @@ BezierPatch bezier_patch(const BSplineSurface& s, const SurfaceOperators& ops, i
   const Eigen::MatrixXd& ev = xv.operators[static_cast<std::size_t>(element_v)];
   const bool rational = s.is_rational();
 
-  // B = E_u * P_local * E_v^T on homogeneous rows, as two passes of 4-vector
-  // sums without temporaries (element roots are refreshed every tick).
-  const auto pole = [&](int a, int b) -> Eigen::RowVector4d {
-    const Eigen::Index k = s.pole_index(fu + a, fv + b);
-    const double w = rational ? s.weights[k] : 1.0;
-    return {w * s.control_points(k, 0), w * s.control_points(k, 1), w * s.control_points(k, 2), w};
-  };
-  Eigen::MatrixX4d along_u((p + 1) * (q + 1), 4);
+  // B = E_u * P_local * E_v^T on the span's homogeneous poles.
+  Eigen::MatrixX4d local((p + 1) * (q + 1), 4);
   for (int a = 0; a <= p; ++a) {
     for (int b = 0; b <= q; ++b) {
-      Eigen::RowVector4d sum = Eigen::RowVector4d::Zero();
-      for (int i = 0; i <= p; ++i)
-        if (eu(a, i) != 0.0) sum += eu(a, i) * pole(i, b);
-      along_u.row(a * (q + 1) + b) = sum;
+      const Eigen::Index k = s.pole_index(fu + a, fv + b);
+      const double w = rational ? s.weights[k] : 1.0;
+      local.row(a * (q + 1) + b) << w * s.control_points(k, 0), w * s.control_points(k, 1),
+          w * s.control_points(k, 2), w;
     }
   }
-  BezierPatch patch{p, q, Eigen::MatrixX4d((p + 1) * (q + 1), 4)};
-  for (int a = 0; a <= p; ++a) {
-    for (int b = 0; b <= q; ++b) {
-      Eigen::RowVector4d sum = Eigen::RowVector4d::Zero();
-      for (int j = 0; j <= q; ++j)
-        if (ev(b, j) != 0.0) sum += ev(b, j) * along_u.row(a * (q + 1) + j);
-      patch.points.row(a * (q + 1) + b) = sum;
-    }
-  }
-  return patch;
+  return {p, q, transform_net(&eu, &ev, local, p, q)};
 }
 
 ControlNet evaluate_nodes(const BSplineSurface& s, const SurfaceOperators& ops) {
