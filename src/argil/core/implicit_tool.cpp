@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "argil/core/triangle_distance.hpp"
@@ -17,7 +18,19 @@ double ImplicitTool::lower_bound_on_triangle(const Eigen::Vector3d& a, const Eig
   return distance(centroid).value - lipschitz() * reach;
 }
 
+Box3 ImplicitTool::bounding_box() const {
+  const double inf = std::numeric_limits<double>::infinity();
+  return {Eigen::Vector3d::Constant(-inf), Eigen::Vector3d::Constant(inf)};
+}
+
 namespace {
+
+/// The world box of a tool-frame box [-half, half] posed by R and c: each
+/// world half extent is sum_j |R_ij| half_j.
+Box3 posed_box(const Eigen::Matrix3d& R, const Eigen::Vector3d& c, const Eigen::Vector3d& half) {
+  const Eigen::Vector3d extent = R.cwiseAbs() * half;
+  return {c - extent, c + extent};
+}
 
 /// Distance to a point c minus r: the sphere; also the capsule near its segment.
 DistanceSample ball_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& c, double r) {
@@ -65,6 +78,9 @@ class Sphere final : public ImplicitTool {
     return (closest_point_on_triangle(c_, a, b, c) - c_).norm() - r_;
   }
   bool exact_triangle_bound() const override { return true; }
+  Box3 bounding_box() const override {
+    return {c_ - Eigen::Vector3d::Constant(r_), c_ + Eigen::Vector3d::Constant(r_)};
+  }
 
  private:
   Eigen::Vector3d c_;
@@ -96,6 +112,10 @@ class Capsule final : public ImplicitTool {
     return segment_triangle_distance(a_, b_, a, b, c) - r_;
   }
   bool exact_triangle_bound() const override { return true; }
+  Box3 bounding_box() const override {
+    const Eigen::Vector3d r = Eigen::Vector3d::Constant(r_);
+    return {a_.cwiseMin(b_) - r, a_.cwiseMax(b_) + r};
+  }
 
  private:
   Eigen::Vector3d a_, b_;
@@ -143,6 +163,7 @@ class Box final : public ValueTool {
     const Eigen::Vector3d q = (R_.transpose() * (p - c_)).cwiseAbs() - half_;
     return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
   }
+  Box3 bounding_box() const override { return posed_box(R_, c_, half_); }
 
  private:
   Eigen::Matrix3d R_;
@@ -156,6 +177,11 @@ class Ellipsoid final : public ValueTool {
   double value(const Eigen::Vector3d& p) const override {
     const Eigen::Vector3d x = R_.transpose() * (p - c_);
     return (x.cwiseQuotient(radii_).norm() - 1.0) * radii_.minCoeff();
+  }
+  /// Exact: the support of the ellipsoid along world axis i is |row i of R diag(radii)|.
+  Box3 bounding_box() const override {
+    const Eigen::Vector3d extent = (R_ * radii_.asDiagonal()).rowwise().norm();
+    return {c_ - extent, c_ + extent};
   }
 
  private:
@@ -171,6 +197,10 @@ class Torus final : public ValueTool {
     const Eigen::Vector3d x = R_.transpose() * (p - c_);
     const double ring = std::hypot(x.x(), x.y()) - major_;
     return std::hypot(ring, x.z()) - minor_;
+  }
+  Box3 bounding_box() const override {
+    const double reach = major_ + minor_;
+    return posed_box(R_, c_, Eigen::Vector3d(reach, reach, minor_));
   }
 
  private:

@@ -6,6 +6,8 @@
 #include <functional>
 #include <memory>
 
+#include "argil/core/bspline_surface.hpp"
+
 namespace argil {
 
 /// Distance value, gradient and Hessian at a point (world frame, [mm]).
@@ -32,6 +34,10 @@ class ImplicitTool {
   /// True when lower_bound_on_triangle is exact, so leaves are certified
   /// without descending to nodes smaller than eps.
   virtual bool exact_triangle_bound() const { return false; }
+  /// A box [mm] that holds every point where the function is <= 0 (the tool's
+  /// solid), for the broad phase. Unbounded tools (plane, user SDF) return an
+  /// infinite box, so they pair with every surface.
+  virtual Box3 bounding_box() const;
 };
 
 /// Half-space n . x <= offset (n unit): the inside is below the plane.

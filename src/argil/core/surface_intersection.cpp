@@ -81,6 +81,31 @@ struct LeafTriangles {
   double radius;
 };
 
+/// True when a cheap lower bound on the distance between the triangles
+/// exceeds eps: a gap between their boxes, or one triangle entirely beyond eps
+/// on one side of the other's plane.
+bool farther_than(const Triangle& a, const Triangle& b, double eps) {
+  const auto box_gap = [&](int k) {
+    const double a_lo = std::min({a[0][k], a[1][k], a[2][k]});
+    const double a_hi = std::max({a[0][k], a[1][k], a[2][k]});
+    const double b_lo = std::min({b[0][k], b[1][k], b[2][k]});
+    const double b_hi = std::max({b[0][k], b[1][k], b[2][k]});
+    return std::max(b_lo - a_hi, a_lo - b_hi);
+  };
+  if (box_gap(0) > eps || box_gap(1) > eps || box_gap(2) > eps) return true;
+  const auto beyond_plane = [eps](const Triangle& t, const Triangle& other) {
+    const Eigen::Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
+    const double length = n.norm();
+    if (!(length > 0.0)) return false;
+    const double limit = eps * length;
+    const double d0 = n.dot(other[0] - t[0]);
+    const double d1 = n.dot(other[1] - t[0]);
+    const double d2 = n.dot(other[2] - t[0]);
+    return std::min({d0, d1, d2}) > limit || std::max({d0, d1, d2}) < -limit;
+  };
+  return beyond_plane(a, b) || beyond_plane(b, a);
+}
+
 LeafTriangles leaf_triangles(const HierarchyNode& n) {
   const auto& c = n.bound.corners;  // S(0,0), S(1,0), S(0,1), S(1,1)
   const Eigen::Vector2d p00(n.u0, n.v0), p10(n.u1, n.v0), p01(n.u0, n.v1), p11(n.u1, n.v1);
@@ -415,9 +440,13 @@ CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb,
           }
           // Point touches and coplanar overlaps are contacts, not curve pieces.
           if (x.kind == TriangleIntersection::Kind::segment && length > 0.0) segments.push_back(s);
-          continue;
         }
-        if (crossing) continue;
+      }
+    }
+    // No crossing: the leaf pair is a contact when its triangles come within eps.
+    for (std::size_t i = 0; i < 2 && !crossing; ++i) {
+      for (std::size_t j = 0; j < 2; ++j) {
+        if (farther_than(la.triangles[i], lb.triangles[j], eps)) continue;
         const TriangleDistance d = triangle_distance(la.triangles[i], lb.triangles[j]);
         if (d.distance <= eps && d.distance < nearest) {
           nearest = d.distance;
