@@ -20,4 +20,5 @@
 #include "argil/core/surface_hierarchy.hpp"
 #include "argil/core/surface_intersection.hpp"
 #include "argil/core/surface_operators.hpp"
+#include "argil/core/surface_penetration.hpp"
 #include "argil/core/triangle_intersection.hpp"

@@ -68,9 +68,11 @@ double worst_parameter_gap(const BSplineSurface& a, const BSplineSurface& b,
             std::max({worst, (argil::evaluate(a, c.uv_a[k][0], c.uv_a[k][1]) - c.points[k]).norm(),
                       (argil::evaluate(b, c.uv_b[k][0], c.uv_b[k][1]) - c.points[k]).norm()});
   } else {
-    for (const auto& c : r.contacts)
+    for (const auto& c : r.contacts) {
+      if (c.depth > 0.0) continue;  // penetration: b's deepest point and its foot on a
       worst = std::max({worst, (argil::evaluate(a, c.uv_a[0], c.uv_a[1]) - c.point).norm(),
                         (argil::evaluate(b, c.uv_b[0], c.uv_b[1]) - c.point).norm()});
+    }
   }
   return worst;
 }
@@ -298,10 +300,19 @@ TEST_CASE(
           CHECK((gap <= 1e-10 * size || gap <= 2 * eps / 3));
         }
     }
-    // Every contact pairs surface points at most eps/3 + eps + eps/3 apart.
-    for (const auto& c : r.contacts)
-      CHECK((argil::evaluate(a, c.uv_a[0], c.uv_a[1]) - argil::evaluate(b, c.uv_b[0], c.uv_b[1]))
-                .norm() <= 5 * eps / 3 * (1 + 1e-9));
+    // Every contact pairs surface points at most eps/3 + eps + eps/3 apart,
+    // but penetration contacts: b's point lies behind a, depth from its foot.
+    for (const auto& c : r.contacts) {
+      const Eigen::Vector3d on_a = argil::evaluate(a, c.uv_a[0], c.uv_a[1]);
+      const Eigen::Vector3d on_b = argil::evaluate(b, c.uv_b[0], c.uv_b[1]);
+      if (c.depth > 0.0) {
+        CHECK(std::abs((on_b - on_a).norm() - c.depth) <= 1e-9 * size);
+        CHECK((on_b - on_a).dot(c.normal) < 0.0);
+        CHECK(c.point == on_a);
+        continue;
+      }
+      CHECK((on_a - on_b).norm() <= 5 * eps / 3 * (1 + 1e-9));
+    }
     if (kind == 0) {
       const auto truth = brute_force_crossings(a, b, 30);
       if (!truth.empty()) ++crossing_pairs;

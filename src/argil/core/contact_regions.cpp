@@ -22,6 +22,62 @@ int find(std::vector<int>& parent, int i) {
   return i;
 }
 
+/// Renumbers regions by their deepest contact (deepest first; ties keep the
+/// lower id) and sorts by region, then depth (deepest first), then uv_a, so
+/// the order is deterministic. `contact_of` gives an item's contact.
+template <class Item, class ContactOf>
+void rank_and_sort(std::vector<Item>& items, int regions, ContactOf contact_of) {
+  std::vector<double> deepest(static_cast<std::size_t>(regions),
+                              -std::numeric_limits<double>::infinity());
+  for (Item& item : items) {
+    const Contact& c = contact_of(item);
+    deepest[static_cast<std::size_t>(c.region)] =
+        std::max(deepest[static_cast<std::size_t>(c.region)], c.depth);
+  }
+  std::vector<int> order(static_cast<std::size_t>(regions));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return deepest[static_cast<std::size_t>(a)] > deepest[static_cast<std::size_t>(b)];
+  });
+  std::vector<int> rank(static_cast<std::size_t>(regions));
+  for (int r = 0; r < regions; ++r)
+    rank[static_cast<std::size_t>(order[static_cast<std::size_t>(r)])] = r;
+  for (Item& item : items) {
+    Contact& c = contact_of(item);
+    c.region = rank[static_cast<std::size_t>(c.region)];
+  }
+  std::stable_sort(items.begin(), items.end(), [&](const Item& x, const Item& y) {
+    const Contact& a = contact_of(x);
+    const Contact& b = contact_of(y);
+    if (a.region != b.region) return a.region < b.region;
+    if (a.depth != b.depth) return a.depth > b.depth;
+    return std::tie(a.uv_a[0], a.uv_a[1]) < std::tie(b.uv_a[0], b.uv_a[1]);
+  });
+}
+
+/// Keeps every region's deepest (first) contact, then fills up to
+/// max_contacts in order; the kept contacts stay grouped by region.
+void trim(std::vector<Contact>& contacts, int max_contacts) {
+  std::vector<bool> keep(contacts.size(), false);
+  int kept = 0;
+  for (std::size_t i = 0; i < contacts.size() && kept < max_contacts; ++i) {
+    if (i == 0 || contacts[i].region != contacts[i - 1].region) {
+      keep[i] = true;
+      ++kept;
+    }
+  }
+  for (std::size_t i = 0; i < contacts.size() && kept < max_contacts; ++i) {
+    if (!keep[i]) {
+      keep[i] = true;
+      ++kept;
+    }
+  }
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < contacts.size(); ++i)
+    if (keep[i]) contacts[next++] = contacts[i];
+  contacts.resize(next);
+}
+
 }  // namespace
 
 void group_regions(std::vector<LeafContact>& leaves, int max_contacts, CollisionResult& out) {
@@ -54,47 +110,20 @@ void group_regions(std::vector<LeafContact>& leaves, int max_contacts, Collision
     leaves[static_cast<std::size_t>(i)].contact.region =
         region_of_root[static_cast<std::size_t>(root)];
   }
-  std::vector<double> deepest(static_cast<std::size_t>(regions),
-                              -std::numeric_limits<double>::infinity());
-  for (const LeafContact& l : leaves)
-    deepest[static_cast<std::size_t>(l.contact.region)] =
-        std::max(deepest[static_cast<std::size_t>(l.contact.region)], l.contact.depth);
-  // Regions by deepest point, then contacts by depth; ties by parameters so the
-  // order is deterministic.
-  std::vector<int> order(static_cast<std::size_t>(regions));
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return deepest[static_cast<std::size_t>(a)] > deepest[static_cast<std::size_t>(b)];
-  });
-  std::vector<int> rank(static_cast<std::size_t>(regions));
-  for (int r = 0; r < regions; ++r)
-    rank[static_cast<std::size_t>(order[static_cast<std::size_t>(r)])] = r;
-  for (LeafContact& l : leaves) l.contact.region = rank[static_cast<std::size_t>(l.contact.region)];
-  std::stable_sort(leaves.begin(), leaves.end(), [](const LeafContact& a, const LeafContact& b) {
-    if (a.contact.region != b.contact.region) return a.contact.region < b.contact.region;
-    if (a.contact.depth != b.contact.depth) return a.contact.depth > b.contact.depth;
-    return std::tie(a.contact.uv_a[0], a.contact.uv_a[1]) <
-           std::tie(b.contact.uv_a[0], b.contact.uv_a[1]);
-  });
   out.region_count = regions;
-  // Keep every region's deepest contact, then fill up to max_contacts in
-  // order; the kept contacts stay grouped by region.
-  std::vector<bool> keep(leaves.size(), false);
-  int kept = 0;
-  for (std::size_t i = 0; i < leaves.size() && kept < max_contacts; ++i) {
-    if (i == 0 || leaves[i].contact.region != leaves[i - 1].contact.region) {
-      keep[i] = true;
-      ++kept;
-    }
-  }
-  for (std::size_t i = 0; i < leaves.size() && kept < max_contacts; ++i) {
-    if (!keep[i]) {
-      keep[i] = true;
-      ++kept;
-    }
-  }
-  for (std::size_t i = 0; i < leaves.size(); ++i)
-    if (keep[i]) out.contacts.push_back(leaves[i].contact);
+  rank_and_sort(
+      leaves, regions, [](auto& l) -> auto& { return l.contact; });
+  std::vector<Contact> contacts;
+  contacts.reserve(leaves.size());
+  for (const LeafContact& l : leaves) contacts.push_back(l.contact);
+  trim(contacts, max_contacts);
+  out.contacts.insert(out.contacts.end(), contacts.begin(), contacts.end());
+}
+
+void rank_regions(std::vector<Contact>& contacts, int region_count, int max_contacts) {
+  rank_and_sort(
+      contacts, region_count, [](auto& c) -> auto& { return c; });
+  trim(contacts, max_contacts);
 }
 
 }  // namespace argil

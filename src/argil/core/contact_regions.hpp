@@ -27,4 +27,9 @@ struct LeafContact {
 /// in order. Sets out.region_count. Reorders `leaves`.
 void group_regions(std::vector<LeafContact>& leaves, int max_contacts, CollisionResult& out);
 
+/// The ordering and trimming step of group_regions on contacts that already
+/// carry region ids in [0, region_count): for queries that add contacts to
+/// regions after grouping (surface-pair penetration).
+void rank_regions(std::vector<Contact>& contacts, int region_count, int max_contacts);
+
 }  // namespace argil

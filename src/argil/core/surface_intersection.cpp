@@ -11,6 +11,8 @@
 
 #include "argil/core/contact_regions.hpp"
 #include "argil/core/evaluate.hpp"
+#include "argil/core/surface_penetration.hpp"
+#include "argil/core/triangle_distance.hpp"
 #include "argil/core/triangle_intersection.hpp"
 
 namespace argil {
@@ -24,7 +26,25 @@ struct View {
   double radius;
   Eigen::Vector3d lo, hi;
   bool flat;
+  /// Nodes only: the patch lies within `flatness` of its two corner
+  /// triangles (c00, c10, c11), (c00, c11, c01); +inf for blocks.
+  double flatness = std::numeric_limits<double>::infinity();
+  std::array<Eigen::Vector3d, 4> corners{};
 };
+
+/// A lower bound on the distance from anything in `sphere` to the patch of
+/// `node`: the sphere centre's distance to the node's corner triangles, less
+/// the sphere radius and the node's flatness. Far tighter than the node's own
+/// sphere when the patch is nearly flat and wide (a plane against a small
+/// tool), where sphere and box tests cannot separate what lies near its plane.
+double gap_to_flat_patch(const View& node, const View& sphere) {
+  if (!std::isfinite(node.flatness)) return -std::numeric_limits<double>::infinity();
+  const auto& c = node.corners;
+  const double to_triangles =
+      std::min((closest_point_on_triangle(sphere.center, c[0], c[1], c[3]) - sphere.center).norm(),
+               (closest_point_on_triangle(sphere.center, c[0], c[3], c[2]) - sphere.center).norm());
+  return to_triangles - sphere.radius - node.flatness;
+}
 
 /// Entries of one side: blocks as -(id + 1), hierarchy nodes as id >= 0.
 class Side {
@@ -43,7 +63,7 @@ class Side {
     // within 2 r of each other whatever the flatness bound says.
     const bool flat =
         b.flatness <= flat_tolerance_ || 2.0 * b.radius <= flat_tolerance_ || n.level >= max_level_;
-    return {b.center, b.radius, b.box.min, b.box.max, flat};
+    return {b.center, b.radius, b.box.min, b.box.max, flat, b.flatness, b.corners};
   }
 
   /// Entry of the block's single element, or the block itself.
@@ -104,6 +124,53 @@ bool farther_than(const Triangle& a, const Triangle& b, double eps) {
     return std::min({d0, d1, d2}) > limit || std::max({d0, d1, d2}) < -limit;
   };
   return beyond_plane(a, b) || beyond_plane(b, a);
+}
+
+/// True when every corner triangle of node a is more than eps + both
+/// flatness bounds from every corner triangle of node b (cheap tests only),
+/// so the patches are more than eps apart. Separates tilted thin patches
+/// that sphere and axis-aligned box tests cannot.
+bool triangles_farther_than(const View& a, const View& b, double eps) {
+  const double margin = eps + a.flatness + b.flatness;
+  const auto& p = a.corners;
+  const auto& q = b.corners;
+  const std::array<Triangle, 2> ta{Triangle{p[0], p[1], p[3]}, Triangle{p[0], p[3], p[2]}};
+  const std::array<Triangle, 2> tb{Triangle{q[0], q[1], q[3]}, Triangle{q[0], q[3], q[2]}};
+  for (const Triangle& x : ta)
+    for (const Triangle& y : tb)
+      if (!farther_than(x, y, margin)) return false;
+  return true;
+}
+
+/// Adds each crossing region's deepest point of b behind a (if any) to its
+/// region: `contacts` are grouped by region, untrimmed.
+void add_penetration_contacts(const BSplineSurface& a, const BSplineSurface& b,
+                              std::vector<Contact>& contacts) {
+  const std::size_t grouped = contacts.size();
+  for (std::size_t begin = 0; begin < grouped;) {
+    std::size_t end = begin;
+    bool crossing = false;
+    while (end < grouped && contacts[end].region == contacts[begin].region) {
+      crossing = crossing || contacts[end].depth >= 0.0;
+      ++end;
+    }
+    const std::span<const Contact> region(contacts.data() + begin, end - begin);
+    const Penetration deepest = crossing ? deepest_penetration(a, b, region) : Penetration{};
+    if (deepest.found) {
+      Contact c;
+      const SurfaceDerivatives d = evaluate_derivatives(a, deepest.uv_a[0], deepest.uv_a[1], 1);
+      c.point = d.point;
+      c.uv_a = deepest.uv_a;
+      c.uv_b = deepest.uv_b;
+      c.normal = unit_normal(d);
+      c.tangent_u = d.du;
+      c.tangent_v = d.dv;
+      c.depth = deepest.depth;
+      c.region = contacts[begin].region;
+      contacts.push_back(c);  // may reallocate: `region` is not used after this
+    }
+    begin = end;
+  }
 }
 
 LeafTriangles leaf_triangles(const HierarchyNode& n) {
@@ -392,6 +459,12 @@ CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb,
     // eps, nothing in it can cross or touch within eps.
     if ((va.center - vb.center).norm() > va.radius + vb.radius + eps) continue;
     if (((va.lo - vb.hi).array() > eps).any() || ((vb.lo - va.hi).array() > eps).any()) continue;
+    // A nearly flat side bounds by its triangles (worth it when flatness is
+    // well below its radius).
+    const bool thin_a = va.flatness < 0.5 * va.radius, thin_b = vb.flatness < 0.5 * vb.radius;
+    if (thin_a && gap_to_flat_patch(va, vb) > eps) continue;
+    if (thin_b && gap_to_flat_patch(vb, va) > eps) continue;
+    if (thin_a && thin_b && triangles_farther_than(va, vb, eps)) continue;
     if (!(va.flat && vb.flat)) {
       // Split the side that is not flat; the larger sphere when neither is.
       const bool split_a = !va.flat && (vb.flat || va.radius >= vb.radius);
@@ -521,7 +594,14 @@ CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb,
     c.tangent_v = d.dv;
     leaves.push_back(p.leaf);
   }
-  group_regions(leaves, request.max_contacts, result);
+  if (!request.compute_depth) {
+    group_regions(leaves, request.max_contacts, result);
+    return result;
+  }
+  // Penetration needs each region's full extent, so trim only after adding it.
+  group_regions(leaves, std::numeric_limits<int>::max(), result);
+  add_penetration_contacts(a, b, result.contacts);
+  rank_regions(result.contacts, result.region_count, request.max_contacts);
   return result;
 }
 
