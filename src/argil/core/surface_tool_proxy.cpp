@@ -44,7 +44,8 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<SurfaceHierarchy*>& su
   out.per_surface.resize(surfaces.size());
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
     CollisionResult r =
-        collide(*surfaces[b], posed_, {.tolerance = eps_, .max_contacts = 64, .refine = false});
+        collide(*surfaces[b], posed_,
+                {.tolerance = eps_, .max_contacts = 64, .refine = false, .compute_depth = false});
     out.crosses = out.crosses || !r.curves.empty();
     for (const Contact& c : r.contacts) {
       out.crosses = out.crosses || c.depth >= 0.0;
