@@ -446,3 +446,37 @@ TEST_CASE("conforming contact: leaf pairs stop growing with depth once the flatn
   CHECK(leaf_pairs[n - 1] < 16 * leaf_pairs[4]);
   WARN("conforming contact leaf pairs by max level: " << ::Catch::Detail::stringify(leaf_pairs));
 }
+
+TEST_CASE("the first-crossing test agrees with the full query on crossing and on near pairs") {
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double size = 100.0, eps = 1e-3 * size;
+  int crossing = 0, clear = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const BSplineSurface a = argil::test::graph_surface(rng, size, 2.0, 0.0, 4, 3);
+    BSplineSurface b = argil::test::graph_surface(rng, size, 2.0, 0.0, 4, 3);
+    // Offsets from crossing to a gap near eps to clearly apart.
+    b.control_points.col(2).array() += (trial % 3 == 0 ? 4.5 : 8.0 * (unit(rng) - 0.5));
+    auto ha = hierarchy_for(a);
+    auto hb = hierarchy_for(b);
+    const CollisionResult full = argil::collide(
+        ha, hb,
+        {.tolerance = eps, .max_contacts = 1 << 20, .refine = false, .compute_depth = false});
+    bool full_crosses = !full.curves.empty();
+    for (const auto& c : full.contacts) full_crosses = full_crosses || c.depth >= 0.0;
+    const CollisionResult first = argil::collide(ha, hb,
+                                                 {.tolerance = eps,
+                                                  .max_contacts = 1,
+                                                  .refine = false,
+                                                  .compute_depth = false,
+                                                  .first_crossing_only = true});
+    INFO("trial " << trial);
+    CHECK((!first.contacts.empty()) == full_crosses);
+    CHECK(first.contacts.size() <= 1);
+    CHECK(first.counters.leaf_pairs <= full.counters.leaf_pairs);
+    for (const auto& c : first.contacts) CHECK(c.depth == 0.0);
+    (full_crosses ? crossing : clear) += 1;
+  }
+  CHECK(crossing >= 40);
+  CHECK(clear >= 40);
+}

@@ -22,6 +22,11 @@ struct CollisionRequest {
   /// A node at this level counts as flat whatever its flatness bound, so a
   /// level below the one eps needs trades the eps guarantee for time.
   int max_level = SurfaceHierarchy::kMaxLevel;
+  /// Surface-surface queries: a yes/no crossing test. The descent stops at the
+  /// first leaf pair whose triangles cross (the result then holds that one
+  /// contact, with depth 0, and its segments); near-touches are not looked for.
+  /// An empty result means no crossing.
+  bool first_crossing_only = false;
 };
 
 /// A polyline along the intersection of two surfaces: points [mm] and their

@@ -517,7 +517,7 @@ CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb,
       }
     }
     // No crossing: the leaf pair is a contact when its triangles come within eps.
-    for (std::size_t i = 0; i < 2 && !crossing; ++i) {
+    for (std::size_t i = 0; i < 2 && !crossing && !request.first_crossing_only; ++i) {
       for (std::size_t j = 0; j < 2; ++j) {
         if (farther_than(la.triangles[i], lb.triangles[j], eps)) continue;
         const TriangleDistance d = triangle_distance(la.triangles[i], lb.triangles[j]);
@@ -538,6 +538,7 @@ CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb,
     contact.leaf.v0 = la.v0;
     contact.leaf.v1 = la.v1;
     pending.push_back(contact);
+    if (request.first_crossing_only) break;  // only crossings get here in that mode
   }
 
   const BSplineSurface& a = ha.surface();
@@ -594,7 +595,7 @@ CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb,
     c.tangent_v = d.dv;
     leaves.push_back(p.leaf);
   }
-  if (!request.compute_depth) {
+  if (!request.compute_depth || request.first_crossing_only) {
     group_regions(leaves, request.max_contacts, result);
     return result;
   }

@@ -60,7 +60,18 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<SurfaceHierarchy*>& su
 
 bool SurfaceToolProxy::crosses(const std::vector<SurfaceHierarchy*>& surfaces,
                                const ToolPose& pose) {
-  return contacts(surfaces, pose).crosses;
+  place(pose);
+  // A yes/no test: the descent stops at the first crossing leaf pair.
+  const CollisionRequest request{.tolerance = eps_,
+                                 .max_contacts = 1,
+                                 .refine = false,
+                                 .compute_depth = false,
+                                 .first_crossing_only = true};
+  for (SurfaceHierarchy* surface : surfaces) {
+    const CollisionResult r = collide(*surface, posed_, request);
+    if (!r.contacts.empty() || !r.curves.empty()) return true;
+  }
+  return false;
 }
 
 ToolPose SurfaceToolProxy::advance(const std::vector<SurfaceHierarchy*>& surfaces,
