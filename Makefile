@@ -1,7 +1,7 @@
 # Argil: two commands on a fresh Debian 12 machine.
 #   make demo   installs what is missing, builds, runs the bundled example
 #   make test   installs what is missing, builds, runs the whole suite (ctest)
-# Also: make bench, make test-sanitize, make format, make clean.
+# Also: make bench, make soak, make test-sanitize, make format, make clean.
 
 BUILD      ?= build
 BENCH_BUILD ?= build-bench
@@ -13,7 +13,7 @@ PACKAGES := g++ make cmake ninja-build libeigen3-dev libocct-data-exchange-dev l
             libassimp-dev nlohmann-json3-dev catch2
 BENCH_PACKAGES := libbenchmark-dev libfcl-dev libsisl-dev
 
-.PHONY: deps bench-deps configure build test demo bench test-sanitize format clean
+.PHONY: deps bench-deps configure build test demo bench soak test-sanitize format clean
 
 # Installs only the Debian packages that are missing; never touches apt otherwise.
 deps:
@@ -39,6 +39,15 @@ bench: bench-deps
 	  -DARGIL_BUILD_BENCH=ON -DARGIL_WERROR=ON $(CMAKE_ARGS)
 	@cmake --build $(BENCH_BUILD) -j $(JOBS)
 	@for b in $(BENCH_BUILD)/tests/bench/bench_*; do echo "== $$b"; $$b || exit 1; done
+
+# 1,000,000 ticks of random strokes through the full haptic tick (Release):
+# no NaN, no energy or memory growth; prints the peak RSS.
+SOAK_TICKS ?= 1000000
+soak: bench-deps
+	@cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DARGIL_BUILD_TESTS=OFF \
+	  -DARGIL_BUILD_BENCH=ON -DARGIL_WERROR=ON $(CMAKE_ARGS)
+	@cmake --build $(BENCH_BUILD) -j $(JOBS) --target argil_soak
+	@$(BENCH_BUILD)/tests/soak/argil_soak $(SOAK_TICKS) 16 sphere 1
 
 test-sanitize: deps
 	@# Debug keeps assertions; -O1 keeps Eigen-heavy tests fast enough under ASan.
