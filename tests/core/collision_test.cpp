@@ -247,6 +247,42 @@ TEST_CASE("after control points move, queries match a freshly built hierarchy (n
   }
 }
 
+TEST_CASE("a node budget keeps memory bounded without changing any result") {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  BSplineSurface s = argil::test::asymmetric_surface(true);
+  argil::SurfaceHierarchy bounded = hierarchy_of(s);
+  argil::SurfaceHierarchy grown = hierarchy_of(s);
+  bounded.set_node_budget(bounded.roots().size() + 40);
+  grown.set_node_budget(std::size_t{1} << 30);
+  std::size_t largest = 0;
+  for (int tick = 0; tick < 60; ++tick) {
+    s.control_points.col(2).array() += 0.01 * std::sin(0.3 * tick);
+    bounded.set_control_points(s.control_points, s.weights);
+    grown.set_control_points(s.control_points, s.weights);
+    // The tool wanders, so the grown hierarchy keeps reaching new places.
+    const Eigen::Vector3d at = argil::evaluate(s, unit(rng), unit(rng));
+    const auto tool = argil::make_sphere(at + Eigen::Vector3d(0, 0, 1.5), 2.0);
+    const auto a = argil::collide(bounded, *tool, {.tolerance = 1e-3});
+    const auto b = argil::collide(grown, *tool, {.tolerance = 1e-3});
+    INFO("tick " << tick);
+    REQUIRE(a.contacts.size() == b.contacts.size());
+    for (std::size_t k = 0; k < a.contacts.size(); ++k) {
+      CHECK(a.contacts[k].point == b.contacts[k].point);
+      CHECK(a.contacts[k].depth == b.contacts[k].depth);
+    }
+    const auto pa = argil::closest_point(bounded, at), pb = argil::closest_point(grown, at);
+    INFO("bounded " << pa.point.transpose() << " d " << pa.distance << " grown " << pb.point.transpose() << " d " << pb.distance);
+    CHECK(pa.point == pb.point);
+    largest = std::max(largest, bounded.node_count());
+    // After set_control_points the pool is within budget (queries may grow it again).
+    CHECK((tick == 0 || bounded.node_count() <= bounded.node_budget() + 4000));
+  }
+  CHECK(grown.node_count() > bounded.node_budget());  // the budget was exercised
+  bounded.release_nodes();
+  CHECK(bounded.node_count() == bounded.roots().size());
+}
+
 TEST_CASE("a rigid motion of surface and tool moves the contacts with it") {
   const BSplineSurface s = argil::test::asymmetric_surface(true);
   const Eigen::Vector3d centre = argil::evaluate(s, 0.6, 0.2) + Eigen::Vector3d(0.3, -0.2, 1.5);

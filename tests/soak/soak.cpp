@@ -2,7 +2,7 @@
 // haptic tick. Fails on any NaN or Inf, on energy that keeps growing, or on
 // memory that keeps growing; prints the peak RSS.
 //
-//   argil_soak [ticks] [poles] [sphere|bspline] [seed]
+//   argil_soak [ticks] [poles] [sphere|bspline] [seed] [node budget]
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -115,6 +115,7 @@ int main(int argc, char** argv) {
   const int poles = argc > 2 ? std::atoi(argv[2]) : 16;
   const bool sphere = argc > 3 ? std::string(argv[3]) != "bspline" : true;
   const std::uint64_t seed = argc > 4 ? std::strtoull(argv[4], nullptr, 10) : 1;
+  const long budget = argc > 5 ? std::atol(argv[5]) : 0;  // 0: the hierarchy's default
   if (ticks < 10 || poles < 4) {
     std::fprintf(stderr, "usage: argil_soak [ticks >= 10] [poles >= 4] [sphere|bspline] [seed]\n");
     return 2;
@@ -140,11 +141,13 @@ int main(int argc, char** argv) {
     return 2;
   }
   argil::HapticWorld& w = world.value();
+  if (budget > 0) w.hierarchy(0).set_node_budget(static_cast<std::size_t>(budget));
   StrokeScript script(rest, seed, sphere ? 5.0 : 0.0);
 
   constexpr int kDeciles = 10;
   std::vector<double> energy_max(kDeciles, 0.0);
   std::vector<long> rss(kDeciles, 0);
+  std::vector<std::size_t> nodes(kDeciles, 0);
   const long per_decile = ticks / kDeciles;
   for (long t = 0; t < ticks; ++t) {
     const argil::TickResult r = w.step(script.sample(), kDt);
@@ -165,14 +168,18 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "soak: tick %ld: control points not finite\n", t);
       return 1;
     }
-    if ((t + 1) % per_decile == 0) rss[static_cast<std::size_t>(decile)] = resident_kb();
+    if ((t + 1) % per_decile == 0) {
+      rss[static_cast<std::size_t>(decile)] = resident_kb();
+      nodes[static_cast<std::size_t>(decile)] = w.hierarchy(0).node_count();
+    }
   }
 
   std::printf("soak: %ld ticks, %dx%d, %s tool, seed %llu\n", ticks, poles, poles,
               sphere ? "sphere" : "bspline", static_cast<unsigned long long>(seed));
   for (int d = 0; d < kDeciles; ++d)
-    std::printf("  decile %d: max energy %.4g mJ, RSS %ld kB\n", d,
-                energy_max[static_cast<std::size_t>(d)], rss[static_cast<std::size_t>(d)]);
+    std::printf("  decile %d: max energy %.4g mJ, RSS %ld kB, hierarchy nodes %zu\n", d,
+                energy_max[static_cast<std::size_t>(d)], rss[static_cast<std::size_t>(d)],
+                nodes[static_cast<std::size_t>(d)]);
   std::printf("  peak RSS %ld kB\n", peak_rss_kb());
   // Strokes are drawn from one distribution, so energy is stationary: a last
   // decile far above every earlier one means growth. Memory must stay flat
@@ -183,9 +190,14 @@ int main(int argc, char** argv) {
                  energy_max.back(), before);
     return 1;
   }
-  if (rss.back() > rss[1] + 4096) {
-    std::fprintf(stderr, "soak: memory grows: %ld kB at the end against %ld kB early\n", rss.back(),
-                 rss[1]);
+  // Flat memory: the hierarchy's node budget caps the lazily grown nodes, so
+  // after the first half (which holds the warm-up to the budget) the resident
+  // size must not climb above what it reached there.
+  const long first_half = *std::max_element(rss.begin(), rss.begin() + kDeciles / 2);
+  const long second_half = *std::max_element(rss.begin() + kDeciles / 2, rss.end());
+  if (second_half > first_half + 4096) {
+    std::fprintf(stderr, "soak: memory grows: %ld kB late against %ld kB in the first half\n",
+                 second_half, first_half);
     return 1;
   }
   return 0;

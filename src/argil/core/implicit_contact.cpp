@@ -195,10 +195,28 @@ ClosestPoint closest_point(SurfaceHierarchy& h, const Eigen::Vector3d& p,
     }
     return std::max(0.0, lower);
   };
-  // Entries: blocks as -(id + 1), hierarchy nodes as id >= 0.
-  using Entry = std::pair<double, int>;  // lower bound, entry
+  // Entries: blocks as -(id + 1), hierarchy nodes as id >= 0. Equal lower
+  // bounds (0 for every node holding p) are ordered by the node's place in
+  // the tree, not its id, so the answer does not depend on the order in which
+  // earlier queries created nodes (ids change when the pool is released).
+  struct Entry {
+    double lower;
+    int level;  // -1 for blocks
+    double u0, v0;
+    int entry;
+    bool operator>(const Entry& o) const {
+      return std::tie(lower, level, u0, v0, entry) >
+             std::tie(o.lower, o.level, o.u0, o.v0, o.entry);
+    }
+  };
+  const auto block_entry = [](double lower, int block) {
+    return Entry{lower, -1, static_cast<double>(block), 0.0, -block - 1};
+  };
+  const auto node_entry = [](double lower, const HierarchyNode& n, int id) {
+    return Entry{lower, n.level, n.u0, n.v0, id};
+  };
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-  queue.push({node_lower(h.block(0, &best.counters).bound), -1});
+  queue.push(block_entry(node_lower(h.block(0, &best.counters).bound), 0));
   Eigen::Vector2d best_uv(h.surface().domain_start(Direction::u),
                           h.surface().domain_start(Direction::v));
   const auto offer = [&](const Eigen::Vector3d& x, const Eigen::Vector2d& uv) {
@@ -209,20 +227,21 @@ ClosestPoint closest_point(SurfaceHierarchy& h, const Eigen::Vector3d& p,
     }
   };
   while (!queue.empty()) {
-    const auto [lower, entry] = queue.top();
+    const double lower = queue.top().lower;
+    const int entry = queue.top().entry;
     queue.pop();
     if (lower >= best.distance - eps) break;  // nothing left beats the best by eps
     if (entry < 0) {
       const ElementBlock& block = h.block(-entry - 1, &best.counters);
       if (block.element_node >= 0) {
         const HierarchyNode& n = h.node(block.element_node, &best.counters);
-        queue.push({node_lower(n.bound), block.element_node});
+        queue.push(node_entry(node_lower(n.bound), n, block.element_node));
         continue;
       }
       for (int c : block.children) {
         if (c < 0) continue;
         const double child_lower = node_lower(h.block(c, &best.counters).bound);
-        if (child_lower < best.distance - eps) queue.push({child_lower, -c - 1});
+        if (child_lower < best.distance - eps) queue.push(block_entry(child_lower, c));
       }
       continue;
     }
@@ -246,8 +265,9 @@ ClosestPoint closest_point(SurfaceHierarchy& h, const Eigen::Vector3d& p,
     for (int hu = 0; hu < 2; ++hu) {
       for (int hv = 0; hv < 2; ++hv) {
         const int c = h.child(id, hu, hv);
-        const double child_lower = node_lower(h.node(c, &best.counters).bound);
-        if (child_lower < best.distance - eps) queue.push({child_lower, c});
+        const HierarchyNode& child = h.node(c, &best.counters);
+        const double child_lower = node_lower(child.bound);
+        if (child_lower < best.distance - eps) queue.push(node_entry(child_lower, child, c));
       }
     }
   }

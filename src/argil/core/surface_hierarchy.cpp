@@ -102,6 +102,13 @@ void SurfaceHierarchy::set_control_points(const ControlNet& points,
   surface_.control_points = points;
   if (weights.size() > 0) surface_.weights = weights;
   ++version_;
+  if (nodes_.size() > node_budget_) release_nodes();
+}
+
+void SurfaceHierarchy::release_nodes() {
+  // Roots are the first nodes (build() creates them before any child).
+  nodes_.resize(roots_.size());
+  for (HierarchyNode& root : nodes_) root.children = {-1, -1, -1, -1};
 }
 
 void SurfaceHierarchy::refresh(int id, QueryCounters* counters) {

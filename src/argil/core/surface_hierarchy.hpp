@@ -79,6 +79,15 @@ class SurfaceHierarchy {
 
   /// Number of nodes created so far (for tests and memory accounting).
   std::size_t node_count() const { return nodes_.size(); }
+  /// Memory bound: when set_control_points finds more nodes than this, it
+  /// drops every node below the roots (queries grow them again where they
+  /// reach). On a deforming surface every node goes stale each tick anyway, so
+  /// this costs allocations only, never results: a query gives the same answer
+  /// on a collapsed hierarchy as on a grown one.
+  void set_node_budget(std::size_t nodes) { node_budget_ = nodes; }
+  std::size_t node_budget() const { return node_budget_; }
+  /// Drops every node below the roots now.
+  void release_nodes();
   /// Deepest level a query may split to; below it a node is treated as a leaf
   /// whatever its flatness (guards against endless refinement at degeneracies).
   static constexpr int kMaxLevel = 24;
@@ -94,6 +103,7 @@ class SurfaceHierarchy {
   std::vector<HierarchyNode> nodes_;
   std::vector<int> roots_;
   std::vector<ElementBlock> blocks_;
+  std::size_t node_budget_ = std::size_t{1} << 15;  // about 25 MB of bicubic nodes
 };
 
 }  // namespace argil
