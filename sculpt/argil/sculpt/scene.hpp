@@ -1,0 +1,100 @@
+#pragma once
+// A sculpting scene (docs/formats.md, "argil.scene" version 1): which faces of
+// which files are modelled and how (rigid or deformable, material, boundary
+// conditions), the tools, the tolerance eps, the haptic rate and the outputs.
+// Loading checks every field and names the bad one; it reads no model file.
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "argil/core/status.hpp"
+
+namespace argil::sculpt {
+
+/// The "format" value of a scene file and the one schema version this build reads.
+inline constexpr std::string_view kSceneFormatName = "argil.scene";
+inline constexpr int kSceneFormatVersion = 1;
+
+/// Material of a deformable model (argil::Material; units in docs/formats.md).
+struct MaterialSpec {
+  double density = 1e-6;         // [kg/mm^3]
+  double stiffness = 1.0;        // spring stiffness [N/mm]
+  double damping = 0.01;         // [N s/mm]
+  double anchor_stiffness = 0.1; // pull to the rest state [N/mm]
+  double yield = std::numeric_limits<double>::infinity();  // [mm]; infinite: elastic
+  double friction = 0.0;         // Coulomb coefficient, >= 0
+};
+
+/// Which edges of the parameter domain are held fixed (u = u_min: fixed_u0, ...).
+struct BoundarySpec {
+  bool fixed_u0 = false, fixed_u1 = false, fixed_v0 = false, fixed_v1 = false;
+  bool fixed_corners = false;
+};
+
+/// One model: faces of a CAD or JSON file.
+struct ModelSpec {
+  std::string name;               // unique in the scene; names the output files
+  std::filesystem::path file;     // resolved against the scene file's folder
+  std::vector<int> faces;         // face indices in the file; empty: every face
+  bool deformable = true;         // rigid models collide but never move
+  MaterialSpec material;          // deformable models only
+  BoundarySpec boundary;          // deformable models only
+};
+
+enum class ToolType { sphere, capsule, box, ellipsoid, torus, bspline, point };
+const char* to_string(ToolType type);
+
+/// A tool, in its own frame T (origin at the device point, z along the device
+/// axis); the device pose X_WT places it in the world.
+struct ToolSpec {
+  std::string name;
+  ToolType type = ToolType::sphere;
+  double radius = 0.0;            // sphere, capsule [mm]
+  double length = 0.0;            // capsule: segment from -length/2 to +length/2 on z [mm]
+  Eigen::Vector3d half_extents = Eigen::Vector3d::Zero();  // box [mm]
+  Eigen::Vector3d radii = Eigen::Vector3d::Zero();         // ellipsoid [mm]
+  double major_radius = 0.0, minor_radius = 0.0;           // torus [mm]
+  std::filesystem::path file;     // bspline: surface file, resolved like models
+  int face = 0;                   // bspline: face index in `file`
+};
+
+/// Spring-damper between the device and the tool proxy, and the device's force limit.
+struct CouplingSpec {
+  double stiffness = 1.0;   // [N/mm]
+  double damping = 0.002;   // [N s/mm]
+  double max_force = 10.0;  // [N]
+};
+
+/// Mesh and picture formats a run writes, and the logs.
+struct OutputSpec {
+  bool step = true, iges = true, json = true;
+  bool forces = true, contacts = true, timing = true, pictures = true;
+};
+
+struct Scene {
+  std::filesystem::path source;   // the scene file (empty when parsed from text)
+  std::vector<ModelSpec> models;  // at least one deformable
+  std::vector<ToolSpec> tools;    // at least one
+  double tolerance = 0.0;         // eps [mm], > 0
+  double haptic_rate = 1000.0;    // [Hz]
+  CouplingSpec coupling;
+  OutputSpec outputs;
+  std::filesystem::path script;   // default script, resolved; empty: none
+
+  /// Index of the tool called `name` (the first tool when `name` is empty); -1 if none.
+  int tool_index(std::string_view name) const;
+};
+
+/// Parses a scene document. `source_name` starts every error message; relative
+/// paths are resolved against `base_dir`. Does not open the files it names.
+Result<Scene> parse_scene(std::string_view text, const std::string& source_name,
+                          const std::filesystem::path& base_dir);
+
+/// Reads and parses a scene file; paths are relative to its folder.
+Result<Scene> read_scene(const std::filesystem::path& path);
+
+}  // namespace argil::sculpt
