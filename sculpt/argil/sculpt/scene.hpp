@@ -21,12 +21,12 @@ inline constexpr int kSceneFormatVersion = 1;
 
 /// Material of a deformable model (argil::Material; units in docs/formats.md).
 struct MaterialSpec {
-  double density = 1e-6;         // [kg/mm^3]
+  double density = 2e-5;         // areal density [kg/mm^2]
   double stiffness = 1.0;        // spring stiffness [N/mm]
-  double damping = 0.01;         // [N s/mm]
-  double anchor_stiffness = 0.1; // pull to the rest state [N/mm]
+  double damping = 1e-3;         // Rayleigh stiffness-proportional beta [s]
+  double anchor_stiffness = 1.0; // pull to the rest state [N/mm]
   double yield = std::numeric_limits<double>::infinity();  // [mm]; infinite: elastic
-  double friction = 0.0;         // Coulomb coefficient, >= 0
+  double friction = 0.3;         // Coulomb coefficient, >= 0
 };
 
 /// Which edges of the parameter domain are held fixed (u = u_min: fixed_u0, ...).

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "argil/io/json_literals.hpp"
 
@@ -141,7 +142,12 @@ std::string JsonReader::index(const std::string& path, std::size_t k) {
 }
 
 std::string format_double(double x) {
+  // The fewest significant digits (15 to 17) that read back to the same double.
   char buffer[32];
+  for (int digits = 15; digits < 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
+    if (std::strtod(buffer, nullptr) == x) return buffer;
+  }
   std::snprintf(buffer, sizeof buffer, "%.17g", x);
   return buffer;
 }

@@ -54,7 +54,7 @@ class JsonReader {
   Status error_;
 };
 
-/// Shortest text that reads back to the same double ("%.17g").
+/// Text with the fewest digits (15 to 17) that reads back to the same double.
 std::string format_double(double x);
 
 }  // namespace argil::sculpt::internal
