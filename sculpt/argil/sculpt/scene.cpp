@@ -282,30 +282,13 @@ class SceneReader {
     return v != nullptr && r_.positive(*v, JsonReader::join(path, key), out);
   }
 
-  bool lengths3(const Json& object, const std::string& path, const char* key,
-                Eigen::Vector3d& out) {
-    const Json* v = r_.member(object, path, key);
-    const std::string field = JsonReader::join(path, key);
-    if (v == nullptr || !r_.numbers(*v, field, 3, out.data())) return false;
-    for (int k = 0; k < 3; ++k) {
-      if (!(out[k] > 0.0)) {
-        return r_.fail(JsonReader::index(field, static_cast<std::size_t>(k)),
-                       "must be > 0, got " + format_double(out[k]));
-      }
-    }
-    return true;
-  }
-
   bool tool(const Json& value, const std::string& path, ToolSpec& out) {
     if (!name(value, path, out.name)) return false;
     const Json* type = r_.member(value, path, "type");
     std::string text;
     if (type == nullptr || !r_.string(*type, path + ".type", text)) return false;
     const std::pair<const char*, ToolType> types[] = {
-        {"sphere", ToolType::sphere},       {"capsule", ToolType::capsule},
-        {"box", ToolType::box},             {"ellipsoid", ToolType::ellipsoid},
-        {"torus", ToolType::torus},         {"bspline", ToolType::bspline},
-        {"point", ToolType::point}};
+        {"sphere", ToolType::sphere}, {"bspline", ToolType::bspline}, {"point", ToolType::point}};
     bool found = false;
     for (const auto& [key, t] : types) {
       if (text == key) {
@@ -315,35 +298,12 @@ class SceneReader {
     }
     if (!found) {
       return r_.fail(path + ".type", "unknown tool type \"" + text +
-                                         "\" (known: sphere, capsule, box, ellipsoid, torus, "
-                                         "bspline, point)");
+                                         "\" (known: sphere, bspline, point)");
     }
     switch (out.type) {
       case ToolType::sphere:
         return r_.only_known(value, path, {"name", "type", "radius"}) &&
                length(value, path, "radius", out.radius);
-      case ToolType::capsule:
-        return r_.only_known(value, path, {"name", "type", "radius", "length"}) &&
-               length(value, path, "radius", out.radius) &&
-               length(value, path, "length", out.length);
-      case ToolType::box:
-        return r_.only_known(value, path, {"name", "type", "half_extents"}) &&
-               lengths3(value, path, "half_extents", out.half_extents);
-      case ToolType::ellipsoid:
-        return r_.only_known(value, path, {"name", "type", "radii"}) &&
-               lengths3(value, path, "radii", out.radii);
-      case ToolType::torus:
-        if (!r_.only_known(value, path, {"name", "type", "major_radius", "minor_radius"}) ||
-            !length(value, path, "major_radius", out.major_radius) ||
-            !length(value, path, "minor_radius", out.minor_radius)) {
-          return false;
-        }
-        if (out.minor_radius >= out.major_radius) {
-          return r_.fail(path + ".minor_radius", "must be below major_radius (" +
-                                                     format_double(out.major_radius) + "), got " +
-                                                     format_double(out.minor_radius));
-        }
-        return true;
       case ToolType::bspline: {
         if (!r_.only_known(value, path, {"name", "type", "file", "face"})) return false;
         const Json* file = r_.member(value, path, "file");
@@ -405,10 +365,6 @@ class SceneReader {
 const char* to_string(ToolType type) {
   switch (type) {
     case ToolType::sphere: return "sphere";
-    case ToolType::capsule: return "capsule";
-    case ToolType::box: return "box";
-    case ToolType::ellipsoid: return "ellipsoid";
-    case ToolType::torus: return "torus";
     case ToolType::bspline: return "bspline";
     case ToolType::point: return "point";
   }

@@ -4,7 +4,6 @@
 // conditions), the tools, the tolerance eps, the haptic rate and the outputs.
 // Loading checks every field and names the bad one; it reads no model file.
 
-#include <Eigen/Core>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -45,19 +44,16 @@ struct ModelSpec {
   BoundarySpec boundary;          // deformable models only
 };
 
-enum class ToolType { sphere, capsule, box, ellipsoid, torus, bspline, point };
+enum class ToolType { sphere, bspline, point };
 const char* to_string(ToolType type);
 
-/// A tool, in its own frame T (origin at the device point, z along the device
-/// axis); the device pose X_WT places it in the world.
+/// A tool, in its own frame T (origin at the device point); the device pose
+/// X_WT places it in the world. The haptic tick (argil/core/haptic_tick.hpp)
+/// drives an implicit sphere, a rigid B-spline surface, or a point.
 struct ToolSpec {
   std::string name;
   ToolType type = ToolType::sphere;
-  double radius = 0.0;            // sphere, capsule [mm]
-  double length = 0.0;            // capsule: segment from -length/2 to +length/2 on z [mm]
-  Eigen::Vector3d half_extents = Eigen::Vector3d::Zero();  // box [mm]
-  Eigen::Vector3d radii = Eigen::Vector3d::Zero();         // ellipsoid [mm]
-  double major_radius = 0.0, minor_radius = 0.0;           // torus [mm]
+  double radius = 0.0;            // sphere [mm], centred on the tool frame origin
   std::filesystem::path file;     // bspline: surface file, resolved like models
   int face = 0;                   // bspline: face index in `file`
 };
