@@ -62,4 +62,23 @@ void BandedLU::solve_in_place(Eigen::Ref<Eigen::MatrixXd> b) const {
   }
 }
 
+void BandedLU::solve_transpose_in_place(Eigen::Ref<Eigen::MatrixXd> b) const {
+  const int n = lu_.size;
+  for (int k = 0; k < n; ++k) {  // U^T y = b: row k of U^T is column k of U
+    const int first_row = std::max(0, k - lu_.upper);
+    for (int i = first_row; i < k; ++i) {
+      const double factor = lu_.band(lu_.upper + i - k, k);
+      if (factor != 0.0) b.row(k) -= factor * b.row(i);
+    }
+    b.row(k) /= lu_.band(lu_.upper, k);
+  }
+  for (int k = n - 1; k >= 0; --k) {  // L^T x = y, unit diagonal
+    const int last_row = std::min(n - 1, k + lu_.lower);
+    for (int i = k + 1; i <= last_row; ++i) {
+      const double factor = lu_.band(lu_.upper + i - k, k);
+      if (factor != 0.0) b.row(k) -= factor * b.row(i);
+    }
+  }
+}
+
 }  // namespace argil

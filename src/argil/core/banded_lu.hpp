@@ -38,6 +38,9 @@ class BandedLU {
   int size() const { return lu_.size; }
   /// Solves A X = B in place; B has size() rows and any number of columns.
   void solve_in_place(Eigen::Ref<Eigen::MatrixXd> b) const;
+  /// Solves A^T X = B in place (U^T then L^T): the adjoint of solve_in_place,
+  /// which carries generalised forces back through a linear map.
+  void solve_transpose_in_place(Eigen::Ref<Eigen::MatrixXd> b) const;
   /// Exact 1-norm condition number ||A||_1 ||A^-1||_1 (n solves, O(n^2 bandwidth)).
   double condition_1norm() const { return condition_; }
 

@@ -140,9 +140,6 @@ ControlNet evaluate_nodes(const BSplineSurface& s, const SurfaceOperators& ops) 
   return grid.points;
 }
 
-namespace {
-
-/// Weight function sum N_i N_j w_ij at the Greville grid (ones if polynomial).
 Eigen::VectorXd weights_at_nodes(const BSplineSurface& s, const SurfaceOperators& ops) {
   const int nu = s.count(Direction::u);
   const int nv = s.count(Direction::v);
@@ -167,8 +164,6 @@ Eigen::VectorXd weights_at_nodes(const BSplineSurface& s, const SurfaceOperators
   }
   return w;
 }
-
-}  // namespace
 
 ControlNet fit_control_points(const BSplineSurface& s, const SurfaceOperators& ops,
                               const ControlNet& nodes) {
@@ -201,6 +196,39 @@ ControlNet fit_control_points(const BSplineSurface& s, const SurfaceOperators& o
     }
   }
   return control;
+}
+
+Eigen::MatrixXd fit_adjoint(const BSplineSurface& s, const SurfaceOperators& ops,
+                            const Eigen::MatrixXd& control_forces) {
+  const int nu = s.count(Direction::u);
+  const int nv = s.count(Direction::v);
+  const Eigen::Index columns = control_forces.cols();
+  assert(control_forces.rows() == static_cast<Eigen::Index>(nu) * nv);
+  // Fit = diag(1/w) (A_u^-1 (x) A_v^-1) diag(W) with W the weight function at
+  // the nodes, so Fit^T = diag(W) (A_u^-T (x) A_v^-T) diag(1/w).
+  const Eigen::VectorXd w_nodes = weights_at_nodes(s, ops);
+  Eigen::MatrixXd by_u(nu, nv * columns);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const Eigen::Index k = s.pole_index(i, j);
+      const double weight = s.is_rational() ? s.weights[k] : 1.0;
+      for (Eigen::Index c = 0; c < columns; ++c)
+        by_u(i, columns * j + c) = control_forces(k, c) / weight;
+    }
+  ops.u->collocation().solve_transpose_in_place(by_u);
+  Eigen::MatrixXd by_v(nv, nu * columns);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j)
+      for (Eigen::Index c = 0; c < columns; ++c)
+        by_v(j, columns * i + c) = by_u(i, columns * j + c);
+  ops.v->collocation().solve_transpose_in_place(by_v);
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(nu) * nv, columns);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const Eigen::Index k = s.pole_index(i, j);
+      for (Eigen::Index c = 0; c < columns; ++c) out(k, c) = w_nodes[k] * by_v(j, columns * i + c);
+    }
+  return out;
 }
 
 }  // namespace argil

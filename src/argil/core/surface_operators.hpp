@@ -53,4 +53,16 @@ ControlNet evaluate_nodes(const BSplineSurface& surface, const SurfaceOperators&
 ControlNet fit_control_points(const BSplineSurface& surface, const SurfaceOperators& ops,
                               const ControlNet& nodes);
 
+/// Weight function sum N_i N_j w_ij at the Greville grid, row i * n_v + j
+/// (ones for a polynomial surface).
+Eigen::VectorXd weights_at_nodes(const BSplineSurface& surface, const SurfaceOperators& ops);
+
+/// The transpose of fit_control_points: generalised forces on the control
+/// points ((n_u * n_v) x c, any c columns) to generalised forces on the nodes,
+/// such that Q . dP = G . dx for every node motion dx and dP = Fit(dx). A force
+/// F at S(u, v) is Q_ij = R_ij(u, v) F on the control points (R the rational
+/// basis); its node forces G sum to F and have the moment S(u, v) x F, exactly.
+Eigen::MatrixXd fit_adjoint(const BSplineSurface& surface, const SurfaceOperators& ops,
+                            const Eigen::MatrixXd& control_forces);
+
 }  // namespace argil
