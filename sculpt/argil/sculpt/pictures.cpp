@@ -3,6 +3,8 @@
 
 #include <cairo.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

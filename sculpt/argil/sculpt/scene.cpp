@@ -167,7 +167,8 @@ class SceneReader {
   }
 
   bool model(const Json& value, const std::string& path, ModelSpec& out) {
-    if (!r_.only_known(value, path, {"name", "file", "faces", "kind", "material", "boundary"})) {
+    if (!r_.only_known(value, path,
+                       {"name", "file", "faces", "kind", "material", "boundary", "friction"})) {
       return false;
     }
     if (!name(value, path, out.name)) return false;
@@ -205,6 +206,15 @@ class SceneReader {
     out.deformable = kind == "deformable";
     const Json* material = r_.member(value, path, "material", false);
     const Json* boundary = r_.member(value, path, "boundary", false);
+    if (const Json* friction = r_.member(value, path, "friction", false)) {
+      if (out.deformable) {
+        return r_.fail(path + ".friction",
+                       "only rigid models take a friction here (deformable: material.friction)");
+      }
+      if (!r_.positive(*friction, path + ".friction", out.rigid_friction, /*allow_zero=*/true)) {
+        return false;
+      }
+    }
     if (!out.deformable && (material != nullptr || boundary != nullptr)) {
       return r_.fail(path + (material != nullptr ? ".material" : ".boundary"),
                      "a rigid model has no material or boundary conditions");
@@ -221,7 +231,7 @@ class SceneReader {
     return true;
   }
 
-  bool material(const Json& value, const std::string& path, MaterialSpec& out) {
+  bool material(const Json& value, const std::string& path, Material& out) {
     if (!r_.only_known(value, path, {"density", "stiffness", "damping", "anchor_stiffness",
                                      "yield", "friction"})) {
       return false;
@@ -250,10 +260,12 @@ class SceneReader {
         return false;
       }
     }
-    return true;
+    // The physics' own documented ranges (upper bounds, minimum yield).
+    const Status range = validate(out);
+    return range.ok() || r_.fail(path, range.message);
   }
 
-  bool boundary(const Json& value, const std::string& path, BoundarySpec& out) {
+  bool boundary(const Json& value, const std::string& path, BoundaryConditions& out) {
     if (!r_.only_known(value, path, {"fixed_edges", "fixed_corners"})) return false;
     if (const Json* edges = r_.member(value, path, "fixed_edges", false)) {
       const std::string edges_path = path + ".fixed_edges";

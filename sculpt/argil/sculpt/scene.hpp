@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "argil/core/material.hpp"
 #include "argil/core/status.hpp"
 
 namespace argil::sculpt {
@@ -18,30 +19,15 @@ namespace argil::sculpt {
 inline constexpr std::string_view kSceneFormatName = "argil.scene";
 inline constexpr int kSceneFormatVersion = 1;
 
-/// Material of a deformable model (argil::Material; units in docs/formats.md).
-struct MaterialSpec {
-  double density = 2e-5;         // areal density [kg/mm^2]
-  double stiffness = 1.0;        // spring stiffness [N/mm]
-  double damping = 1e-3;         // Rayleigh stiffness-proportional beta [s]
-  double anchor_stiffness = 1.0; // pull to the rest state [N/mm]
-  double yield = std::numeric_limits<double>::infinity();  // [mm]; infinite: elastic
-  double friction = 0.3;         // Coulomb coefficient, >= 0
-};
-
-/// Which edges of the parameter domain are held fixed (u = u_min: fixed_u0, ...).
-struct BoundarySpec {
-  bool fixed_u0 = false, fixed_u1 = false, fixed_v0 = false, fixed_v1 = false;
-  bool fixed_corners = false;
-};
-
 /// One model: faces of a CAD or JSON file.
 struct ModelSpec {
   std::string name;               // unique in the scene; names the output files
   std::filesystem::path file;     // resolved against the scene file's folder
   std::vector<int> faces;         // face indices in the file; empty: every face
   bool deformable = true;         // rigid models collide but never move
-  MaterialSpec material;          // deformable models only
-  BoundarySpec boundary;          // deformable models only
+  Material material;              // deformable models only (units: material.hpp)
+  BoundaryConditions boundary;    // deformable models only
+  double rigid_friction = 0.3;    // rigid models: Coulomb coefficient against the tool
 };
 
 enum class ToolType { sphere, bspline, point };
