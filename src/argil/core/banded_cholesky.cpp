@@ -37,33 +37,56 @@ Result<BandedCholesky> BandedCholesky::factorize(SymmetricBandMatrix a) {
   return out;
 }
 
+namespace {
+
+/// The two triangular sweeps with C right-hand sides per row, C fixed so the
+/// inner loops unroll and vectorise. `l` is row-major band storage of L.
+template <int C>
+void solve_rows(const double* l, int n, int b, double* x) {
+  const int stride = b + 1;
+  for (int i = 0; i < n; ++i) {                                           // L y = b
+    const double* row = l + static_cast<std::ptrdiff_t>(i) * stride + b;  // row[k - i] = L(i, k)
+    double acc[C];
+    for (int c = 0; c < C; ++c) acc[c] = x[i * C + c];
+    for (int k = std::max(0, i - b); k < i; ++k) {
+      const double v = row[k - i];
+      for (int c = 0; c < C; ++c) acc[c] -= v * x[k * C + c];
+    }
+    const double inverse = 1.0 / row[0];
+    for (int c = 0; c < C; ++c) x[i * C + c] = acc[c] * inverse;
+  }
+  for (int i = n - 1; i >= 0; --i) {  // L^T x = y: row i of L scatters upwards
+    const double* row = l + static_cast<std::ptrdiff_t>(i) * stride + b;
+    const double inverse = 1.0 / row[0];
+    double xi[C];
+    for (int c = 0; c < C; ++c) xi[c] = (x[i * C + c] *= inverse);
+    for (int k = std::max(0, i - b); k < i; ++k) {
+      const double v = row[k - i];
+      for (int c = 0; c < C; ++c) x[k * C + c] -= v * xi[c];
+    }
+  }
+}
+
+}  // namespace
+
 void BandedCholesky::solve_in_place(RowMajorMatrix& x) const {
   const int n = l_.size();
   const int b = l_.bandwidth();
-  const Eigen::Index c = x.cols();
   assert(x.rows() == n);
-  double* data = x.data();
-  // L y = b, row by row.
-  for (int i = 0; i < n; ++i) {
-    double* xi = data + static_cast<Eigen::Index>(i) * c;
-    for (int k = std::max(0, i - b); k < i; ++k) {
-      const double l = l_.at(i, k);
-      const double* xk = data + static_cast<Eigen::Index>(k) * c;
-      for (Eigen::Index col = 0; col < c; ++col) xi[col] -= l * xk[col];
-    }
-    const double inverse = 1.0 / l_.at(i, i);
-    for (Eigen::Index col = 0; col < c; ++col) xi[col] *= inverse;
-  }
-  // L^T x = y, backwards; row i of L scatters into the rows above it.
-  for (int i = n - 1; i >= 0; --i) {
-    double* xi = data + static_cast<Eigen::Index>(i) * c;
-    const double inverse = 1.0 / l_.at(i, i);
-    for (Eigen::Index col = 0; col < c; ++col) xi[col] *= inverse;
-    for (int k = std::max(0, i - b); k < i; ++k) {
-      const double l = l_.at(i, k);
-      double* xk = data + static_cast<Eigen::Index>(k) * c;
-      for (Eigen::Index col = 0; col < c; ++col) xk[col] -= l * xi[col];
-    }
+  const double* l = l_.lower_.data();
+  switch (x.cols()) {
+    case 1:
+      return solve_rows<1>(l, n, b, x.data());
+    case 3:
+      return solve_rows<3>(l, n, b, x.data());
+    case 4:
+      return solve_rows<4>(l, n, b, x.data());
+    default:
+      for (Eigen::Index c = 0; c < x.cols(); ++c) {
+        Eigen::VectorXd column = x.col(c);
+        solve_rows<1>(l, n, b, column.data());
+        x.col(c) = column;
+      }
   }
 }
 

@@ -1,5 +1,6 @@
 #include "argil/core/mass_spring.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 

@@ -1,0 +1,235 @@
+// The haptic tick (issue 5): Coulomb stick and slip, no tunnelling at 1 m/s
+// and beyond, force clamp, elastic return and plastic dents under a tool,
+// determinism, and the B-spline tool.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+
+#include "argil/core.hpp"
+
+namespace {
+
+using argil::ControlNet;
+
+Eigen::VectorXd knots(int degree, int poles) {
+  Eigen::VectorXd k(poles + degree + 1);
+  for (Eigen::Index i = 0; i < k.size(); ++i)
+    k[i] = std::clamp(static_cast<double>(i - degree) / (poles - degree), 0.0, 1.0);
+  return k;
+}
+
+/// n x n bicubic poles `pitch` [mm] apart over (x, y), height wave * sin * cos.
+argil::BSplineSurface sheet(int n, double pitch, double wave) {
+  argil::BSplineSurface s;
+  s.degree = {3, 3};
+  s.knots = {knots(3, n), knots(3, n)};
+  s.control_points.resize(static_cast<Eigen::Index>(n) * n, 3);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      s.control_points.row(s.pole_index(i, j)) << pitch * i, pitch * j,
+          wave * std::sin(0.7 * i) * std::cos(0.5 * j);
+  return s;
+}
+
+/// Height of a surface over (x, y), found by bisection on its parameters
+/// (the sheets here are graphs over a square with x = f(u), y = g(v) monotone).
+double height(const argil::BSplineSurface& s, double x, double y) {
+  double u0 = 0, u1 = 1, v0 = 0, v1 = 1;
+  for (int i = 0; i < 60; ++i) {
+    const double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
+    const Eigen::Vector3d p = argil::evaluate(s, um, vm);
+    (p.x() < x ? u0 : u1) = um;
+    (p.y() < y ? v0 : v1) = vm;
+  }
+  return argil::evaluate(s, 0.5 * (u0 + u1), 0.5 * (v0 + v1)).z();
+}
+
+argil::HapticWorld world(const argil::ToolShape& tool, double eps = 0.01,
+                         double max_force = 100.0) {
+  argil::WorldOptions o;
+  o.tolerance = eps;
+  o.coupling = {.stiffness = 1.0, .damping = 0.0, .max_force = max_force};
+  auto w = argil::HapticWorld::create(tool, o);
+  REQUIRE(w.ok());
+  return std::move(w).value();
+}
+
+argil::DevicePose at(double x, double y, double z) { return {{x, y, z}, {1, 0, 0, 0}, true}; }
+
+}  // namespace
+
+TEST_CASE("friction: a pull below mu N sticks, above it slips to mu N", "[haptic]") {
+  const double mu = 0.5, radius = 5.0, press = 2.0;  // N = k press = 2 N, mu N = 1 N
+  for (const double pull : {0.5, 0.9, 1.5, 3.0}) {   // tangential offset [mm] = pull [N] at k = 1
+    CAPTURE(pull);
+    argil::HapticWorld w = world(argil::SphereToolShape{radius});
+    REQUIRE(w.add_rigid(sheet(10, 10.0, 0.0), mu).ok());
+    w.step(at(45, 45, 20), 1e-3);
+    for (int t = 0; t < 3; ++t) w.step(at(45, 45, radius - press), 1e-3);
+    REQUIRE(w.proxy().in_contact);
+    const argil::TickResult r = w.step(at(45 + pull, 45, radius - press), 1e-3);
+    CHECK(r.force.z() == Approx(press).epsilon(1e-3));  // N, to the projection tolerance
+    if (pull < mu * press) {
+      CHECK(r.proxy.stuck);
+      CHECK(r.proxy.position.x() == 45.0);
+      CHECK(r.force.x() == Approx(-pull).epsilon(1e-9));
+    } else {
+      CHECK_FALSE(r.proxy.stuck);
+      CHECK(r.proxy.position.x() == Approx(45 + pull - mu * press).epsilon(1e-6));
+      CHECK(-r.force.x() == Approx(mu * press).epsilon(1e-4));  // |F_t| = mu N
+    }
+  }
+}
+
+TEST_CASE("without friction the proxy slides to the device's foot on the surface", "[haptic]") {
+  argil::HapticWorld w = world(argil::SphereToolShape{4.0});
+  REQUIRE(w.add_rigid(sheet(10, 10.0, 0.0), 0.0).ok());
+  w.step(at(30, 30, 10), 1e-3);
+  w.step(at(30, 30, 1), 1e-3);
+  const argil::TickResult r = w.step(at(37, 31, 1), 1e-3);
+  CHECK((r.proxy.position - Eigen::Vector3d(37, 31, 4)).norm() < 0.01);  // within eps
+  CHECK(r.force.head<2>().norm() < 0.01);
+}
+
+TEST_CASE("a sphere sweeping at 1 m/s and 10 m/s never sinks deeper than eps", "[haptic]") {
+  const argil::BSplineSurface s = sheet(20, 10.0, 3.0);
+  const double eps = 0.01, radius = 3.0;
+  for (const double speed : {1.0, 10.0}) {  // [m/s] = [mm per 1 ms tick]
+    CAPTURE(speed);
+    argil::HapticWorld w = world(argil::SphereToolShape{radius}, eps);
+    REQUIRE(w.add_rigid(s, 0.3).ok());
+    w.step(at(20, 95, height(s, 20, 95) + 10), 1e-3);
+    for (double x = 20; x <= 170; x += speed) {
+      // The device runs 2 mm under the surface: the proxy must ride on top.
+      const argil::TickResult r = w.step(at(x, 95, height(s, x, 95) - 2.0), 1e-3);
+      CHECK(r.max_depth <= eps);
+      const argil::ClosestPoint cp = argil::closest_point(w.hierarchy(0), r.proxy.position);
+      CHECK(cp.distance >= radius - eps);
+      CHECK(cp.signed_distance > 0.0);  // still on the +z side
+    }
+  }
+}
+
+TEST_CASE("a device plunging through a sheet in one tick leaves the proxy on top", "[haptic]") {
+  const argil::BSplineSurface s = sheet(10, 10.0, 1.0);
+  for (const double radius : {2.0, 0.0}) {  // sphere and point tool
+    CAPTURE(radius);
+    argil::HapticWorld w = world(argil::SphereToolShape{radius});
+    REQUIRE(w.add_rigid(s, 0.2).ok());
+    w.step(at(41, 47, 15), 1e-3);
+    const argil::TickResult r = w.step(at(43, 46, -60), 1e-3);
+    const argil::ClosestPoint cp = argil::closest_point(w.hierarchy(0), r.proxy.position);
+    CHECK(cp.signed_distance > 0.0);
+    CHECK(cp.distance >= radius - 0.01);
+    CHECK(r.proxy.in_contact);
+    CHECK(r.force.z() > 0.0);  // pulls the hand up towards the proxy
+  }
+}
+
+TEST_CASE("the device force is clamped to max_force", "[haptic]") {
+  argil::HapticWorld w = world(argil::SphereToolShape{5.0}, 0.01, 8.0);
+  REQUIRE(w.add_rigid(sheet(10, 10.0, 0.0), 0.3).ok());
+  w.step(at(45, 45, 20), 1e-3);
+  const argil::TickResult r = w.step(at(45, 45, -100), 1e-3);
+  CHECK(r.clamped);
+  CHECK(r.force.norm() == Approx(8.0).epsilon(1e-12));
+  CHECK(r.force.z() > 0.0);
+  const argil::TickResult light = w.step(at(45, 45, 3), 1e-3);
+  CHECK_FALSE(light.clamped);
+  CHECK(light.force.z() == Approx(2.0).epsilon(1e-3));
+}
+
+TEST_CASE("a tool dents an elastic panel, which returns to rest after it leaves", "[haptic]") {
+  const argil::BSplineSurface s = sheet(10, 10.0, 0.0);
+  for (const double yield : {std::numeric_limits<double>::infinity(), 0.3}) {
+    CAPTURE(yield);
+    argil::HapticWorld w = world(argil::SphereToolShape{6.0}, 0.01, 20.0);
+    argil::Material m;
+    m.density = 1e-5;
+    m.stiffness = 0.5;
+    m.anchor_stiffness = 0.5;
+    m.damping = 0.01;
+    m.yield = yield;
+    argil::BoundaryConditions bc;
+    bc.fixed_u0 = bc.fixed_u1 = true;
+    REQUIRE(w.add_deformable(s, m, bc).ok());
+    const ControlNet original = w.deformable(0)->nodes();
+    w.step(at(45, 45, 20), 1e-3);
+    double deepest = 0.0;
+    for (int t = 0; t < 300; ++t) {
+      const argil::TickResult r = w.step(at(45, 45, 6.0 - 4.0), 1e-3);  // 4 mm into the rest
+      REQUIRE(r.status.ok());
+      CHECK(r.max_depth <= 0.01);
+      deepest = std::max(deepest, (w.deformable(0)->nodes() - original).cwiseAbs().maxCoeff());
+    }
+    CHECK(deepest > 0.2);  // the panel gave way
+    CHECK(w.proxy().in_contact);
+    for (int t = 0; t < 3000; ++t) REQUIRE(w.step(at(45, 45, 40), 1e-3).status.ok());
+    const double kept = (w.deformable(0)->nodes() - original).cwiseAbs().maxCoeff();
+    if (!std::isfinite(yield)) {
+      CHECK(kept < 1e-3);  // back to rest within 1 um
+    } else {
+      CHECK(kept > 0.1);  // the dent beyond yield stays
+      CHECK((w.deformable(0)->nodes() - w.deformable(0)->rest_nodes()).cwiseAbs().maxCoeff() <
+            1e-3);  // and it is the new rest state
+    }
+  }
+}
+
+TEST_CASE("the same inputs give bit-identical forces and surfaces", "[haptic]") {
+  const auto run = [] {
+    argil::HapticWorld w = world(argil::SphereToolShape{4.0}, 0.01, 10.0);
+    argil::Material m;
+    m.density = 1e-5;
+    m.stiffness = 2.0;
+    m.anchor_stiffness = 1.0;
+    m.yield = 0.5;
+    REQUIRE(w.add_deformable(sheet(8, 10.0, 2.0), m, {}).ok());
+    REQUIRE(w.add_rigid(sheet(4, 30.0, 0.0), 0.4).ok());  // a floor under it
+    std::vector<Eigen::Vector3d> forces;
+    for (int t = 0; t < 400; ++t) {
+      const double a = 0.01 * t;
+      forces.push_back(
+          w.step(at(35 + 10 * std::cos(a), 35 + 10 * std::sin(a), 3.0 - 2 * std::sin(3 * a)), 1e-3)
+              .force);
+    }
+    return std::make_pair(forces, w.surface(0).control_points);
+  };
+  const auto a = run();
+  const auto b = run();
+  REQUIRE(a.first.size() == b.first.size());
+  for (std::size_t i = 0; i < a.first.size(); ++i) CHECK(a.first[i] == b.first[i]);
+  CHECK(a.second == b.second);
+}
+
+TEST_CASE("a B-spline tool stops on a surface without crossing it and slides along", "[haptic]") {
+  // A bowl-shaped bicubic cap, lowest near its frame origin, 12 mm wide.
+  argil::BSplineSurface tool;
+  tool.degree = {3, 3};
+  tool.knots = {knots(3, 4), knots(3, 4)};
+  tool.control_points.resize(16, 3);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      const double x = -6.0 + 4.0 * i, y = -6.0 + 4.0 * j;
+      tool.control_points.row(tool.pole_index(i, j)) << x, y, 0.05 * (x * x + y * y);
+    }
+  const argil::BSplineSurface floor = sheet(10, 10.0, 1.0);
+  const double eps = 0.05;
+  argil::HapticWorld w = world(argil::SurfaceToolShape{tool}, eps, 20.0);
+  REQUIRE(w.add_rigid(floor, 0.0).ok());
+  argil::OperatorCache cache;
+  argil::SurfaceHierarchy floor_h = argil::SurfaceHierarchy::build(floor, cache).value();
+  argil::SurfaceHierarchy tool_h = argil::SurfaceHierarchy::build(tool, cache).value();
+  w.step(at(30, 40, 10), 1e-3);
+  for (double x = 30; x <= 60; x += 1.0) {  // 1 m/s, the device 3 mm under the floor
+    const argil::TickResult r = w.step(at(x, 40, height(floor, x, 40) - 3.0), 1e-3);
+    ControlNet posed = tool.control_points;
+    posed.rowwise() += r.proxy.position.transpose();
+    tool_h.set_control_points(posed);
+    const argil::CollisionResult c =
+        argil::collide(floor_h, tool_h, {.tolerance = eps, .refine = false});
+    CHECK(c.curves.empty());  // never crosses
+    CHECK(r.proxy.in_contact);
+    CHECK(r.force.z() > 1.0);  // the hand is pulled up towards the proxy
+  }
+}
