@@ -4,9 +4,9 @@
 //  thumb.json  the "thumb": a bicubic pad 6 x 3 micrometres, 1.5 deep, its lowest
 //              point 1.5 micrometres below the tool frame's origin on -z;
 //  drag.json   a script: approach along the face normal, engage, press, drag the
-//              thumb along u from 0.15 to 0.45 following the face (position and
+//              thumb along u from 0.22 to 0.45 following the face (position and
 //              orientation: the pad's -z along the inward normal, x along S_u),
-//              from u = 0.15 to 0.45 so the far third of the face is out of reach,
+//              from u = 0.22 (inside the trim) to 0.45 so the far end is out of reach,
 //              release and retreat.
 // The committed files are this program's output; a test regenerates and compares.
 //
@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
   script.tool = "thumb";
   const argil::BSplineSurface& s = face.surface;
   const double v = 0.5;
-  const double u0 = 0.15, u1 = 0.45;
+  const double u0 = 0.22, u1 = 0.45;
   script.keyframes.push_back(frame_at(s, u0, v, kApproach, 0.0));
   auto engage = frame_at(s, u0, v, kPadDepth + 1e-3, 0.1);
   engage.event = argil::sculpt::ScriptEvent::engage;

@@ -7,12 +7,17 @@
 //     (default 2 eps: clearly above the tolerance), and it lies within reach of the engaged tool path;
 //  4. it changed nowhere else: every sampled point farther than the reach from
 //     the engaged path moved less than --quiet-max (default 1% of the largest
-//     move, at least eps).
+//     move, at least eps);
+//  5. the pictures decode (cairo) and show something: before.png and after.png
+//     are at least 5% covered by the surface and hold many colours, force.png
+//     holds the curves, and after.png differs from before.png.
 // The reach is the tool's radius plus the B-spline support of a control point:
 // (degree + 1) times the longest control-polygon leg. Samples: a 41 x 41 grid
 // in each face's parameter domain, compared at equal (u, v) before and after.
 //
 // usage: example_check SCENE OUTDIR [--changed-min MM] [--quiet-max MM]
+#include <cairo.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -76,6 +81,52 @@ double distance_to_path(const Eigen::Vector3d& p, const std::vector<Eigen::Vecto
     }
   }
   return best;
+}
+
+/// Decoded RGB pixels of a PNG (0xRRGGBB); empty when it does not decode.
+std::vector<std::uint32_t> read_png(const std::filesystem::path& path, int& width, int& height) {
+  cairo_surface_t* image = cairo_image_surface_create_from_png(path.c_str());
+  std::vector<std::uint32_t> pixels;
+  if (cairo_surface_status(image) == CAIRO_STATUS_SUCCESS) {
+    width = cairo_image_surface_get_width(image);
+    height = cairo_image_surface_get_height(image);
+    const int stride = cairo_image_surface_get_stride(image);
+    const unsigned char* data = cairo_image_surface_get_data(image);
+    for (int y = 0; y < height; ++y) {
+      const auto* row = reinterpret_cast<const std::uint32_t*>(data + y * stride);
+      for (int x = 0; x < width; ++x) pixels.push_back(row[x] & 0xffffffu);
+    }
+  }
+  cairo_surface_destroy(image);
+  return pixels;
+}
+
+void check_pictures(const std::filesystem::path& out) {
+  std::vector<std::uint32_t> surfaces[2];
+  const char* names[] = {"before.png", "after.png", "force.png"};
+  for (int k = 0; k < 3; ++k) {
+    int width = 0, height = 0;
+    const std::vector<std::uint32_t> pixels = read_png(out / names[k], width, height);
+    check(!pixels.empty(), std::string(names[k]) + " decodes");
+    if (pixels.empty()) continue;
+    std::vector<std::uint32_t> colours = pixels;
+    std::sort(colours.begin(), colours.end());
+    const auto distinct = std::unique(colours.begin(), colours.end()) - colours.begin();
+    const auto white = std::count(pixels.begin(), pixels.end(), 0xffffffu);
+    const double covered = 1.0 - static_cast<double>(white) / static_cast<double>(pixels.size());
+    char line[160];
+    std::snprintf(line, sizeof line, "%s shows something: %.1f%% not background, %ld colours",
+                  names[k], 100.0 * covered, static_cast<long>(distinct));
+    // Surfaces fill a good part of the frame; the plot is mostly white but has
+    // axes, labels and curves.
+    check(k < 2 ? covered > 0.05 && distinct > 100 : covered > 0.01 && distinct > 20, line);
+    if (k < 2) surfaces[k] = pixels;
+  }
+  if (!surfaces[0].empty() && surfaces[0].size() == surfaces[1].size()) {
+    long differ = 0;
+    for (std::size_t i = 0; i < surfaces[0].size(); ++i) differ += surfaces[0][i] != surfaces[1][i];
+    check(differ > 0, "after.png differs from before.png (" + std::to_string(differ) + " pixels)");
+  }
 }
 
 }  // namespace
@@ -217,6 +268,7 @@ int main(int argc, char** argv) {
     check(loudest_far <= quiet, line);
     check(far_samples > 0, spec.name + ": some samples lie beyond the reach (the check is not empty)");
   }
+  if (scene.outputs.pictures) check_pictures(out);
   std::printf("%s\n", failures == 0 ? "all checks passed" : "CHECKS FAILED");
   return failures == 0 ? 0 : 1;
 }

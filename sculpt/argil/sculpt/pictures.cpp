@@ -99,15 +99,17 @@ Eigen::Vector2d Camera::project(const Eigen::Vector3d& p_W) const {
   return {0.5 * width + pixels_per_mm * d.dot(right), 0.5 * height - pixels_per_mm * d.dot(up)};
 }
 
-Camera fit_camera(const Box3& box, int width, int height, double azimuth_deg,
-                  double elevation_deg) {
+Eigen::Vector3d view_direction(double azimuth_deg, double elevation_deg) {
+  const double az = azimuth_deg * M_PI / 180.0, el = elevation_deg * M_PI / 180.0;
+  return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+}
+
+Camera fit_camera(const Box3& box, int width, int height, const Eigen::Vector3d& eye_direction) {
   Camera c;
   c.width = width;
   c.height = height;
   c.centre = 0.5 * (box.min + box.max);
-  const double az = azimuth_deg * M_PI / 180.0, el = elevation_deg * M_PI / 180.0;
-  c.eye_direction = Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
-                                    std::sin(el));
+  c.eye_direction = eye_direction.normalized();
   const Eigen::Vector3d world_up =
       std::abs(c.eye_direction.z()) > 0.999 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitZ();
   c.right = world_up.cross(c.eye_direction).normalized();

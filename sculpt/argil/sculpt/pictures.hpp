@@ -29,10 +29,13 @@ struct Camera {
   double depth(const Eigen::Vector3d& p_W) const { return (p_W - centre).dot(eye_direction); }
 };
 
-/// A camera seeing `box` whole with a margin, from azimuth and elevation [deg]
+/// Unit direction towards the viewer from azimuth and elevation [deg]
 /// (azimuth about z from +x, elevation above the xy plane).
-Camera fit_camera(const Box3& box, int width, int height, double azimuth_deg = -60.0,
-                  double elevation_deg = 35.0);
+Eigen::Vector3d view_direction(double azimuth_deg, double elevation_deg);
+
+/// A camera seeing `box` whole with a margin, looking along -eye_direction.
+Camera fit_camera(const Box3& box, int width, int height,
+                  const Eigen::Vector3d& eye_direction = view_direction(-60.0, 35.0));
 
 /// A device path: positions [mm] and whether the tool was engaged there.
 struct ToolPath {

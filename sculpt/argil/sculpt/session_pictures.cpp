@@ -1,5 +1,6 @@
 #include "argil/sculpt/session_pictures.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 
 #include "argil/core/evaluate.hpp"
@@ -34,7 +35,25 @@ Status write_session_pictures(const io::Model& before, const io::Model& after,
       box.max = box.max.cwiseMax(path.positions[k]);
     }
   }
-  const Camera camera = fit_camera(box, 960, 720);
+  // Look at the surfaces from the side their mean normal points to, tilted
+  // towards a three-quarter view so curvature shows; a closed or twisted set
+  // of faces (mean normal near zero) gets the three-quarter view alone.
+  Eigen::Vector3d mean_normal = Eigen::Vector3d::Zero();
+  const io::TriangleMesh& original = before_mesh.value();
+  for (Eigen::Index t = 0; t < original.triangles.rows(); ++t) {
+    const Eigen::Vector3d a = original.positions.row(original.triangles(t, 0)).transpose();
+    const Eigen::Vector3d b = original.positions.row(original.triangles(t, 1)).transpose();
+    const Eigen::Vector3d c = original.positions.row(original.triangles(t, 2)).transpose();
+    mean_normal += (b - a).cross(c - a);  // area weighted
+  }
+  const Eigen::Vector3d three_quarter = view_direction(-60.0, 35.0);
+  Eigen::Vector3d eye = three_quarter;
+  if (mean_normal.norm() > 0.0) {
+    mean_normal.normalize();
+    if (mean_normal.dot(three_quarter) < 0) mean_normal = -mean_normal;
+    eye = (mean_normal + 0.8 * three_quarter).normalized();
+  }
+  const Camera camera = fit_camera(box, 960, 720, eye);
 
   // How far each point of the sculpted surface moved: the same (face, u, v) on both.
   const io::TriangleMesh& mesh = after_mesh.value();
