@@ -20,6 +20,9 @@ using internal::JsonReader;
 
 // Exactly unit within rounding: such quaternions are kept bit for bit.
 constexpr double kUnitNormRounding = 1e-12;
+// A keyframe within this many ticks after a tick counts as at that tick
+// (rounding of times written in decimal or computed by sums).
+constexpr double kTickRounding = 1e-6;
 
 bool parse_event(std::string_view text, ScriptEvent& out) {
   if (text.empty() || text == "none") out = ScriptEvent::none;
@@ -382,12 +385,10 @@ ScriptSampler::ScriptSampler(Script script, double rate_hz)
     : script_(std::move(script)), rate_(rate_hz) {
   assert(validate(script_).ok() && rate_hz > 0.0);
   const double last = script_.keyframes.back().time;
-  // Largest k with k / rate <= last, found from the rounded product and then
-  // settled with the exact comparison used by sample().
-  long long k = static_cast<long long>(std::floor(last * rate_));
-  while (tick_time(k + 1, rate_) <= last) ++k;
-  while (k > 0 && tick_time(k, rate_) > last) --k;
-  tick_count_ = k + 1;
+  // The last tick is the first at or after the last keyframe, so its event is
+  // seen even when k / rate lands a rounding error short of it (0.5 + 0.18 is
+  // 0.67999999999999994, tick 680 is 0.68).
+  tick_count_ = static_cast<long long>(std::ceil(last * rate_ - kTickRounding)) + 1;
   bool engaged = false;
   engaged_after_.reserve(script_.keyframes.size());
   for (const Keyframe& f : script_.keyframes) {

@@ -78,14 +78,16 @@ struct Stroke {
 /// Samples a script at a fixed rate: tick k is at t_k = k / rate. Keyframe
 /// times are hit exactly when they equal t_k (so a recorded stream replays bit
 /// for bit); between keyframes the position is interpolated linearly and the
-/// orientation by slerp. The engaged state at t is set by the last event at or
+/// orientation by slerp; after the last keyframe it holds. The engaged state at t is set by the last event at or
 /// before t. Pure: sample(k) depends on k only.
 class ScriptSampler {
  public:
   /// Precondition: validate(script).ok() and rate > 0.
   ScriptSampler(Script script, double rate_hz);
 
-  /// Ticks 0 .. tick_count() - 1 cover [0, last keyframe time].
+  /// Ticks 0 .. tick_count() - 1 cover [0, last keyframe time]: the last tick
+  /// is the first at or after the last keyframe (a keyframe up to 1e-6 tick
+  /// after a tick counts as at it), so the final event is always seen.
   long long tick_count() const { return tick_count_; }
   double rate() const { return rate_; }
   DeviceSample sample(long long tick) const;
