@@ -25,7 +25,7 @@ namespace {
 
 constexpr int kFace = 161;
 constexpr double kPadHalfX = 3e-3, kPadHalfY = 1.5e-3, kPadDepth = 1.5e-3;  // [mm]
-constexpr double kApproach = 6e-3;                                        // [mm] above the face
+constexpr double kApproach = 6e-3;                                          // [mm] above the face
 constexpr double kPress = 1.2e-3;  // how far the device goes below the touching pose [mm]
 
 int fail(const std::string& message) {
@@ -80,7 +80,8 @@ int main(int argc, char** argv) {
     face.surface = std::move(refined).value();
   }
   face_model.faces.push_back(face);
-  if (auto s = argil::io::write_json(face_model, out / "face.json"); !s.ok()) return fail(s.message);
+  if (auto s = argil::io::write_json(face_model, out / "face.json"); !s.ok())
+    return fail(s.message);
 
   // The thumb pad: z = -depth (1 - (x/a)^2) (1 - (y/b)^2) sampled on 5 x 5 poles.
   argil::io::Model thumb;

@@ -111,7 +111,8 @@ class ProgressBar {
     if (done < total_ && now - last_ < std::chrono::milliseconds(100)) return;
     last_ = now;
     const int width = 32;
-    const double fraction = total_ > 0 ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
+    const double fraction =
+        total_ > 0 ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
     const int filled = static_cast<int>(fraction * width);
     std::string bar(static_cast<std::size_t>(filled), '#');
     bar.resize(width, '.');
@@ -203,7 +204,7 @@ int run_sculpt(const std::vector<std::string>& args) {
   // ---- The run. -----------------------------------------------------------
   TickLog log;
   std::vector<double> durations;
-  std::vector<DeviceSample> received;   // every sample, for recorded.csv and the path
+  std::vector<DeviceSample> received;  // every sample, for recorded.csv and the path
   std::vector<DeviceSample> unjournalled;
   int strokes = 0;
   long long next_tick = 0;
@@ -245,10 +246,9 @@ int run_sculpt(const std::vector<std::string>& args) {
   for (long long k = next_tick; k < sampler.tick_count(); ++k) {
     const DeviceSample sample = sampler.sample(k);
     if (o.realtime) {
-      std::this_thread::sleep_until(run_start + std::chrono::duration_cast<Clock::duration>(
-                                                    std::chrono::duration<double>(
-                                                        static_cast<double>(k - next_tick) /
-                                                        scene.haptic_rate)));
+      std::this_thread::sleep_until(
+          run_start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                          static_cast<double>(k - next_tick) / scene.haptic_rate)));
     }
     const Clock::time_point t0 = Clock::now();
     Result<TickReport> report = session.step(sample);
@@ -286,7 +286,8 @@ int run_sculpt(const std::vector<std::string>& args) {
     after.push_back(session.current_model(m));
     const OutputSpec& out = scene.outputs;
     for (const auto& [wanted, extension] :
-         {std::pair{out.step, ".step"}, std::pair{out.iges, ".iges"}, std::pair{out.json, ".json"}}) {
+         {std::pair{out.step, ".step"}, std::pair{out.iges, ".iges"},
+          std::pair{out.json, ".json"}}) {
       if (!wanted) continue;
       const std::filesystem::path path = o.out / (loaded.spec.name + extension);
       const Status status = write(path, io::write_model(after.back(), path));
@@ -306,15 +307,15 @@ int run_sculpt(const std::vector<std::string>& args) {
   }
   const TimingSummary timing = summarize_timing(durations, scene.haptic_rate);
   if (scene.outputs.timing) {
-    const Status s = write(o.out / "timing.json",
-                           io::write_bytes_atomically(o.out / "timing.json",
-                                                      timing_json(timing, o.scene.string())));
+    const Status s = write(
+        o.out / "timing.json",
+        io::write_bytes_atomically(o.out / "timing.json", timing_json(timing, o.scene.string())));
     if (!s.ok()) return fail(s.message);
   }
   {
     const Script recorded = record_script(received, session.tool().name);
-    const Status s = write(o.out / kRecordedScriptName,
-                           write_script(recorded, o.out / kRecordedScriptName));
+    const Status s =
+        write(o.out / kRecordedScriptName, write_script(recorded, o.out / kRecordedScriptName));
     if (!s.ok()) return fail(s.message);
   }
   if (scene.outputs.pictures) {
@@ -337,13 +338,14 @@ int run_sculpt(const std::vector<std::string>& args) {
   }
   const Status finished = journal.value().finish();
   if (!finished.ok()) return fail(finished.message);
+  written.push_back(journal_path.string());
 
   std::printf("argil sculpt: %s, %lld ticks at %g Hz, %d strokes, tool %s\n", o.scene.c_str(),
               sampler.tick_count(), scene.haptic_rate, strokes, session.tool().name.c_str());
   if (timing.ticks > 0) {
-    std::printf("tick time: p50 %.1f us, p99 %.1f us, p99.9 %.1f us, max %.1f us (%lld ticks timed)\n",
-                timing.p50 * 1e6, timing.p99 * 1e6, timing.p999 * 1e6, timing.max * 1e6,
-                timing.ticks);
+    std::printf(
+        "tick time: p50 %.1f us, p99 %.1f us, p99.9 %.1f us, max %.1f us (%lld ticks timed)\n",
+        timing.p50 * 1e6, timing.p99 * 1e6, timing.p999 * 1e6, timing.max * 1e6, timing.ticks);
   }
   std::printf("files in %s:\n", o.out.c_str());
   for (const std::string& f : written) std::printf("  %s\n", f.c_str());

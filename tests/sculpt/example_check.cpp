@@ -4,7 +4,8 @@
 //     the JSON export's (bit for bit);
 //  2. rigid models did not move at all;
 //  3. each deformable model changed: some point moved more than --changed-min
-//     (default 2 eps: clearly above the tolerance), and it lies within reach of the engaged tool path;
+//     (default 2 eps: clearly above the tolerance), and it lies within reach of the engaged tool
+//     path;
 //  4. it changed nowhere else: every sampled point farther than the reach from
 //     the engaged path moved less than --quiet-max (default 1% of the largest
 //     move, at least eps);
@@ -60,8 +61,10 @@ double longest_leg(const BSplineSurface& s) {
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
       const Eigen::Vector3d p = s.control_points.row(s.pole_index(i, j)).transpose();
-      if (i + 1 < nu) leg = std::max(leg, (s.control_points.row(s.pole_index(i + 1, j)).transpose() - p).norm());
-      if (j + 1 < nv) leg = std::max(leg, (s.control_points.row(s.pole_index(i, j + 1)).transpose() - p).norm());
+      if (i + 1 < nu)
+        leg = std::max(leg, (s.control_points.row(s.pole_index(i + 1, j)).transpose() - p).norm());
+      if (j + 1 < nv)
+        leg = std::max(leg, (s.control_points.row(s.pole_index(i, j + 1)).transpose() - p).norm());
     }
   }
   return leg;
@@ -152,7 +155,8 @@ int main(int argc, char** argv) {
   if (changed_min < 0) changed_min = 2.0 * eps;  // clearly above the certified tolerance
 
   // The engaged tool path and the tool's radius about its frame origin.
-  const argil::Result<argil::sculpt::Script> recorded = argil::sculpt::read_script(out / "recorded.csv");
+  const argil::Result<argil::sculpt::Script> recorded =
+      argil::sculpt::read_script(out / "recorded.csv");
   if (!recorded.ok()) {
     std::fprintf(stderr, "%s\n", recorded.status().message.c_str());
     return 1;
@@ -166,7 +170,8 @@ int main(int argc, char** argv) {
     const auto tool_model = argil::io::read_model(tool.file);
     check(tool_model.ok(), "the B-spline tool reads");
     if (!tool_model.ok()) return 1;
-    const auto& net = tool_model.value().faces[static_cast<std::size_t>(tool.face)].surface.control_points;
+    const auto& net =
+        tool_model.value().faces[static_cast<std::size_t>(tool.face)].surface.control_points;
     tool_radius = net.rowwise().norm().maxCoeff();  // convex hull: encloses the tool
   }
   // The tool acts between samples too: use the proxy-free device path, engaged part.
@@ -189,10 +194,12 @@ int main(int argc, char** argv) {
     if (!input.ok()) return 1;
     std::vector<argil::io::FaceRecord> before;
     if (spec.faces.empty()) before = input.value().faces;
-    for (const int f : spec.faces) before.push_back(input.value().faces[static_cast<std::size_t>(f)]);
+    for (const int f : spec.faces)
+      before.push_back(input.value().faces[static_cast<std::size_t>(f)]);
 
     const auto json = argil::io::read_model(out / (spec.name + ".json"));
-    check(json.ok(), spec.name + ".json re-imports" + (json.ok() ? "" : ": " + json.status().message));
+    check(json.ok(),
+          spec.name + ".json re-imports" + (json.ok() ? "" : ": " + json.status().message));
     if (!json.ok()) return 1;
     const std::vector<argil::io::FaceRecord>& after = json.value().faces;
     check(after.size() == before.size(), spec.name + ".json has the scene's faces");
@@ -201,12 +208,14 @@ int main(int argc, char** argv) {
       const bool wanted = std::string(ext) == ".step" ? scene.outputs.step : scene.outputs.iges;
       if (!wanted) continue;
       const auto cad = argil::io::read_model(out / (spec.name + ext));
-      check(cad.ok(), spec.name + ext + " re-imports" + (cad.ok() ? "" : ": " + cad.status().message));
+      check(cad.ok(),
+            spec.name + ext + " re-imports" + (cad.ok() ? "" : ": " + cad.status().message));
       if (!cad.ok()) continue;
       bool same = cad.value().faces.size() == after.size();
       for (std::size_t f = 0; same && f < after.size(); ++f) {
-        same = same_structure(cad.value().faces[f].surface, after[f].surface) &&
-               same_bits(cad.value().faces[f].surface.control_points, after[f].surface.control_points);
+        same =
+            same_structure(cad.value().faces[f].surface, after[f].surface) &&
+            same_bits(cad.value().faces[f].surface.control_points, after[f].surface.control_points);
       }
       check(same, spec.name + ext + " holds the JSON's control points bit for bit");
     }
@@ -216,20 +225,24 @@ int main(int argc, char** argv) {
     for (std::size_t f = 0; f < before.size(); ++f) {
       const BSplineSurface& b = before[f].surface;
       const BSplineSurface& a = after[f].surface;
-      check(same_structure(a, b), spec.name + " face " + std::to_string(f) + " keeps degrees and knots");
+      check(same_structure(a, b),
+            spec.name + " face " + std::to_string(f) + " keeps degrees and knots");
       if (!spec.deformable) {
         check(same_bits(a.control_points, b.control_points),
               spec.name + " (rigid) face " + std::to_string(f) + " did not move");
         continue;
       }
-      reach = std::max(reach, tool_radius + (std::max(b.degree[0], b.degree[1]) + 1) * longest_leg(b));
+      reach =
+          std::max(reach, tool_radius + (std::max(b.degree[0], b.degree[1]) + 1) * longest_leg(b));
       const int n = 41;
       for (int i = 0; i < n; ++i) {
         for (int j = 0; j < n; ++j) {
-          const double u = b.domain_start(Direction::u) +
-                           (b.domain_end(Direction::u) - b.domain_start(Direction::u)) * i / (n - 1);
-          const double v = b.domain_start(Direction::v) +
-                           (b.domain_end(Direction::v) - b.domain_start(Direction::v)) * j / (n - 1);
+          const double u =
+              b.domain_start(Direction::u) +
+              (b.domain_end(Direction::u) - b.domain_start(Direction::u)) * i / (n - 1);
+          const double v =
+              b.domain_start(Direction::v) +
+              (b.domain_end(Direction::v) - b.domain_start(Direction::v)) * j / (n - 1);
           const Eigen::Vector3d pb = argil::evaluate(b, u, v);
           const double moved = (argil::evaluate(a, u, v) - pb).norm();
           double d = INFINITY;
@@ -253,8 +266,8 @@ int main(int argc, char** argv) {
       }
     }
     char line[256];
-    std::snprintf(line, sizeof line, "%s changed: largest move %.4g mm (needs > %.4g)", spec.name.c_str(),
-                  largest, changed_min);
+    std::snprintf(line, sizeof line, "%s changed: largest move %.4g mm (needs > %.4g)",
+                  spec.name.c_str(), largest, changed_min);
     check(largest > changed_min, line);
     std::snprintf(line, sizeof line,
                   "%s changed where the tool went: the largest move is %.4g mm from the path "
@@ -266,7 +279,8 @@ int main(int argc, char** argv) {
                   "(allowed %.4g)",
                   spec.name.c_str(), far_samples, loudest_far, quiet);
     check(loudest_far <= quiet, line);
-    check(far_samples > 0, spec.name + ": some samples lie beyond the reach (the check is not empty)");
+    check(far_samples > 0,
+          spec.name + ": some samples lie beyond the reach (the check is not empty)");
   }
   if (scene.outputs.pictures) check_pictures(out);
   std::printf("%s\n", failures == 0 ? "all checks passed" : "CHECKS FAILED");

@@ -208,9 +208,9 @@ TEST_CASE("argil sculpt killed with SIGKILL resumes from its journal to bit-iden
   CHECK_FALSE(std::filesystem::exists(kWork / "killed" / "plate.json"));
 
   // Resume (same inputs, no --fresh) and an uninterrupted run.
-  CHECK(wait_exit(spawn({"sculpt", scene, "--script", script.string(), "--out",
-                         (kWork / "killed").string()},
-                        kWork / "resumed.log")) == 0);
+  CHECK(wait_exit(spawn(
+            {"sculpt", scene, "--script", script.string(), "--out", (kWork / "killed").string()},
+            kWork / "resumed.log")) == 0);
   CHECK(read_text(kWork / "resumed.log").find("resumed from") != std::string::npos);
   CHECK(wait_exit(spawn({"sculpt", scene, "--script", script.string(), "--out",
                          (kWork / "whole").string(), "--fresh"},

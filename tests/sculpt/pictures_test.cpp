@@ -157,7 +157,7 @@ TEST_CASE("axis ticks are round numbers covering the range", "[pictures]") {
   CHECK(ticks.front() <= 0.0);
   CHECK(ticks.back() >= 2.3);
   const double step = ticks[1] - ticks[0];
-  CHECK(step == Approx(0.5));  // 2.3 / 6 = 0.38 rounds up to 0.5
+  CHECK(step == Approx(0.5));                 // 2.3 / 6 = 0.38 rounds up to 0.5
   CHECK(nice_ticks(-1.0, -1.0).size() >= 2);  // a flat range is widened
 }
 

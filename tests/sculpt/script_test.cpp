@@ -15,7 +15,8 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 bool same_keyframe(const Keyframe& a, const Keyframe& b) {
   bool same = same_bits(a.time, b.time) && a.event == b.event;
   for (int c = 0; c < 3; ++c) same = same && same_bits(a.position[c], b.position[c]);
-  for (int c = 0; c < 4; ++c) same = same && same_bits(a.orientation.coeffs()[c], b.orientation.coeffs()[c]);
+  for (int c = 0; c < 4; ++c)
+    same = same && same_bits(a.orientation.coeffs()[c], b.orientation.coeffs()[c]);
   return same;
 }
 
@@ -71,8 +72,7 @@ Script two_keyframes() {
   return s;
 }
 
-TEST_CASE("sampling is linear in position and slerp in orientation at t_k = k / rate",
-          "[script]") {
+TEST_CASE("sampling is linear in position and slerp in orientation at t_k = k / rate", "[script]") {
   const ScriptSampler sampler(two_keyframes(), 1000.0);
   // Ticks 0..500 cover [0, 0.5] s.
   REQUIRE(sampler.tick_count() == 501);
@@ -179,8 +179,10 @@ TEST_CASE("bad JSON scripts give an error naming the field", "[script][bad-input
       {head + R"({"t": 0, "position": [0,0,0], "event": "engage"},)" +
            R"({"t": 1, "position": [0,0,0], "event": "engage"}]})",
        "keyframes[1].event: engage while already engaged"},
-      {head + R"({"t": 0, "position": [0,0,0], "speed": 3}]})", "keyframes[0].speed: unknown field"},
-      {R"({"format": "argil.script", "version": 1, "keyframes": {}})", "keyframes: expected an array"},
+      {head + R"({"t": 0, "position": [0,0,0], "speed": 3}]})",
+       "keyframes[0].speed: unknown field"},
+      {R"({"format": "argil.script", "version": 1, "keyframes": {}})",
+       "keyframes: expected an array"},
       {R"([1, 2])", "(root): expected an object"},
   };
   for (const auto& [text, expected] : cases) {
@@ -206,7 +208,8 @@ TEST_CASE("bad CSV scripts give an error naming the line and column", "[script][
       {header + "0,0,0,0,0,0,0,0\n", "line 2: qw..qz: not a unit quaternion"},
       {header + "0,0,0,0,1,0,0,0,press\n", "line 2: event"},
       {header + "0.5,0,0,0,1,0,0,0\n\n0.25,0,0,0,1,0,0,0\n", "line 4: t: time 0.25 s is not after"},
-      {"# argil.script version 3\n" + header + "0,0,0,0,1,0,0,0\n", "line 1: unknown schema version 3"},
+      {"# argil.script version 3\n" + header + "0,0,0,0,1,0,0,0\n",
+       "line 1: unknown schema version 3"},
       {"# only a comment\n", "missing the header"},
       {header, "keyframes: no keyframes"},
   };

@@ -29,7 +29,8 @@ ControlNet points_of(Session& s) { return s.current_model(0).faces[0].surface.co
 
 /// Runs every tick of `sampler` through a fresh session; returns the session
 /// and appends each tick's force to `forces`.
-Session run(const Scene& scene, const ScriptSampler& sampler, std::vector<Eigen::Vector3d>& forces) {
+Session run(const Scene& scene, const ScriptSampler& sampler,
+            std::vector<Eigen::Vector3d>& forces) {
   Result<Session> created = Session::create(scene, sampler.script().tool);
   INFO(created.status().message);
   REQUIRE(created.ok());
@@ -57,7 +58,8 @@ TEST_CASE("the same scene and script give bit-identical control points and force
   CHECK(same_bits(points_of(a), points_of(b)));
   CHECK(a.state_hash() == b.state_hash());
   REQUIRE(forces_a.size() == forces_b.size());
-  CHECK(std::memcmp(forces_a.data(), forces_b.data(), forces_a.size() * sizeof(Eigen::Vector3d)) == 0);
+  CHECK(std::memcmp(forces_a.data(), forces_b.data(), forces_a.size() * sizeof(Eigen::Vector3d)) ==
+        0);
 }
 
 TEST_CASE("a recorded session replays to bit-identical control points", "[session][determinism]") {
@@ -136,7 +138,8 @@ TEST_CASE("undo and redo restore the exact states before and after each stroke",
     Result<Session> fresh = Session::create(scene, "pin");
     REQUIRE(fresh.ok());
     Session reference = std::move(fresh).value();
-    for (long long k = 0; k < stroke.first_tick; ++k) REQUIRE(reference.step(sampler.sample(k)).ok());
+    for (long long k = 0; k < stroke.first_tick; ++k)
+      REQUIRE(reference.step(sampler.sample(k)).ok());
     starts.push_back(points_of(reference));
   }
   for (int k = 2; k >= 0; --k) {
@@ -163,11 +166,12 @@ TEST_CASE("undo and redo restore the exact states before and after each stroke",
   CHECK(session.redo_depth() == 0);
 }
 
-Scene parse(const std::string& models, const std::string& tools = R"([{"name": "p", "type": "point"}])") {
-  const Result<Scene> r = parse_scene(
-      R"({"format": "argil.scene", "version": 1, "tolerance": 0.001, "models": )" + models +
-          R"(, "tools": )" + tools + "}",
-      "test-scene.json", std::filesystem::path(ARGIL_SOURCE_DIR) / "tests/data");
+Scene parse(const std::string& models,
+            const std::string& tools = R"([{"name": "p", "type": "point"}])") {
+  const Result<Scene> r =
+      parse_scene(R"({"format": "argil.scene", "version": 1, "tolerance": 0.001, "models": )" +
+                      models + R"(, "tools": )" + tools + "}",
+                  "test-scene.json", std::filesystem::path(ARGIL_SOURCE_DIR) / "tests/data");
   INFO(r.status().message);
   REQUIRE(r.ok());
   return r.value();
@@ -194,7 +198,8 @@ TEST_CASE("session errors name the scene field", "[session][bad-input]") {
   const std::string sheet = R"({"name": "sheet", "file": "collide_sheet.json",
                                 "material": {"density": 1e-5, "stiffness": 1}})";
   const std::pair<Scene, std::string> cases[] = {
-      {parse("[" + sheet + R"(, {"name": "m", "file": "bearing.iges", "faces": [0, 999], "kind": "rigid"}])"),
+      {parse("[" + sheet +
+             R"(, {"name": "m", "file": "bearing.iges", "faces": [0, 999], "kind": "rigid"}])"),
        "models[1].faces[1]: face 999 is out of range"},
       {parse("[" + sheet + R"(, {"name": "m", "file": "no-such.json", "kind": "rigid"}])"),
        "models[1].file: "},

@@ -248,7 +248,9 @@ JournalWriter::~JournalWriter() {
   if (file_ != nullptr) std::fclose(file_);
 }
 
-Status JournalWriter::append(const JournalRecord& record) { return write_line(record_body(record)); }
+Status JournalWriter::append(const JournalRecord& record) {
+  return write_line(record_body(record));
+}
 
 Status JournalWriter::finish() { return write_line("end"); }
 

@@ -43,8 +43,8 @@ struct JournalRecord {
 struct JournalContents {
   JournalHeader header;
   std::vector<JournalRecord> records;
-  bool finished = false;           // an "end" record: nothing to resume
-  std::size_t valid_bytes = 0;     // length of the intact prefix
+  bool finished = false;             // an "end" record: nothing to resume
+  std::size_t valid_bytes = 0;       // length of the intact prefix
   bool dropped_torn_record = false;  // a partial last line was ignored
 };
 
@@ -72,7 +72,8 @@ class JournalWriter {
   Status finish();
 
  private:
-  JournalWriter(std::FILE* file, std::filesystem::path path) : file_(file), path_(std::move(path)) {}
+  JournalWriter(std::FILE* file, std::filesystem::path path)
+      : file_(file), path_(std::move(path)) {}
   Status write_line(const std::string& body);
 
   std::FILE* file_ = nullptr;

@@ -31,7 +31,8 @@ cairo_status_t append_png_bytes(void* closure, const unsigned char* data, unsign
 Result<std::string> encode_png(cairo_surface_t* surface) {
   cairo_surface_flush(surface);
   std::string bytes;
-  const cairo_status_t status = cairo_surface_write_to_png_stream(surface, append_png_bytes, &bytes);
+  const cairo_status_t status =
+      cairo_surface_write_to_png_stream(surface, append_png_bytes, &bytes);
   if (status != CAIRO_STATUS_SUCCESS) {
     return Status::error(StatusCode::io_error,
                          std::string("PNG encoding failed: ") + cairo_status_to_string(status));
@@ -41,9 +42,9 @@ Result<std::string> encode_png(cairo_surface_t* surface) {
 
 Result<std::pair<SurfacePtr, ContextPtr>> canvas(int width, int height) {
   if (width < 16 || height < 16 || width > 8192 || height > 8192) {
-    return Status::error(StatusCode::invalid_argument,
-                         "picture size " + std::to_string(width) + " x " + std::to_string(height) +
-                             " is outside 16 .. 8192 pixels");
+    return Status::error(StatusCode::invalid_argument, "picture size " + std::to_string(width) +
+                                                           " x " + std::to_string(height) +
+                                                           " is outside 16 .. 8192 pixels");
   }
   SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height));
   if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
@@ -58,8 +59,8 @@ Result<std::pair<SurfacePtr, ContextPtr>> canvas(int width, int height) {
 /// Blue (0) through green and yellow to red (1): a perceptually ordered ramp.
 Eigen::Vector3d ramp(double t) {
   t = std::clamp(t, 0.0, 1.0);
-  const Eigen::Vector3d stops[] = {{0.23, 0.30, 0.75}, {0.25, 0.70, 0.60}, {0.95, 0.85, 0.25},
-                                   {0.85, 0.20, 0.15}};
+  const Eigen::Vector3d stops[] = {
+      {0.23, 0.30, 0.75}, {0.25, 0.70, 0.60}, {0.95, 0.85, 0.25}, {0.85, 0.20, 0.15}};
   const double x = t * 3.0;
   const int k = std::min(2, static_cast<int>(x));
   const double a = x - k;
@@ -132,14 +133,14 @@ Camera fit_camera(const Box3& box, int width, int height, const Eigen::Vector3d&
 }
 
 Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolPath& path,
-                                       const Camera& camera,
-                                       const SurfacePictureOptions& options) {
+                                       const Camera& camera, const SurfacePictureOptions& options) {
   Result<std::pair<SurfacePtr, ContextPtr>> made = canvas(camera.width, camera.height);
   if (!made.ok()) return made.status();
   cairo_t* cr = made.value().second.get();
   const bool coloured = !options.vertex_displacement.empty();
-  if (coloured && (options.vertex_displacement.size() != static_cast<std::size_t>(mesh.positions.rows()) ||
-                   !(options.displacement_scale > 0.0))) {
+  if (coloured &&
+      (options.vertex_displacement.size() != static_cast<std::size_t>(mesh.positions.rows()) ||
+       !(options.displacement_scale > 0.0))) {
     return Status::error(StatusCode::invalid_argument,
                          "vertex_displacement needs one value per vertex and a positive scale");
   }
@@ -149,7 +150,8 @@ Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolP
   std::vector<double> depth(static_cast<std::size_t>(count));
   for (Eigen::Index t = 0; t < count; ++t) {
     double d = 0.0;
-    for (int k = 0; k < 3; ++k) d += camera.depth(mesh.positions.row(mesh.triangles(t, k)).transpose());
+    for (int k = 0; k < 3; ++k)
+      d += camera.depth(mesh.positions.row(mesh.triangles(t, k)).transpose());
     depth[static_cast<std::size_t>(t)] = d;
   }
   std::vector<Eigen::Index> order(static_cast<std::size_t>(count));
@@ -196,8 +198,10 @@ Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolP
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   for (std::size_t k = 1; k < path.positions.size(); ++k) {
     const bool on = k < path.engaged.size() && path.engaged[k] && path.engaged[k - 1];
-    if (on) cairo_set_source_rgb(cr, 0.85, 0.05, 0.05);
-    else cairo_set_source_rgba(cr, 0.25, 0.25, 0.25, 0.6);
+    if (on)
+      cairo_set_source_rgb(cr, 0.85, 0.05, 0.05);
+    else
+      cairo_set_source_rgba(cr, 0.25, 0.25, 0.25, 0.6);
     const Eigen::Vector2d p0 = camera.project(path.positions[k - 1]);
     const Eigen::Vector2d p1 = camera.project(path.positions[k]);
     cairo_move_to(cr, p0.x(), p0.y());
@@ -256,7 +260,8 @@ Result<std::string> plot_force_png(const std::vector<double>& times,
                                    const std::vector<Eigen::Vector3d>& forces,
                                    const std::string& title, int width, int height) {
   if (times.size() != forces.size()) {
-    return Status::error(StatusCode::invalid_argument, "force plot: times and forces differ in length");
+    return Status::error(StatusCode::invalid_argument,
+                         "force plot: times and forces differ in length");
   }
   Result<std::pair<SurfacePtr, ContextPtr>> made = canvas(width, height);
   if (!made.ok()) return made.status();
@@ -301,8 +306,8 @@ Result<std::string> plot_force_png(const std::vector<double>& times,
     cairo_move_to(cr, left - 5, Y(f));
     cairo_line_to(cr, left, Y(f));
     cairo_stroke(cr);
-    draw_text(cr, left - 8, Y(f) + 4, tick_label(f, yt.size() > 1 ? yt[1] - yt[0] : 1.0), 12,
-              false, true);
+    draw_text(cr, left - 8, Y(f) + 4, tick_label(f, yt.size() > 1 ? yt[1] - yt[0] : 1.0), 12, false,
+              true);
   }
   cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
   cairo_rectangle(cr, left, top, right - left, bottom - top);
@@ -331,8 +336,10 @@ Result<std::string> plot_force_png(const std::vector<double>& times,
     cairo_set_line_width(cr, c.width);
     for (std::size_t k = 0; k < times.size(); ++k) {
       const double value = c.component == 3 ? forces[k].norm() : forces[k][c.component];
-      if (k == 0) cairo_move_to(cr, X(times[k]), Y(value));
-      else cairo_line_to(cr, X(times[k]), Y(value));
+      if (k == 0)
+        cairo_move_to(cr, X(times[k]), Y(value));
+      else
+        cairo_line_to(cr, X(times[k]), Y(value));
     }
     cairo_stroke(cr);
   }

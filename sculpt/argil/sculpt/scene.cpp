@@ -26,8 +26,9 @@ class SceneReader {
   Status error() const { return r_.error(); }
 
   bool scene(const Json& root, Scene& out) {
-    if (!r_.only_known(root, "", {"format", "version", "units", "tolerance", "haptic_rate",
-                                  "coupling", "models", "tools", "outputs", "script"})) {
+    if (!r_.only_known(root, "",
+                       {"format", "version", "units", "tolerance", "haptic_rate", "coupling",
+                        "models", "tools", "outputs", "script"})) {
       return false;
     }
     if (!header(root)) return false;
@@ -96,8 +97,8 @@ class SceneReader {
     std::string name;
     if (!r_.string(*format, "format", name)) return false;
     if (name != kSceneFormatName) {
-      return r_.fail("format", "expected \"" + std::string(kSceneFormatName) + "\", got \"" +
-                                   name + "\"");
+      return r_.fail("format",
+                     "expected \"" + std::string(kSceneFormatName) + "\", got \"" + name + "\"");
     }
     long long number = 0;
     if (!r_.integer(*version, "version", number)) return false;
@@ -119,8 +120,8 @@ class SceneReader {
         const std::string path = JsonReader::join("units", key);
         if (!r_.string(*value, path, text)) return false;
         if (text != unit) {
-          return r_.fail(path, std::string("must be \"") + unit + "\" (argil works in mm, s, N), got \"" +
-                                   text + "\"");
+          return r_.fail(path, std::string("must be \"") + unit +
+                                   "\" (argil works in mm, s, N), got \"" + text + "\"");
         }
       }
     }
@@ -146,8 +147,8 @@ class SceneReader {
     if (value == nullptr || !r_.string(*value, path + ".name", out)) return false;
     if (out.empty()) return r_.fail(path + ".name", "must not be empty");
     for (const char c : out) {
-      const bool allowed = std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' ||
-                           c == '-' || c == '.';
+      const bool allowed =
+          std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-' || c == '.';
       if (!allowed || out == "." || out == "..") {
         return r_.fail(path + ".name", "\"" + out +
                                            "\" may hold only letters, digits, '_', '-' and '.' "
@@ -232,8 +233,9 @@ class SceneReader {
   }
 
   bool material(const Json& value, const std::string& path, Material& out) {
-    if (!r_.only_known(value, path, {"density", "stiffness", "damping", "anchor_stiffness",
-                                     "yield", "friction"})) {
+    if (!r_.only_known(
+            value, path,
+            {"density", "stiffness", "damping", "anchor_stiffness", "yield", "friction"})) {
       return false;
     }
     const std::pair<const char*, double*> required[] = {{"density", &out.density},
@@ -242,9 +244,9 @@ class SceneReader {
       const Json* v = r_.member(value, path, key);
       if (v == nullptr || !r_.positive(*v, JsonReader::join(path, key), *field)) return false;
     }
-    const std::pair<const char*, double*> optional[] = {
-        {"damping", &out.damping}, {"anchor_stiffness", &out.anchor_stiffness},
-        {"friction", &out.friction}};
+    const std::pair<const char*, double*> optional[] = {{"damping", &out.damping},
+                                                        {"anchor_stiffness", &out.anchor_stiffness},
+                                                        {"friction", &out.friction}};
     for (const auto& [key, field] : optional) {
       if (const Json* v = r_.member(value, path, key, false)) {
         if (!r_.positive(*v, JsonReader::join(path, key), *field, /*allow_zero=*/true)) {
@@ -276,11 +278,17 @@ class SceneReader {
         std::string edge;
         const std::string edge_path = JsonReader::index(edges_path, k);
         if (!r_.string((*edges)[k], edge_path, edge)) return false;
-        if (edge == "u0") out.fixed_u0 = true;
-        else if (edge == "u1") out.fixed_u1 = true;
-        else if (edge == "v0") out.fixed_v0 = true;
-        else if (edge == "v1") out.fixed_v1 = true;
-        else return r_.fail(edge_path, "expected \"u0\", \"u1\", \"v0\" or \"v1\", got \"" + edge + "\"");
+        if (edge == "u0")
+          out.fixed_u0 = true;
+        else if (edge == "u1")
+          out.fixed_u1 = true;
+        else if (edge == "v0")
+          out.fixed_v0 = true;
+        else if (edge == "v1")
+          out.fixed_v1 = true;
+        else
+          return r_.fail(edge_path,
+                         "expected \"u0\", \"u1\", \"v0\" or \"v1\", got \"" + edge + "\"");
       }
     }
     if (const Json* corners = r_.member(value, path, "fixed_corners", false)) {
@@ -309,8 +317,8 @@ class SceneReader {
       }
     }
     if (!found) {
-      return r_.fail(path + ".type", "unknown tool type \"" + text +
-                                         "\" (known: sphere, bspline, point)");
+      return r_.fail(path + ".type",
+                     "unknown tool type \"" + text + "\" (known: sphere, bspline, point)");
     }
     switch (out.type) {
       case ToolType::sphere:
@@ -350,10 +358,14 @@ class SceneReader {
         std::string format;
         const std::string path = JsonReader::index("outputs.surfaces", k);
         if (!r_.string((*surfaces)[k], path, format)) return false;
-        if (format == "step") out.step = true;
-        else if (format == "iges") out.iges = true;
-        else if (format == "json") out.json = true;
-        else return r_.fail(path, "expected \"step\", \"iges\" or \"json\", got \"" + format + "\"");
+        if (format == "step")
+          out.step = true;
+        else if (format == "iges")
+          out.iges = true;
+        else if (format == "json")
+          out.json = true;
+        else
+          return r_.fail(path, "expected \"step\", \"iges\" or \"json\", got \"" + format + "\"");
       }
     }
     const std::pair<const char*, bool*> flags[] = {{"forces", &out.forces},
@@ -376,9 +388,12 @@ class SceneReader {
 
 const char* to_string(ToolType type) {
   switch (type) {
-    case ToolType::sphere: return "sphere";
-    case ToolType::bspline: return "bspline";
-    case ToolType::point: return "point";
+    case ToolType::sphere:
+      return "sphere";
+    case ToolType::bspline:
+      return "bspline";
+    case ToolType::point:
+      return "point";
   }
   return "unknown";
 }

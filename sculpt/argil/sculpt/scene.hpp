@@ -21,13 +21,13 @@ inline constexpr int kSceneFormatVersion = 1;
 
 /// One model: faces of a CAD or JSON file.
 struct ModelSpec {
-  std::string name;               // unique in the scene; names the output files
-  std::filesystem::path file;     // resolved against the scene file's folder
-  std::vector<int> faces;         // face indices in the file; empty: every face
-  bool deformable = true;         // rigid models collide but never move
-  Material material;              // deformable models only (units: material.hpp)
-  BoundaryConditions boundary;    // deformable models only
-  double rigid_friction = 0.3;    // rigid models: Coulomb coefficient against the tool
+  std::string name;             // unique in the scene; names the output files
+  std::filesystem::path file;   // resolved against the scene file's folder
+  std::vector<int> faces;       // face indices in the file; empty: every face
+  bool deformable = true;       // rigid models collide but never move
+  Material material;            // deformable models only (units: material.hpp)
+  BoundaryConditions boundary;  // deformable models only
+  double rigid_friction = 0.3;  // rigid models: Coulomb coefficient against the tool
 };
 
 enum class ToolType { sphere, bspline, point };
@@ -39,9 +39,9 @@ const char* to_string(ToolType type);
 struct ToolSpec {
   std::string name;
   ToolType type = ToolType::sphere;
-  double radius = 0.0;            // sphere [mm], centred on the tool frame origin
-  std::filesystem::path file;     // bspline: surface file, resolved like models
-  int face = 0;                   // bspline: face index in `file`
+  double radius = 0.0;         // sphere [mm], centred on the tool frame origin
+  std::filesystem::path file;  // bspline: surface file, resolved like models
+  int face = 0;                // bspline: face index in `file`
 };
 
 /// Spring-damper between the device and the tool proxy, and the device's force limit.
@@ -65,7 +65,7 @@ struct Scene {
   double haptic_rate = 1000.0;    // [Hz]
   CouplingSpec coupling;
   OutputSpec outputs;
-  std::filesystem::path script;   // default script, resolved; empty: none
+  std::filesystem::path script;  // default script, resolved; empty: none
 
   /// Index of the tool called `name` (the first tool when `name` is empty); -1 if none.
   int tool_index(std::string_view name) const;

@@ -25,10 +25,14 @@ constexpr double kUnitNormRounding = 1e-12;
 constexpr double kTickRounding = 1e-6;
 
 bool parse_event(std::string_view text, ScriptEvent& out) {
-  if (text.empty() || text == "none") out = ScriptEvent::none;
-  else if (text == "engage") out = ScriptEvent::engage;
-  else if (text == "release") out = ScriptEvent::release;
-  else return false;
+  if (text.empty() || text == "none")
+    out = ScriptEvent::none;
+  else if (text == "engage")
+    out = ScriptEvent::engage;
+  else if (text == "release")
+    out = ScriptEvent::release;
+  else
+    return false;
   return true;
 }
 
@@ -59,9 +63,9 @@ Status check_keyframes(const std::vector<Keyframe>& keyframes, const std::string
     if (!std::isfinite(f.time)) return error(k, "t", "time must be finite");
     if (f.time < 0.0) return error(k, "t", "time must be >= 0, got " + format_double(f.time));
     if (k > 0 && !(f.time > keyframes[k - 1].time)) {
-      return error(k, "t", "time " + format_double(f.time) +
-                               " s is not after the previous keyframe's " +
-                               format_double(keyframes[k - 1].time) + " s (times must increase)");
+      return error(k, "t",
+                   "time " + format_double(f.time) + " s is not after the previous keyframe's " +
+                       format_double(keyframes[k - 1].time) + " s (times must increase)");
     }
     if (!f.position.allFinite()) return error(k, "position", "must be finite");
     const double norm = f.orientation.norm();
@@ -168,8 +172,8 @@ std::vector<std::string> split_csv(std::string_view line) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    cells.push_back(trim(line.substr(start, comma == std::string_view::npos ? line.npos
-                                                                            : comma - start)));
+    cells.push_back(
+        trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
@@ -234,7 +238,8 @@ Result<Script> parse_csv(std::string_view text, const std::string& source) {
     const std::vector<std::string> cells = split_csv(line);
     if (!header_seen) {
       bool matches = cells.size() == kCsvColumnCount || cells.size() == kCsvColumnCount - 1;
-      for (std::size_t c = 0; matches && c < cells.size(); ++c) matches = cells[c] == kCsvColumns[c];
+      for (std::size_t c = 0; matches && c < cells.size(); ++c)
+        matches = cells[c] == kCsvColumns[c];
       if (!matches) {
         return error("expected the header 't,x,y,z,qw,qx,qy,qz,event', got '" + line + "'");
       }
@@ -266,8 +271,8 @@ Result<Script> parse_csv(std::string_view text, const std::string& source) {
     return Status::error(StatusCode::parse_error,
                          source + ": missing the header 't,x,y,z,qw,qx,qy,qz,event'");
   }
-  const Status check = check_keyframes(
-      script.keyframes, source, [&](std::size_t k, const std::string& field) {
+  const Status check =
+      check_keyframes(script.keyframes, source, [&](std::size_t k, const std::string& field) {
         return "line " + std::to_string(lines[k]) + ": " + field;
       });
   if (!check.ok()) return check;
@@ -289,9 +294,12 @@ std::string keyframe_path(std::size_t k, const std::string& field) {
 
 const char* to_string(ScriptEvent event) {
   switch (event) {
-    case ScriptEvent::none: return "none";
-    case ScriptEvent::engage: return "engage";
-    case ScriptEvent::release: return "release";
+    case ScriptEvent::none:
+      return "none";
+    case ScriptEvent::engage:
+      return "engage";
+    case ScriptEvent::release:
+      return "release";
   }
   return "none";
 }
@@ -346,7 +354,8 @@ std::string script_to_json(const Script& script) {
            format_double(f.position.z()) + "], \"orientation\": [" +
            format_double(f.orientation.w()) + ", " + format_double(f.orientation.x()) + ", " +
            format_double(f.orientation.y()) + ", " + format_double(f.orientation.z()) + "]";
-    if (f.event != ScriptEvent::none) out += ", \"event\": \"" + std::string(to_string(f.event)) + "\"";
+    if (f.event != ScriptEvent::none)
+      out += ", \"event\": \"" + std::string(to_string(f.event)) + "\"";
     out += "}";
   }
   out += "\n  ]\n}\n";
@@ -359,9 +368,14 @@ std::string script_to_csv(const Script& script) {
   if (!script.tool.empty()) out += "# tool: " + script.tool + "\n";
   out += "t,x,y,z,qw,qx,qy,qz,event\n";
   for (const Keyframe& f : script.keyframes) {
-    const double values[8] = {f.time,            f.position.x(),    f.position.y(),
-                              f.position.z(),    f.orientation.w(), f.orientation.x(),
-                              f.orientation.y(), f.orientation.z()};
+    const double values[8] = {f.time,
+                              f.position.x(),
+                              f.position.y(),
+                              f.position.z(),
+                              f.orientation.w(),
+                              f.orientation.x(),
+                              f.orientation.y(),
+                              f.orientation.z()};
     for (const double v : values) out += format_double(v) + ",";
     if (f.event != ScriptEvent::none) out += to_string(f.event);
     out += "\n";
@@ -377,8 +391,8 @@ Status write_script(const Script& script, const std::filesystem::path& path) {
   }
   const Status check = validate(script, path.string());
   if (!check.ok()) return check;
-  return io::write_bytes_atomically(path,
-                                    ext == ".json" ? script_to_json(script) : script_to_csv(script));
+  return io::write_bytes_atomically(
+      path, ext == ".json" ? script_to_json(script) : script_to_csv(script));
 }
 
 ScriptSampler::ScriptSampler(Script script, double rate_hz)

@@ -25,8 +25,8 @@ const char* to_string(ScriptEvent event);
 
 /// A device pose at a time. The orientation is a unit quaternion (w, x, y, z).
 struct Keyframe {
-  double time = 0.0;                                           // [s], >= 0
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();          // p_WT [mm]
+  double time = 0.0;                                                // [s], >= 0
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();               // p_WT [mm]
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // R_WT
   ScriptEvent event = ScriptEvent::none;
 };
@@ -78,8 +78,8 @@ struct Stroke {
 /// Samples a script at a fixed rate: tick k is at t_k = k / rate. Keyframe
 /// times are hit exactly when they equal t_k (so a recorded stream replays bit
 /// for bit); between keyframes the position is interpolated linearly and the
-/// orientation by slerp; after the last keyframe it holds. The engaged state at t is set by the last event at or
-/// before t. Pure: sample(k) depends on k only.
+/// orientation by slerp; after the last keyframe it holds. The engaged state at t is set by the
+/// last event at or before t. Pure: sample(k) depends on k only.
 class ScriptSampler {
  public:
   /// Precondition: validate(script).ok() and rate > 0.

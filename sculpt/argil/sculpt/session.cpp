@@ -34,8 +34,12 @@ Result<Session> Session::create(const Scene& scene, const std::string& tool_name
   const ToolSpec& tool = scene.tools[static_cast<std::size_t>(s.tool_index_)];
   const std::string tool_field = "tools[" + std::to_string(s.tool_index_) + "]";
   switch (tool.type) {
-    case ToolType::sphere: s.tool_shape_ = SphereToolShape{tool.radius}; break;
-    case ToolType::point: s.tool_shape_ = SphereToolShape{0.0}; break;
+    case ToolType::sphere:
+      s.tool_shape_ = SphereToolShape{tool.radius};
+      break;
+    case ToolType::point:
+      s.tool_shape_ = SphereToolShape{0.0};
+      break;
     case ToolType::bspline: {
       Result<io::Model> read = read_for(tool.file, tool_field + ".file");
       if (!read.ok()) return read.status();
@@ -110,9 +114,9 @@ Status Session::rebuild_world() {
               ? world_->add_deformable(surface, loaded.spec.material, loaded.spec.boundary)
               : world_->add_rigid(surface, loaded.spec.rigid_friction);
       if (!body.ok()) {
-        return Status::error(body.status().code,
-                             model_path(m) + " face " + std::to_string(loaded.file_faces[f]) +
-                                 ": " + body.status().message);
+        return Status::error(body.status().code, model_path(m) + " face " +
+                                                     std::to_string(loaded.file_faces[f]) + ": " +
+                                                     body.status().message);
       }
       loaded.bodies.push_back(body.value());
       body_owner_.emplace_back(static_cast<int>(m), static_cast<int>(f));
@@ -143,7 +147,8 @@ Result<TickReport> Session::advance(const DeviceSample& sample) {
     for (const Contact& c : r.body_contacts[b]) {
       ContactRecord record;
       record.model = model;
-      record.face = models_[static_cast<std::size_t>(model)].file_faces[static_cast<std::size_t>(face)];
+      record.face =
+          models_[static_cast<std::size_t>(model)].file_faces[static_cast<std::size_t>(face)];
       record.uv = c.uv_a;
       record.point = c.point;
       record.normal = c.normal;

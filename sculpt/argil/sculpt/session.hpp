@@ -22,22 +22,22 @@ namespace argil::sculpt {
 
 /// A contact of the tool with one model face during a tick.
 struct ContactRecord {
-  int model = 0;  // index in Scene::models
-  int face = 0;   // face index in the model's file
-  Eigen::Vector2d uv = Eigen::Vector2d::Zero();         // on the face
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();      // p_WC [mm]
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();     // unit, S_u x S_v
-  double depth = 0.0;                                   // [mm], positive inside the tool
+  int model = 0;                                     // index in Scene::models
+  int face = 0;                                      // face index in the model's file
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();      // on the face
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // p_WC [mm]
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit, S_u x S_v
+  double depth = 0.0;                                // [mm], positive inside the tool
 };
 
 /// What one tick did, for logs and pictures.
 struct TickReport {
   long long tick = 0;
-  double time = 0.0;                                 // [s]
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // on the device [N], clamped
+  double time = 0.0;                                // [s]
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // on the device [N], clamped
   bool clamped = false;
-  Eigen::Vector3d proxy = Eigen::Vector3d::Zero();   // tool proxy position [mm]
-  double max_depth = 0.0;                            // [mm]
+  Eigen::Vector3d proxy = Eigen::Vector3d::Zero();  // tool proxy position [mm]
+  double max_depth = 0.0;                           // [mm]
   std::vector<ContactRecord> contacts;
   bool stroke_finished = false;  // this sample released the tool
 };
@@ -46,9 +46,9 @@ struct TickReport {
 /// in the scene's order) and their bodies in the world.
 struct LoadedModel {
   ModelSpec spec;
-  io::Model initial;           // the named faces only, as read
-  std::vector<int> file_faces; // face index in the file of each loaded face
-  std::vector<int> bodies;     // world body of each loaded face
+  io::Model initial;            // the named faces only, as read
+  std::vector<int> file_faces;  // face index in the file of each loaded face
+  std::vector<int> bodies;      // world body of each loaded face
 };
 
 class Session {

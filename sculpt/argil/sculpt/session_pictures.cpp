@@ -17,10 +17,10 @@ constexpr double kPictureChordRelative = 5e-4;
 
 }  // namespace
 
-Status write_session_pictures(const io::Model& before, const io::Model& after,
-                              const ToolPath& path, const std::vector<double>& times,
-                              const std::vector<Eigen::Vector3d>& forces,
-                              const std::string& title, const std::filesystem::path& folder) {
+Status write_session_pictures(const io::Model& before, const io::Model& after, const ToolPath& path,
+                              const std::vector<double>& times,
+                              const std::vector<Eigen::Vector3d>& forces, const std::string& title,
+                              const std::filesystem::path& folder) {
   Box3 box = merge(io::model_box(before), io::model_box(after));
   io::TessellationOptions options;
   options.chord_tolerance_mm = std::max(box.diagonal() * kPictureChordRelative, 1e-9);

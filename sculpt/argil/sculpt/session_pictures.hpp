@@ -19,9 +19,9 @@ inline constexpr const char* kForcePicture = "force.png";
 /// Writes before.png, after.png (same camera, fitted to both surfaces and the
 /// path) and force.png into `folder`, each atomically. `before` and `after`
 /// hold the same faces in the same order (after = sculpted).
-Status write_session_pictures(const io::Model& before, const io::Model& after,
-                              const ToolPath& path, const std::vector<double>& times,
-                              const std::vector<Eigen::Vector3d>& forces,
-                              const std::string& title, const std::filesystem::path& folder);
+Status write_session_pictures(const io::Model& before, const io::Model& after, const ToolPath& path,
+                              const std::vector<double>& times,
+                              const std::vector<Eigen::Vector3d>& forces, const std::string& title,
+                              const std::filesystem::path& folder);
 
 }  // namespace argil::sculpt

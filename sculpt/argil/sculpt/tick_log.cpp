@@ -106,9 +106,10 @@ std::string timing_json(const TimingSummary& s, const std::string& scene_name) {
   return "{\n  \"format\": \"argil.timing\",\n  \"version\": 1,\n  \"scene\": \"" + name +
          "\",\n  \"measured\": \"wall time of each Session::step call (one haptic tick), "
          "steady clock\",\n  \"ticks\": " +
-         std::to_string(s.ticks) + ",\n  \"p50_us\": " + us(s.p50) + ",\n  \"p99_us\": " +
-         us(s.p99) + ",\n  \"p99_9_us\": " + us(s.p999) + ",\n  \"max_us\": " + us(s.max) +
-         ",\n  \"mean_us\": " + us(s.mean) + ",\n  \"budget_us\": " + us(s.budget) +
+         std::to_string(s.ticks) + ",\n  \"p50_us\": " + us(s.p50) +
+         ",\n  \"p99_us\": " + us(s.p99) + ",\n  \"p99_9_us\": " + us(s.p999) +
+         ",\n  \"max_us\": " + us(s.max) + ",\n  \"mean_us\": " + us(s.mean) +
+         ",\n  \"budget_us\": " + us(s.budget) +
          ",\n  \"over_budget\": " + std::to_string(s.over_budget) + "\n}\n";
 }
 

@@ -16,7 +16,8 @@ class TickLog {
   /// Adds one tick.
   void add(const TickReport& report);
 
-  /// "tick,time,fx,fy,fz,f,clamped,proxy_x,proxy_y,proxy_z,contacts,max_depth" and one row per tick.
+  /// "tick,time,fx,fy,fz,f,clamped,proxy_x,proxy_y,proxy_z,contacts,max_depth" and one row per
+  /// tick.
   std::string forces_csv() const;
   /// "tick,time,model,face,u,v,x,y,z,depth,nx,ny,nz" and one row per contact.
   std::string contacts_csv(const std::vector<std::string>& model_names) const;
@@ -40,8 +41,8 @@ class TickLog {
 struct TimingSummary {
   long long ticks = 0;
   double p50 = 0.0, p99 = 0.0, p999 = 0.0, max = 0.0, mean = 0.0;  // [s]
-  double budget = 0.0;         // one haptic period 1 / rate [s]
-  long long over_budget = 0;   // ticks slower than the budget
+  double budget = 0.0;                                             // one haptic period 1 / rate [s]
+  long long over_budget = 0;                                       // ticks slower than the budget
 };
 
 /// Nearest-rank percentiles (the smallest value with at least q of the

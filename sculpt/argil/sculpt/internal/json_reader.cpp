@@ -124,8 +124,8 @@ bool JsonReader::string(const Json& value, const std::string& path, std::string&
 bool JsonReader::numbers(const Json& value, const std::string& path, std::size_t count,
                          double* out) {
   if (!value.is_array() || value.size() != count) {
-    return fail(path, "expected an array of " + std::to_string(count) + " numbers, got " +
-                          shown(value));
+    return fail(path,
+                "expected an array of " + std::to_string(count) + " numbers, got " + shown(value));
   }
   for (std::size_t k = 0; k < count; ++k) {
     if (!number(value[k], index(path, k), out[k])) return false;
