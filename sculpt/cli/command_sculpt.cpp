@@ -31,6 +31,8 @@ using Clock = std::chrono::steady_clock;
 
 constexpr const char* kJournalName = "session.journal";
 constexpr const char* kRecordedScriptName = "recorded.csv";
+// Longest run: about 2.8 hours at 1 kHz; samples and log rows are kept in memory.
+constexpr double kMaxTicks = 1e7;
 
 int usage() {
   std::fprintf(stderr,
@@ -153,6 +155,17 @@ int run_sculpt(const std::vector<std::string>& args) {
   if (scene.tool_index(script.tool) < 0) {
     return fail(o.script.string() + ": tool: \"" + script.tool + "\" is not a tool of " +
                 o.scene.string());
+  }
+  // Every tick's sample and log row stay in memory until the end.
+  const double ticks = script.keyframes.back().time * scene.haptic_rate;
+  if (ticks > kMaxTicks) {
+    char message[160];
+    std::snprintf(
+        message, sizeof message,
+        ": keyframes[%zu].t: the script lasts %.17g s, %.3g ticks at %g Hz (at most %.0f)",
+        script.keyframes.size() - 1, script.keyframes.back().time, ticks, scene.haptic_rate,
+        kMaxTicks);
+    return fail(o.script.string() + message);
   }
   std::string script_bytes;
   if (!read_bytes(o.script, script_bytes)) return fail(o.script.string() + ": read failed");
