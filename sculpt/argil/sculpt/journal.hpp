@@ -16,12 +16,10 @@
 #include <vector>
 
 #include "argil/core/status.hpp"
+#include "argil/sculpt/fnv_hash.hpp"
 #include "argil/sculpt/script.hpp"
 
 namespace argil::sculpt {
-
-/// FNV-1a 64-bit hash of bytes: what records and inputs are identified by.
-std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t seed = 0xcbf29ce484222325ULL);
 
 /// What a journal was written for: a run resumes only with the same inputs.
 struct JournalHeader {

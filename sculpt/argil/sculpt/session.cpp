@@ -3,7 +3,7 @@
 #include <cstring>
 
 #include "argil/io/model_files.hpp"
-#include "argil/sculpt/journal.hpp"
+#include "argil/sculpt/fnv_hash.hpp"
 
 namespace argil::sculpt {
 namespace {
