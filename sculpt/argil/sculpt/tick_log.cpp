@@ -92,11 +92,18 @@ TimingSummary summarize_timing(std::vector<double> durations, double rate_hz) {
   return s;
 }
 
-std::string timing_json(const TimingSummary& s, const std::string& scene_name) {
+std::string timing_json(const TimingSummary& wall, const TimingSummary& thread_cpu,
+                        const std::string& scene_name) {
   auto us = [](double seconds) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%.3f", seconds * 1e6);
     return std::string(buffer);
+  };
+  auto fields = [&](const TimingSummary& s, const std::string& indent) {
+    return indent + "\"p50_us\": " + us(s.p50) + ",\n" + indent + "\"p99_us\": " + us(s.p99) +
+           ",\n" + indent + "\"p99_9_us\": " + us(s.p999) + ",\n" + indent +
+           "\"max_us\": " + us(s.max) + ",\n" + indent + "\"mean_us\": " + us(s.mean) + ",\n" +
+           indent + "\"over_budget\": " + std::to_string(s.over_budget);
   };
   std::string name;
   for (const char c : scene_name) {
@@ -104,13 +111,11 @@ std::string timing_json(const TimingSummary& s, const std::string& scene_name) {
     if (static_cast<unsigned char>(c) >= 0x20) name += c;
   }
   return "{\n  \"format\": \"argil.timing\",\n  \"version\": 1,\n  \"scene\": \"" + name +
-         "\",\n  \"measured\": \"wall time of each Session::step call (one haptic tick), "
-         "steady clock\",\n  \"ticks\": " +
-         std::to_string(s.ticks) + ",\n  \"p50_us\": " + us(s.p50) +
-         ",\n  \"p99_us\": " + us(s.p99) + ",\n  \"p99_9_us\": " + us(s.p999) +
-         ",\n  \"max_us\": " + us(s.max) + ",\n  \"mean_us\": " + us(s.mean) +
-         ",\n  \"budget_us\": " + us(s.budget) +
-         ",\n  \"over_budget\": " + std::to_string(s.over_budget) + "\n}\n";
+         "\",\n  \"measured\": \"each Session::step call (one haptic tick): wall time on the "
+         "steady clock; thread_cpu: CLOCK_THREAD_CPUTIME_ID\",\n  \"ticks\": " +
+         std::to_string(wall.ticks) + ",\n  \"budget_us\": " + us(wall.budget) + ",\n" +
+         fields(wall, "  ") + ",\n  \"thread_cpu\": {\n" + fields(thread_cpu, "    ") +
+         "\n  }\n}\n";
 }
 
 }  // namespace argil::sculpt

@@ -49,7 +49,10 @@ struct TimingSummary {
 /// samples at or below it) of `durations` [s]; `rate_hz` sets the budget.
 TimingSummary summarize_timing(std::vector<double> durations, double rate_hz);
 
-/// The summary as JSON (microseconds), with what was measured.
-std::string timing_json(const TimingSummary& summary, const std::string& scene_name);
+/// The summaries as JSON (microseconds), with what was measured: wall time
+/// (what a device waits for) at the top level, and the thread's CPU time
+/// (the tick's own cost, without time the scheduler gave other processes).
+std::string timing_json(const TimingSummary& wall, const TimingSummary& thread_cpu,
+                        const std::string& scene_name);
 
 }  // namespace argil::sculpt
