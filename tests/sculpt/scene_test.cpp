@@ -2,8 +2,10 @@
 // errors that name the field for each kind of bad input.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <random>
 
 #include "argil/sculpt/scene.hpp"
+#include "argil/sculpt/script.hpp"
 
 namespace argil::sculpt {
 namespace {
@@ -172,6 +174,46 @@ TEST_CASE("a scene without a deformable model or without tools is refused", "[sc
   const Result<Scene> missing = read_scene("/no/such/scene.json");
   REQUIRE_FALSE(missing.ok());
   CHECK(missing.status().message.find("/no/such/scene.json") != std::string::npos);
+}
+
+}  // namespace
+}  // namespace argil::sculpt
+
+namespace argil::sculpt {
+namespace {
+
+TEST_CASE("mutated scenes and scripts never crash the loaders", "[scene][bad-input]") {
+  // Truncations and random byte changes of valid documents: every result is a
+  // value or an error that starts with the source name.
+  const std::string script_json = R"({"format": "argil.script", "version": 1, "tool": "ball",
+    "keyframes": [{"t": 0, "position": [1, 2, 3], "orientation": [1, 0, 0, 0]},
+                  {"t": 0.5, "position": [1, 2, -3], "event": "engage"},
+                  {"t": 1, "position": [4, 2, -3], "event": "release"}]})";
+  const std::string script_csv =
+      "# argil.script version 1\n# tool: ball\nt,x,y,z,qw,qx,qy,qz,event\n0,1,2,3,1,0,0,0,\n"
+      "0.5,1,2,-3,1,0,0,0,engage\n1,4,2,-3,1,0,0,0,release\n";
+  std::mt19937 rng(12345);
+  const std::string bytes = "{}[],:\"0123456789.eE-+ \nNaNaInfinity#tfnul";
+  const std::string documents[] = {kGoodScene, script_json, script_csv};
+  for (int d = 0; d < 3; ++d) {
+    const std::string& doc = documents[d];
+    for (int trial = 0; trial < 700; ++trial) {
+      std::string text = doc;
+      if (trial % 7 == 0) {
+        text.resize(static_cast<std::size_t>(rng()) % text.size());
+      } else {
+        const int edits = 1 + static_cast<int>(rng() % 3);
+        for (int e = 0; e < edits; ++e) {
+          text[static_cast<std::size_t>(rng()) % text.size()] = bytes[rng() % bytes.size()];
+        }
+      }
+      const std::string source = d == 0 ? "s.json" : (d == 1 ? "k.json" : "k.csv");
+      const Status status = d == 0   ? parse_scene(text, source, ".").status()
+                            : d == 1 ? parse_script_json(text, source).status()
+                                     : parse_script_csv(text, source).status();
+      if (!status.ok()) CHECK(status.message.rfind(source + ": ", 0) == 0);
+    }
+  }
 }
 
 }  // namespace
