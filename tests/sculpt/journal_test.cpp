@@ -56,7 +56,7 @@ bool same_samples(const std::vector<DeviceSample>& a, const std::vector<DeviceSa
   return true;
 }
 
-TEST_CASE("journal records read back exactly; a torn last record is dropped", "[journal]") {
+TEST_CASE("journal records read back exactly and a torn last record is dropped", "[journal]") {
   std::filesystem::create_directories(kWork);
   const std::filesystem::path path = kWork / "unit.journal";
   const JournalHeader header{0x1234, 0xabcdef, 1000.0};
