@@ -10,7 +10,7 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
 PACKAGES := g++ make cmake ninja-build libeigen3-dev libocct-data-exchange-dev libtbb-dev \
-            libassimp-dev nlohmann-json3-dev catch2
+            libassimp-dev nlohmann-json3-dev catch2 libcairo2-dev pkg-config
 BENCH_PACKAGES := libbenchmark-dev libfcl-dev libsisl-dev
 
 .PHONY: deps bench-deps configure build test demo bench soak test-sanitize format clean
@@ -31,7 +31,9 @@ build: configure
 test: build
 	@cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS)
 
-demo: build
+# The demo needs the argil program only, not the test suite.
+demo: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target argil
 	@./tools/demo $(BUILD)
 
 bench: bench-deps

@@ -16,6 +16,9 @@ int run_convert(const std::vector<std::string>& args);
 /// argil collide A B [--face-a I] [--face-b J] [--tolerance E] [--refine] [--json]
 int run_collide(const std::vector<std::string>& args);
 
+/// argil sculpt SCENE [--script S] [--out DIR] [--tolerance E] [--fresh] [--realtime]
+int run_sculpt(const std::vector<std::string>& args);
+
 /// Exit statuses shared by the commands.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;

@@ -24,6 +24,14 @@ void print_usage(std::FILE* out) {
       "                                    intersection curves and contact regions of\n"
       "                                    face I of A and face J of B (default 0, 0);\n"
       "                                    E is eps [mm], default 1e-4 of the faces' size\n"
+      "  sculpt SCENE [--script S] [--out DIR] [--tolerance E] [--fresh] [--realtime]\n"
+      "                                    runs a sculpting session: the scene's tool\n"
+      "                                    driven by script S (default the scene's);\n"
+      "                                    writes the sculpted surfaces (STEP, IGES,\n"
+      "                                    JSON), forces.csv, contacts.csv, timing.json,\n"
+      "                                    recorded.csv and pictures to DIR (default\n"
+      "                                    out/<scene>); resumes an interrupted run from\n"
+      "                                    DIR/session.journal unless --fresh\n"
       "  --help                            this text\n");
 }
 
@@ -39,6 +47,7 @@ int main(int argc, char** argv) {
   if (command == "info") return argil::cli::run_info(args);
   if (command == "convert") return argil::cli::run_convert(args);
   if (command == "collide") return argil::cli::run_collide(args);
+  if (command == "sculpt") return argil::cli::run_sculpt(args);
   std::fprintf(stderr, "argil: unknown command '%s'\n", argv[1]);
   print_usage(stderr);
   return argil::cli::kExitUsage;
