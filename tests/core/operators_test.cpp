@@ -209,3 +209,53 @@ TEST_CASE("level rows put every element's start on its knot and end on the domai
   CHECK(rows.params[24] == 1.0);
   for (Eigen::Index k = 1; k < rows.size(); ++k) CHECK(rows.params[k] > rows.params[k - 1]);
 }
+
+TEST_CASE("hierarchy patches evaluate points and derivatives as the B-spline does") {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  argil::OperatorCache cache;
+  double worst = 0.0;
+  for (int trial = 0; trial < 60; ++trial) {
+    argil::test::RandomSurfaceOptions options;
+    options.max_degree = 7;
+    options.rational = trial % 2 == 1;
+    const BSplineSurface s = argil::test::random_surface(rng, options);
+    auto built = argil::SurfaceHierarchy::build(s, cache);
+    REQUIRE(built.ok());
+    argil::SurfaceHierarchy h = std::move(built).value();
+    // A random path down to level 3 below a random element.
+    int id = h.roots()[static_cast<std::size_t>(rng() % h.roots().size())];
+    for (int level = 0; level < 3; ++level) {
+      id = h.child(id, static_cast<int>(rng() % 2), static_cast<int>(rng() % 2));
+    }
+    const argil::HierarchyNode& n = h.node(id);
+    const double wu = n.u1 - n.u0, wv = n.v1 - n.v0;
+    const double size = model_size(s);
+    for (int k = 0; k < 20; ++k) {
+      const double a = k < 4 ? static_cast<double>(k % 2) : unit(rng);
+      const double b = k < 4 ? static_cast<double>(k / 2) : unit(rng);
+      const auto local = argil::evaluate_derivatives(n.patch, a, b, 2);
+      const auto exact = argil::evaluate_derivatives(s, n.u0 + a * wu, n.v0 + b * wv, 2);
+      // Derivatives relative to the size over the element width (their scale).
+      const double e0 = (local.point - exact.point).norm() / size;
+      const double e1 =
+          std::max((local.du / wu - exact.du).norm() * wu, (local.dv / wv - exact.dv).norm() * wv) /
+          size;
+      const double e2 = std::max({(local.duu / (wu * wu) - exact.duu).norm() * wu * wu,
+                                  (local.duv / (wu * wv) - exact.duv).norm() * wu * wv,
+                                  (local.dvv / (wv * wv) - exact.dvv).norm() * wv * wv}) /
+                        size;
+      INFO("trial " << trial << " degrees " << s.degree[0] << "x" << s.degree[1]);
+      CHECK(e0 <= 1e-12);
+      worst = std::max(worst, e0);
+      // On the patch edges (the first four samples are its corners) the
+      // B-spline may take its derivatives from the neighbouring element: at a
+      // repeated knot they differ. Inside, both are one polynomial.
+      if (k < 4) continue;
+      CHECK(e1 <= 1e-11);
+      CHECK(e2 <= 1e-10);
+      worst = std::max({worst, e1, e2});
+    }
+  }
+  WARN("worst relative gap, Bezier patch against B-spline evaluation: " << worst);
+}

@@ -1,7 +1,9 @@
 #include "argil/core/bezier.hpp"
+#include <array>
 #include <cmath>
 
 #include "argil/core/basis.hpp"
+#include "argil/core/homogeneous_derivatives.hpp"
 #include "argil/core/knot_insertion.hpp"
 
 namespace argil {
@@ -73,6 +75,82 @@ Eigen::Vector3d evaluate(const BezierPatch& patch, double s, double t) {
     }
   }
   return h.head<3>() / h[3];
+}
+
+namespace {
+
+/// Bernstein polynomials of `degree` at t and their first and second
+/// derivatives: d/dt B_i^p = p (B_{i-1}^{p-1} - B_i^{p-1}), and the same again
+/// for the second derivative from degree p - 2.
+struct BernsteinRows {
+  std::array<double, kMaxDegree + 1> value{}, d1{}, d2{};
+};
+
+BernsteinRows bernstein_rows(int p, double t, int order) {
+  // One recurrence (as bernstein()), keeping the rows of degree p - 2 and
+  // p - 1 on the way; entries past a row's degree stay zero.
+  std::array<double, kMaxDegree + 1> b{}, low1{}, low2{};
+  b[0] = 1.0;
+  const double s = 1.0 - t;
+  for (int j = 1; j <= p; ++j) {
+    if (j == p - 1) low2 = b;
+    if (j == p) low1 = b;
+    double saved = 0.0;
+    for (int k = 0; k < j; ++k) {
+      const double temp = b[static_cast<std::size_t>(k)];
+      b[static_cast<std::size_t>(k)] = saved + s * temp;
+      saved = t * temp;
+    }
+    b[static_cast<std::size_t>(j)] = saved;
+  }
+  BernsteinRows r;
+  r.value = b;
+  const auto at = [](const std::array<double, kMaxDegree + 1>& row, int i) {
+    return i < 0 ? 0.0 : row[static_cast<std::size_t>(i)];
+  };
+  if (order >= 1 && p >= 1) {
+    for (int i = 0; i <= p; ++i)
+      r.d1[static_cast<std::size_t>(i)] = p * (at(low1, i - 1) - at(low1, i));
+  }
+  if (order >= 2 && p >= 2) {
+    for (int i = 0; i <= p; ++i) {
+      r.d2[static_cast<std::size_t>(i)] =
+          p * (p - 1) * (at(low2, i - 2) - 2.0 * at(low2, i - 1) + at(low2, i));
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
+SurfaceDerivatives evaluate_derivatives(const BezierPatch& patch, double s, double t, int order) {
+  const int p = patch.degree_u, q = patch.degree_v;
+  const BernsteinRows bu = bernstein_rows(p, s, order);
+  const BernsteinRows bv = bernstein_rows(q, t, order);
+  detail::HomogeneousDerivatives h;
+  for (int a = 0; a <= p; ++a) {
+    // Sums along v first: the net row a against the v rows.
+    Eigen::Vector4d r0 = Eigen::Vector4d::Zero(), r1 = r0, r2 = r0;
+    for (int b = 0; b <= q; ++b) {
+      const Eigen::Vector4d x = patch.points.row(a * (q + 1) + b).transpose();
+      const std::size_t jb = static_cast<std::size_t>(b);
+      r0 += bv.value[jb] * x;
+      if (order >= 1) r1 += bv.d1[jb] * x;
+      if (order >= 2) r2 += bv.d2[jb] * x;
+    }
+    const std::size_t ia = static_cast<std::size_t>(a);
+    h.a00 += bu.value[ia] * r0;
+    if (order >= 1) {
+      h.a10 += bu.d1[ia] * r0;
+      h.a01 += bu.value[ia] * r1;
+    }
+    if (order >= 2) {
+      h.a20 += bu.d2[ia] * r0;
+      h.a11 += bu.d1[ia] * r1;
+      h.a02 += bu.value[ia] * r2;
+    }
+  }
+  return detail::cartesian(h, order);
 }
 
 Eigen::MatrixX4d transform_net(const Eigen::MatrixXd* m_u, const Eigen::MatrixXd* m_v,

@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "argil/core/evaluate.hpp"
+
 namespace argil {
 
 /// Extraction operators of one knot vector (Borden et al. 2011, built here by
@@ -34,6 +36,11 @@ struct BezierPatch {
 
 /// Point of the patch at local (s, t) in [0, 1]^2.
 Eigen::Vector3d evaluate(const BezierPatch& patch, double s, double t);
+
+/// Point and derivatives with respect to the local (s, t) up to `order` (0, 1
+/// or 2), rational by the quotient rule: no knot search, so the leaves of the
+/// hierarchy evaluate through their own patch. Degree at most kMaxDegree.
+SurfaceDerivatives evaluate_derivatives(const BezierPatch& patch, double s, double t, int order);
 
 /// M_u * B * M_v^T applied to a homogeneous net with rows a * (q + 1) + b;
 /// a null matrix leaves that direction as it is. Two passes of 4-vector sums

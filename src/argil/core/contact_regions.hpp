@@ -17,6 +17,9 @@ struct LeafContact {
   /// A lower bound of the tool function on the leaf (-inf when unknown): how
   /// deep anything on the leaf can be, for refining region heads.
   double value_lower_bound = -std::numeric_limits<double>::infinity();
+  /// The hierarchy node of the leaf (-1 when none): its Bezier patch
+  /// evaluates the leaf without a knot search.
+  int node = -1;
 };
 
 /// Groups leaf contacts whose rectangles touch (closed rectangles: sharing an

@@ -50,8 +50,9 @@ void refine_region_heads(SurfaceHierarchy& h,
     Contact best = leaves[begin].contact;  // the deepest sample
     for (const LeafContact* leaf : order) {
       if (-leaf->value_lower_bound <= best.depth) break;
+      const BezierPatch* patch = leaf->node >= 0 ? &h.node(leaf->node).patch : nullptr;
       const PatchMinimum m =
-          minimize_on_patch(h.surface(), leaf->u0, leaf->u1, leaf->v0, leaf->v1, f);
+          minimize_on_patch(h.surface(), leaf->u0, leaf->u1, leaf->v0, leaf->v1, f, nullptr, patch);
       if (-m.value > best.depth) {
         best = make_contact(m);
         best.region = leaves[begin].contact.region;
@@ -108,8 +109,8 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
       // descending would only multiply contacts.
       ++result.counters.leaf_pairs;
       const PatchMinimum m = best_sample_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1,
-                                                  f, &node.bound.corners);
-      leaves.push_back({make_contact(m), node.u0, node.u1, node.v0, node.v1, lower});
+                                                  f, &node.bound.corners, &node.patch);
+      leaves.push_back({make_contact(m), node.u0, node.u1, node.v0, node.v1, lower, id});
       continue;
     }
     const bool flat = node.bound.flatness <= eps || node.level >= SurfaceHierarchy::kMaxLevel;
@@ -132,16 +133,17 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
       ++result.counters.triangle_tests;
       // A sample in contact settles the leaf; Newton only decides the others
       // (region heads are refined after grouping).
-      const PatchMinimum sample = best_sample_on_patch(h.surface(), node.u0, node.u1, node.v0,
-                                                       node.v1, f, &node.bound.corners);
+      const PatchMinimum sample = best_sample_on_patch(
+          h.surface(), node.u0, node.u1, node.v0, node.v1, f, &node.bound.corners, &node.patch);
       if (sample.value <= eps) {
-        leaves.push_back({make_contact(sample), node.u0, node.u1, node.v0, node.v1, leaf_lower});
+        leaves.push_back(
+            {make_contact(sample), node.u0, node.u1, node.v0, node.v1, leaf_lower, id});
         continue;
       }
       const PatchMinimum m = minimize_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f,
-                                               &node.bound.corners);
+                                               &node.bound.corners, &node.patch);
       if (m.value <= eps) {
-        leaves.push_back({make_contact(m), node.u0, node.u1, node.v0, node.v1, leaf_lower});
+        leaves.push_back({make_contact(m), node.u0, node.u1, node.v0, node.v1, leaf_lower, id});
         continue;
       }
       if (reach <= eps || node.level >= SurfaceHierarchy::kMaxLevel) continue;
@@ -257,7 +259,7 @@ ClosestPoint closest_point(SurfaceHierarchy& h, const Eigen::Vector3d& p,
     if (leaf) {
       ++best.counters.leaf_pairs;
       const PatchMinimum m = minimize_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f,
-                                               &node.bound.corners);
+                                               &node.bound.corners, &node.patch);
       offer(m.derivatives.point, m.uv);
       continue;
     }
