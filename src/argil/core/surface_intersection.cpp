@@ -488,6 +488,7 @@ CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb,
     c.uv_b = p.uv_b;
     const SurfaceDerivatives d = evaluate_derivatives(a, c.uv_a[0], c.uv_a[1], 1);
     c.normal = unit_normal(d);
+    if (c.normal.squaredNorm() == 0.0) c.normal = unit_normal(a, c.uv_a[0], c.uv_a[1]);
     c.tangent_u = d.du;
     c.tangent_v = d.dv;
     leaves.push_back(p.leaf);
