@@ -269,7 +269,7 @@ struct CaseReport {
 };
 
 CaseReport check_surface(const BSplineSurface& s, std::mt19937_64& rng, double eval_tol = 1e-12,
-                         double weight_ratio = 1.0) {
+                         double weight_ratio = 1.0, bool occt_projection = true) {
   INFO("degree " << s.degree[0] << "x" << s.degree[1] << " poles " << s.count(Direction::u) << "x"
                  << s.count(Direction::v) << (s.is_rational() ? " rational" : ""));
   REQUIRE(validate(s).ok());
@@ -289,7 +289,7 @@ CaseReport check_surface(const BSplineSurface& s, std::mt19937_64& rng, double e
   r.bound = worst_bound_violation(h.value(), 64, 2);
   CHECK(r.bound <= 1e-13);  // conservative up to rounding of the Bezier nets
   const double size = control_point_box(s).diagonal();
-  r.closest = check_closest_points(h.value(), 1e-6 * size, rng);
+  r.closest = check_closest_points(h.value(), 1e-6 * size, rng, occt_projection);
   return r;
 }
 
@@ -412,7 +412,10 @@ TEST_CASE("extremes: control nets from 2x2 to 1000x1000", "[extremes]") {
       const int p = std::min(3, n - 1);
       BSplineSurface s = surface(p, p, clamped(p, 0.0, 1.0, uniform_interior(p, n, 0.0, 1.0)),
                                  clamped(p, 0.0, 1.0, uniform_interior(p, n, 0.0, 1.0)), 1000.0);
-      report(std::to_string(n) + "x" + std::to_string(n), check_surface(s, rng));
+      // OpenCASCADE's projection samples every span (gigabytes at 1000x1000):
+      // brute force only there.
+      report(std::to_string(n) + "x" + std::to_string(n),
+             check_surface(s, rng, 1e-12, 1.0, n <= 100));
     }
   }
 }
@@ -484,6 +487,300 @@ TEST_CASE("extremes: collapsed edges (poles) have limit normals that agree with 
         CHECK(std::acos(std::min(1.0, limit.dot(near))) <= 1e-5);
       }
     }
+  }
+}
+
+namespace {
+
+/// z = h (1 - (x/a)^2 - (y/a)^2) over [-a, a]^2, exactly, as a 2x2 Bezier
+/// patch (x and y linear in u and v): its apex (0, 0, h) is the highest point.
+BSplineSurface paraboloid(double a, double h) {
+  BSplineSurface s;
+  s.degree = {2, 2};
+  s.knots = {clamped(2, 0.0, 1.0, {}), clamped(2, 0.0, 1.0, {})};
+  s.control_points.resize(9, 3);
+  // Bernstein coefficients of (1 - x^2) on x = -1 + 2u: 0, 2, 0 (sum of both axes).
+  const double c[3] = {0.0, 2.0, 0.0};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      s.control_points.row(i * 3 + j) << a * (i - 1), a * (j - 1), h * (c[i] + c[j] - 1.0);
+    }
+  }
+  return s;
+}
+
+/// A quarter cylinder of `radius` along y (rational quadratic in u, linear in
+/// v): exact, its top line z = radius at x = 0.
+BSplineSurface quarter_cylinder(double radius, double length) {
+  BSplineSurface s;
+  s.degree = {2, 1};
+  s.knots = {clamped(2, 0.0, 1.0, {}), clamped(1, 0.0, 1.0, {})};
+  s.control_points.resize(6, 3);
+  const double w = std::sqrt(0.5);
+  const Eigen::Vector3d arc[3] = {{-radius, 0, 0}, {-radius, 0, radius}, {0, 0, radius}};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      s.control_points.row(i * 2 + j) = (arc[i] + Eigen::Vector3d(0, length * j, 0)).transpose();
+    }
+  }
+  s.weights.resize(6);
+  s.weights << 1, 1, w, w, 1, 1;
+  return s;
+}
+
+void require_finite(const CollisionResult& r) {
+  for (const Contact& c : r.contacts) {
+    REQUIRE(c.point.allFinite());
+    REQUIRE(c.normal.allFinite());
+    REQUIRE(c.tangent_u.allFinite());
+    REQUIRE(c.tangent_v.allFinite());
+    REQUIRE(std::isfinite(c.depth));
+    REQUIRE(c.uv_a.allFinite());
+    REQUIRE(c.uv_b.allFinite());
+  }
+  for (const IntersectionCurve& curve : r.curves) {
+    for (const Eigen::Vector3d& p : curve.points) REQUIRE(p.allFinite());
+  }
+}
+
+/// Distance from p to the surface by OpenCASCADE's projection (infinity when
+/// it finds no orthogonal foot).
+double occt_distance(const Handle(Geom_BSplineSurface) & s, const Eigen::Vector3d& p) {
+  GeomAPI_ProjectPointOnSurf projection(gp_Pnt(p.x(), p.y(), p.z()), s);
+  return projection.NbPoints() > 0 ? projection.LowerDistance()
+                                   : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+TEST_CASE("extremes: tools touching exactly, tangent contact and coincident surfaces",
+          "[extremes]") {
+  OperatorCache cache;
+  SECTION("sphere touching a curved surface at distance 0") {
+    const BSplineSurface s = test::asymmetric_surface(true);
+    Result<SurfaceHierarchy> h = SurfaceHierarchy::build(s, cache);
+    REQUIRE(h.ok());
+    const double size = control_point_box(s).diagonal(), eps = 1e-6 * size;
+    const Handle(Geom_BSplineSurface) oc = to_occt(s);
+    // The sphere sits on the surface where it touches: its centre's distance
+    // from the surface (OpenCASCADE) is its radius, up to rounding.
+    const double u = 0.5 * (s.domain_start(Direction::u) + s.domain_end(Direction::u));
+    const double v = 0.4 * s.domain_start(Direction::v) + 0.6 * s.domain_end(Direction::v);
+    const Eigen::Vector3d n = unit_normal(s, u, v);
+    for (double side : {1.0, -1.0}) {
+      const Eigen::Vector3d centre = evaluate(s, u, v) + side * 0.02 * size * n;
+      const double radius = occt_distance(oc, centre);  // exactly touching
+      REQUIRE(std::isfinite(radius));
+      const auto sphere = make_sphere(centre, radius);
+      const CollisionResult r = collide(h.value(), *sphere, {.tolerance = eps});
+      require_finite(r);
+      REQUIRE_FALSE(r.contacts.empty());  // touching counts as contact
+      double deepest = -std::numeric_limits<double>::infinity();
+      for (const Contact& c : r.contacts) deepest = std::max(deepest, c.depth);
+      CHECK(std::abs(deepest) <= eps);
+      WARN("sphere touching at distance 0 (side " << side << "): deepest contact " << deepest
+                                                  << " mm, eps " << eps);
+    }
+  }
+  SECTION("plane tangent to a paraboloid at its apex") {
+    const BSplineSurface s = paraboloid(50.0, 10.0);
+    Result<SurfaceHierarchy> h = SurfaceHierarchy::build(s, cache);
+    REQUIRE(h.ok());
+    const double eps = 1e-6 * control_point_box(s).diagonal();
+    const auto plane = make_plane(Eigen::Vector3d(0, 0, -1), -10.0);  // inside: z >= 10
+    const CollisionResult r = collide(h.value(), *plane, {.tolerance = eps});
+    require_finite(r);
+    REQUIRE(r.contacts.size() >= 1);
+    for (const Contact& c : r.contacts) {
+      CHECK(c.depth >= -eps);
+      CHECK(c.depth <= 1e-12);  // the apex touches, nothing is deeper
+      // Within eps of the plane only near the apex: |x|, |y| <= a sqrt(eps / h).
+      CHECK(std::hypot(c.point.x(), c.point.y()) <= 50.0 * std::sqrt(2.0 * eps / 10.0));
+      CHECK(c.normal.z() == Approx(1.0).margin(1e-3));
+    }
+  }
+  SECTION("plane tangent to a cylinder along a line") {
+    const BSplineSurface s = quarter_cylinder(20.0, 80.0);
+    Result<SurfaceHierarchy> h = SurfaceHierarchy::build(s, cache);
+    REQUIRE(h.ok());
+    const double eps = 1e-6 * control_point_box(s).diagonal();
+    const auto plane = make_plane(Eigen::Vector3d(0, 0, -1), -20.0);  // z >= 20 inside
+    const CollisionResult r = collide(h.value(), *plane, {.tolerance = eps});
+    require_finite(r);
+    REQUIRE_FALSE(r.contacts.empty());
+    for (const Contact& c : r.contacts) {
+      CHECK(c.depth >= -eps);
+      CHECK(c.depth <= 1e-12 * 80.0);
+      CHECK(std::abs(c.point.x()) <= std::sqrt(2.0 * 20.0 * eps) * 1.01);
+    }
+  }
+  SECTION("a sphere tool touching at a pole") {
+    const BSplineSurface s = dome(3, 2, false, false, true);
+    Result<SurfaceHierarchy> h = SurfaceHierarchy::build(s, cache);
+    REQUIRE(h.ok());
+    const double eps = 1e-6 * control_point_box(s).diagonal();
+    const Eigen::Vector3d pole = evaluate(s, 0.0, 1.0);
+    const Eigen::Vector3d n = unit_normal(s, 0.0, 1.0);
+    const auto sphere = make_sphere(pole + 5.0 * n, 5.0);
+    const CollisionResult r = collide(h.value(), *sphere, {.tolerance = eps});
+    require_finite(r);
+    REQUIRE_FALSE(r.contacts.empty());
+    for (const Contact& c : r.contacts) CHECK(c.normal.norm() == Approx(1.0));
+    const ClosestPoint cp = closest_point(h.value(), pole + 5.0 * n);
+    CHECK(cp.distance == Approx(5.0).margin(eps));
+    CHECK(cp.signed_distance > 0.0);  // the limit normal gives the side at the pole
+  }
+  SECTION("coincident surfaces: a surface against itself and against a refined copy") {
+    const BSplineSurface s = test::asymmetric_surface(true);
+    Result<BSplineSurface> refined =
+        insert_knot(s, Direction::u,
+                    0.5 * (s.domain_start(Direction::u) + s.domain_end(Direction::u)) + 0.01, 1);
+    REQUIRE(refined.ok());
+    for (const BSplineSurface* other : std::vector<const BSplineSurface*>{&s, &refined.value()}) {
+      Result<SurfaceHierarchy> a = SurfaceHierarchy::build(s, cache);
+      Result<SurfaceHierarchy> b = SurfaceHierarchy::build(*other, cache);
+      REQUIRE(a.ok());
+      REQUIRE(b.ok());
+      const double eps = 1e-3 * control_point_box(s).diagonal();
+      const CollisionResult r = collide(a.value(), b.value(), {.tolerance = eps});
+      require_finite(r);
+      REQUIRE_FALSE(r.contacts.empty());
+      CHECK(static_cast<int>(r.contacts.size()) <= CollisionRequest{}.max_contacts);
+      const Handle(Geom_BSplineSurface) ob = to_occt(*other);
+      for (const Contact& c : r.contacts) {
+        CHECK(c.depth >= -eps);
+        CHECK(occt_distance(ob, c.point) <= eps);  // on b too
+      }
+    }
+  }
+  SECTION("tangent surfaces: a paraboloid under a plane touching at its apex") {
+    const BSplineSurface bump = paraboloid(50.0, 10.0);
+    BSplineSurface lid = surface(1, 1, clamped(1, 0.0, 1.0, {}), clamped(1, 0.0, 1.0, {}));
+    lid.control_points << -60, -60, 10, -60, 60, 10, 60, -60, 10, 60, 60, 10;
+    Result<SurfaceHierarchy> a = SurfaceHierarchy::build(bump, cache);
+    Result<SurfaceHierarchy> b = SurfaceHierarchy::build(lid, cache);
+    REQUIRE(a.ok());
+    REQUIRE(b.ok());
+    const double eps = 1e-4 * control_point_box(bump).diagonal();
+    const CollisionResult r = collide(a.value(), b.value(), {.tolerance = eps});
+    require_finite(r);
+    REQUIRE_FALSE(r.contacts.empty());
+    for (const Contact& c : r.contacts) {
+      CHECK(c.depth >= -eps);
+      CHECK(std::abs(c.point.z() - 10.0) <= eps);
+      CHECK(std::hypot(c.point.x(), c.point.y()) <= 50.0 * std::sqrt(2.0 * eps / 10.0));
+    }
+  }
+}
+
+TEST_CASE("extremes: tolerances from 1e-12 to 1 of the model size", "[extremes]") {
+  OperatorCache cache;
+  std::mt19937_64 rng(31);
+  const BSplineSurface s = test::asymmetric_surface(true);
+  const double size = control_point_box(s).diagonal();
+  const Handle(Geom_BSplineSurface) oc = to_occt(s);
+  for (double relative : {1e-12, 1e-9, 1e-6, 1e-3, 1.0}) {
+    DYNAMIC_SECTION("eps " << relative << " of the model size") {
+      const double eps = relative * size;
+      Result<SurfaceHierarchy> h = SurfaceHierarchy::build(s, cache);
+      REQUIRE(h.ok());
+      const double closest = check_closest_points(h.value(), eps, rng);
+      // A sphere sunk into the surface: its deepest contact is the radius less
+      // OpenCASCADE's centre distance, to within eps. Shallow contact costs
+      // about (contact area) / (eps / curvature) leaves, so at the tightest
+      // tolerance the sphere sinks less (docs/range.md has the costs).
+      const double sink = (relative < 1e-9 ? 1e-9 : 1e-2) * size;
+      const double u = 0.3 * s.domain_start(Direction::u) + 0.7 * s.domain_end(Direction::u);
+      const double v = 0.5 * (s.domain_start(Direction::v) + s.domain_end(Direction::v));
+      const double radius = 0.05 * size;
+      const Eigen::Vector3d centre = evaluate(s, u, v) + (radius - sink) * unit_normal(s, u, v);
+      const CollisionResult r =
+          collide(h.value(), *make_sphere(centre, radius), {.tolerance = eps});
+      require_finite(r);
+      REQUIRE_FALSE(r.contacts.empty());
+      double deepest = -std::numeric_limits<double>::infinity();
+      for (const Contact& c : r.contacts) deepest = std::max(deepest, c.depth);
+      const double expected = radius - occt_distance(oc, centre);
+      CHECK(deepest >= expected - eps);
+      CHECK(deepest <= expected + 1e-12 * size);
+      REQUIRE(r.status.ok());
+      WARN("eps " << relative << " x size: closest |ours-OCCT|/size " << closest
+                  << "; sphere depth error " << (deepest - expected) / size << " x size, "
+                  << r.counters.nodes_visited << " nodes");
+    }
+  }
+}
+
+TEST_CASE("extremes: inputs outside the documented range are refused with a clear status",
+          "[extremes]") {
+  const BSplineSurface good = test::asymmetric_surface(true);
+  REQUIRE(validate(good).ok());
+  const auto refused = [](const BSplineSurface& s, SurfaceDefect expected, const char* word) {
+    const SurfaceValidation v = validate(s);
+    INFO(v.message);
+    CHECK(v.defect == expected);
+    CHECK_THAT(v.message, Catch::Contains(word));
+    CHECK(v.status().code == StatusCode::invalid_surface);
+  };
+  SECTION("a coordinate beyond 1e12 mm") {
+    BSplineSurface s = good;
+    s.control_points(3, 1) = 2e12;
+    refused(s, SurfaceDefect::control_point_out_of_range, "control_points[3]");
+  }
+  SECTION("a knot beyond 1e12") {
+    BSplineSurface s = good;
+    s.knots[1] = s.knots[1].array() * 1e13;
+    refused(s, SurfaceDefect::knot_out_of_range, "knots_v");
+  }
+  SECTION("a span shorter than 1e-12 of the domain") {
+    BSplineSurface s =
+        surface(3, 2, clamped(3, 0.0, 1.0, {0.5, 0.5 + 1e-13}), clamped(2, 0.0, 1.0, {}));
+    refused(s, SurfaceDefect::span_too_short, "merge");
+  }
+  SECTION("a domain shorter than 1e-12 of its knots' magnitude") {
+    BSplineSurface s = surface(2, 2, clamped(2, 1e6, 1e6 + 1e-7, {}), clamped(2, 0.0, 1.0, {}));
+    refused(s, SurfaceDefect::span_too_short, "domain");
+  }
+  SECTION("weights with a ratio above 1e8, or beyond [1e-12, 1e12]") {
+    BSplineSurface s = good;
+    s.weights[0] = 1e-5;
+    s.weights[1] = 1e4;
+    refused(s, SurfaceDefect::weight_out_of_range, "ratio");
+    s = good;
+    s.weights.setConstant(1e13);
+    refused(s, SurfaceDefect::weight_out_of_range, "weights[0]");
+  }
+  SECTION("tolerances outside [1e-12, 1] of the model size, or below the coordinates' rounding") {
+    OperatorCache cache;
+    Result<SurfaceHierarchy> h = SurfaceHierarchy::build(good, cache);
+    REQUIRE(h.ok());
+    const double size = control_point_box(good).diagonal();
+    const auto tool = make_sphere(evaluate(good, 0.5, 0.5), 1.0);
+    for (double eps : {1e-13 * size, 2.0 * size, 0.0, -1.0, std::nan("")}) {
+      const CollisionResult r = collide(h.value(), *tool, {.tolerance = eps});
+      INFO("eps " << eps << ": " << r.status.message);
+      CHECK(r.status.code == StatusCode::invalid_argument);
+      CHECK(r.contacts.empty());
+      const ClosestPoint c = closest_point(h.value(), Eigen::Vector3d::Zero(), {.tolerance = eps});
+      CHECK(c.status.code == StatusCode::invalid_argument);
+      CHECK(std::isnan(c.distance));
+      CHECK(collide(h.value(), h.value(), {.tolerance = eps}).status.code ==
+            StatusCode::invalid_argument);
+    }
+    CHECK(collide(h.value(), *tool, {.tolerance = 1e-3, .max_contacts = 0}).status.code ==
+          StatusCode::invalid_argument);
+    // 100 mm at 1e7 mm from the origin: coordinates round at 2e-9 mm, so
+    // 1e-10 mm (1e-12 of the size) cannot be honoured.
+    BSplineSurface far = good;
+    far.control_points.rowwise() += Eigen::RowVector3d(1e7, 0, 0);
+    Result<SurfaceHierarchy> hf = SurfaceHierarchy::build(far, cache);
+    REQUIRE(hf.ok());
+    const ClosestPoint c = closest_point(hf.value(), far.control_points.row(0).transpose(),
+                                         {.tolerance = 1e-12 * size});
+    CHECK(c.status.code == StatusCode::invalid_argument);
+    CHECK_THAT(c.status.message, Catch::Contains("magnitude"));
+    CHECK(closest_point(hf.value(), far.control_points.row(0).transpose(), {.tolerance = 1e-4})
+              .status.ok());
   }
 }
 

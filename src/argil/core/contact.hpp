@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "argil/core/status.hpp"
 #include "argil/core/surface_hierarchy.hpp"
 
 namespace argil {
@@ -47,6 +48,9 @@ struct Contact {
 };
 
 struct CollisionResult {
+  /// Not ok (and nothing computed) when the request is outside the documented
+  /// range for the surfaces queried: see check_request().
+  Status status;
   std::vector<Contact> contacts;  // grouped by region, deepest first within a region
   int region_count = 0;
   QueryCounters counters;
@@ -54,5 +58,19 @@ struct CollisionResult {
   /// triangle segments (empty for other queries).
   std::vector<IntersectionCurve> curves;
 };
+
+/// Smallest tolerance relative to the model: below it the flatness bounds and
+/// the Newton steps are rounding noise, and descents run to the deepest level.
+inline constexpr double kMinRelativeTolerance = 1e-12;
+
+/// Checks a request for a query on `surface` against the documented range
+/// (docs/range.md): tolerance finite, at most the surface's size (the
+/// diagonal of its control points' box) and at least kMinRelativeTolerance of
+/// that size and of the coordinates' magnitude (the largest |coordinate|,
+/// whose rounding no query can resolve); max_contacts >= 1; max_level in
+/// [0, SurfaceHierarchy::kMaxLevel]. Every query runs it first and returns
+/// its status (invalid_argument, naming the value and the limit) on failure.
+/// O(1) for unchanged control points (the root block's bound is cached).
+Status check_request(const CollisionRequest& request, SurfaceHierarchy& surface);
 
 }  // namespace argil

@@ -74,6 +74,8 @@ void refine_region_heads(SurfaceHierarchy& h,
 CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
                         const CollisionRequest& request) {
   CollisionResult result;
+  result.status = check_request(request, h);
+  if (!result.status.ok()) return result;
   const double eps = request.tolerance;
   const double lipschitz = tool.lipschitz();
   const auto f = [&tool](const Eigen::Vector3d& x) { return tool.distance(x); };
@@ -177,6 +179,11 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
 ClosestPoint closest_point(SurfaceHierarchy& h, const Eigen::Vector3d& p,
                            const CollisionRequest& request) {
   ClosestPoint best;
+  best.status = check_request(request, h);
+  if (!best.status.ok()) {
+    best.distance = best.signed_distance = std::numeric_limits<double>::quiet_NaN();
+    return best;
+  }
   best.distance = std::numeric_limits<double>::infinity();
   const double eps = request.tolerance;
   const auto f = [&p](const Eigen::Vector3d& x) {

@@ -350,6 +350,10 @@ RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b
 CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb,
                         const CollisionRequest& request) {
   CollisionResult result;
+  // The tolerance must suit both surfaces.
+  result.status = check_request(request, ha);
+  if (result.status.ok()) result.status = check_request(request, hb);
+  if (!result.status.ok()) return result;
   const double eps = request.tolerance;
   const double flat_tolerance = eps / 3.0;
   Side sa(ha, flat_tolerance, request.max_level, result.counters);
