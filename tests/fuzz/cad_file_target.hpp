@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -22,6 +23,19 @@
 #include "model_checks.hpp"
 
 namespace argil::fuzz {
+
+/// Inputs whose reader process crashed or hung are kept for triage (is the
+/// crash inside OpenCASCADE?) in $ARGIL_FUZZ_CONTAINED_DIR, when set.
+inline void keep_contained_input(const std::uint8_t* data, std::size_t size,
+                                 const char* extension) {
+  const char* folder = std::getenv("ARGIL_FUZZ_CONTAINED_DIR");
+  if (folder == nullptr) return;
+  static int count = 0;
+  const auto path = std::filesystem::path(folder) / ("contained-" + std::to_string(::getpid()) +
+                                                     "-" + std::to_string(count++) + extension);
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+}
 
 inline int read_cad_bytes(const std::uint8_t* data, std::size_t size, const char* extension) {
   // One file per process, overwritten by every input.
@@ -42,6 +56,7 @@ inline int read_cad_bytes(const std::uint8_t* data, std::size_t size, const char
       message.find("did not finish") != std::string::npos ||
       message.find("without a result") != std::string::npos) {
     std::fprintf(stderr, "argil-fuzz: OCCT %s\n", message.c_str());
+    keep_contained_input(data, size, extension);
   }
   if (model.ok()) {
     check_accepted_model(model.value());
