@@ -38,7 +38,7 @@ struct Contact {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();      // p_WC on surface a [mm]
   Eigen::Vector2d uv_a = Eigen::Vector2d::Zero();       // parameters on surface a
   Eigen::Vector2d uv_b = Eigen::Vector2d::Zero();       // parameters on surface b, if any
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();     // unit normal of a from S_u x S_v
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();     // unit normal of a (limit at a pole)
   Eigen::Vector3d tangent_u = Eigen::Vector3d::Zero();  // S_u [mm per unit u]
   Eigen::Vector3d tangent_v = Eigen::Vector3d::Zero();  // S_v [mm per unit v]
   /// Signed penetration depth [mm]: positive when the surface point is inside
