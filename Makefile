@@ -1,19 +1,26 @@
 # Argil: two commands on a fresh Debian 12 machine.
 #   make demo   installs what is missing, builds, runs the bundled example
 #   make test   installs what is missing, builds, runs the whole suite (ctest)
-# Also: make bench, make soak, make test-sanitize, make format, make clean.
+# Also: make bench, make soak, make test-sanitize, make fuzz [FUZZ_SECONDS=60], make format,
+# make clean.
 
 BUILD      ?= build
 BENCH_BUILD ?= build-bench
 SAN_BUILD  ?= build-sanitize
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 60
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
 PACKAGES := g++ make cmake ninja-build libeigen3-dev libocct-data-exchange-dev libtbb-dev \
             libassimp-dev nlohmann-json3-dev catch2 libcairo2-dev pkg-config
 BENCH_PACKAGES := libbenchmark-dev libfcl-dev libsisl-dev
+# libFuzzer ships with clang's compiler-rt.
+FUZZ_PACKAGES := clang-14 libclang-rt-14-dev
+FUZZ_TARGETS := fuzz_json_surfaces fuzz_step_import fuzz_iges_import
 
-.PHONY: deps bench-deps configure build test demo bench soak test-sanitize format clean
+.PHONY: deps bench-deps fuzz-deps configure build test demo bench soak test-sanitize fuzz format \
+        clean
 
 # Installs only the Debian packages that are missing; never touches apt otherwise.
 deps:
@@ -21,6 +28,9 @@ deps:
 
 bench-deps:
 	@./tools/install-packages $(PACKAGES) $(BENCH_PACKAGES)
+
+fuzz-deps:
+	@./tools/install-packages $(PACKAGES) $(FUZZ_PACKAGES)
 
 configure: deps
 	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARGIL_WERROR=ON $(CMAKE_ARGS)
@@ -59,8 +69,16 @@ test-sanitize: deps
 	@cd $(SAN_BUILD) && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --output-on-failure --no-tests=error -j $(JOBS)
 
+# Builds the libFuzzer targets (clang, ASan + UBSan) and runs each for FUZZ_SECONDS.
+fuzz: fuzz-deps
+	@CC=clang-14 CXX=clang++-14 cmake -S . -B $(FUZZ_BUILD) -G Ninja \
+	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARGIL_FUZZ=ON -DARGIL_BUILD_TESTS=OFF -DARGIL_WERROR=ON \
+	  $(CMAKE_ARGS)
+	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(FUZZ_TARGETS)
+	@./tools/run-fuzz $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
 format:
 	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
 
 clean:
-	@rm -rf $(BUILD) $(BENCH_BUILD) $(SAN_BUILD)
+	@rm -rf $(BUILD) $(BENCH_BUILD) $(SAN_BUILD) $(FUZZ_BUILD)

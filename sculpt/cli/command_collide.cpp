@@ -276,6 +276,10 @@ int run_collide(const std::vector<std::string>& args) {
   request.tolerance = eps;
   request.refine = o.refine;
   const CollisionResult r = collide(ha.value(), hb.value(), request);
+  if (!r.status.ok()) {
+    std::fprintf(stderr, "argil collide: %s\n", r.status.message.c_str());
+    return kExitFailure;
+  }
   if (o.json) {
     print_json(o, eps, r);
   } else {

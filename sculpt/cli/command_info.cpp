@@ -63,7 +63,7 @@ int run_info(const std::vector<std::string>& args) {
     const double side = model.faces[f].reversed ? -1.0 : 1.0;
     std::printf("%5zu  (u, v) = (%.6g, %.6g)  ", f, u, v);
     print_vector("point ", d.point);
-    print_vector("  normal ", side * unit_normal(d));
+    print_vector("  normal ", side * unit_normal(s, u, v));
     std::printf("\n");
   }
   return kExitOk;

@@ -89,7 +89,8 @@ TEST_CASE(
       BSplineSurface s;
       s.degree = {p, q};
       s.knots = {uniform_knots(p, n), uniform_knots(q, m)};
-      s.control_points.resize(static_cast<Eigen::Index>(n) * m, 3);
+      // Zero until fitted: validation reads them (resize() leaves them uninitialised).
+      s.control_points.setZero(static_cast<Eigen::Index>(n) * m, 3);
       if (n % 2 == 0) s.weights = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(n) * m, 1.0);
       for (Eigen::Index k = 0; k < s.weights.size(); ++k)
         s.weights[k] = 0.5 + std::fmod(0.37 * static_cast<double>(k), 1.5);

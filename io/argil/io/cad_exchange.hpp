@@ -3,6 +3,7 @@
 // FaceRecord; export writes each record as a B-spline face with its trims.
 // OpenCASCADE's console output is silenced and none of its exceptions escape.
 
+#include <cstddef>
 #include <filesystem>
 #include <optional>
 
@@ -15,6 +16,19 @@ enum class CadFormat { step, iges };
 
 /// The format for ".step"/".stp" or ".iges"/".igs" (case-insensitive), if any.
 std::optional<CadFormat> cad_format_for(const std::filesystem::path& path);
+
+/// How read_cad() protects the caller from OpenCASCADE.
+struct CadReadOptions {
+  /// Read in a child process, so that a crash, hang or memory blow-up inside
+  /// OpenCASCADE on a malformed file becomes an error status (docs/robustness.md).
+  /// false: read in this process (faster by one fork; for debugging).
+  bool isolate = true;
+  /// The child is stopped after this long [s].
+  double time_limit_s = 600.0;
+  /// Address-space limit of the child [MB]; 0: none. Not applied in
+  /// AddressSanitizer builds (its shadow memory alone exceeds any such limit).
+  std::size_t memory_limit_mb = 8192;
+};
 
 /// Reads every face of a STEP or IGES file, in OpenCASCADE's TopExp_Explorer
 /// order, into millimetres.
@@ -29,8 +43,10 @@ std::optional<CadFormat> cad_format_for(const std::filesystem::path& path);
 ///   outer loop is counter-clockwise. A face bounded by exactly its domain
 ///   boundary is recorded untrimmed.
 /// Errors name the file and, where known, the entity: missing, empty, truncated
-/// or malformed files, files without faces, unsupported entities.
-Result<Model> read_cad(const std::filesystem::path& path, CadFormat format);
+/// or malformed files, files without faces, unsupported entities, and (isolated
+/// reads) OpenCASCADE crashing, running out of memory or over the time limit.
+Result<Model> read_cad(const std::filesystem::path& path, CadFormat format,
+                       const CadReadOptions& options = {});
 
 /// Writes all faces as B-spline faces in millimetres (declared in the file):
 /// STEP as B_SPLINE_SURFACE_WITH_KNOTS (rational: the complex entity) in

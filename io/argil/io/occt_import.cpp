@@ -49,6 +49,7 @@
 #include <string>
 
 #include "argil/io/cad_exchange.hpp"
+#include "argil/io/isolated_read.hpp"
 #include "argil/io/occt_session.hpp"
 #include "argil/io/trim_curve.hpp"
 
@@ -571,7 +572,8 @@ std::optional<CadFormat> cad_format_for(const std::filesystem::path& path) {
   return std::nullopt;
 }
 
-Result<Model> read_cad(const std::filesystem::path& path, CadFormat format) {
+Result<Model> read_cad(const std::filesystem::path& path, CadFormat format,
+                       const CadReadOptions& options) {
   detail::silence_occt_console();
   const auto lock = detail::lock_occt_exchange();
   Result<FileEnds> ends = read_ends(path);
@@ -579,14 +581,20 @@ Result<Model> read_cad(const std::filesystem::path& path, CadFormat format) {
   const Status structure = format == CadFormat::step ? check_step_structure(path, ends.value())
                                                      : check_iges_structure(path, ends.value());
   if (!structure.ok()) return structure;
-  try {
-    return read_with_occt(path, format);
-  } catch (const Standard_Failure& failure) {
-    return file_error(path, StatusCode::parse_error,
-                      std::string("OpenCASCADE failed: ") + failure.GetMessageString());
-  } catch (const std::exception& e) {
-    return file_error(path, StatusCode::parse_error, std::string("read failed: ") + e.what());
-  }
+  const auto read = [&]() -> Result<Model> {
+    try {
+      return read_with_occt(path, format);
+    } catch (const Standard_Failure& failure) {
+      return file_error(path, StatusCode::parse_error,
+                        std::string("OpenCASCADE failed: ") + failure.GetMessageString());
+    } catch (const std::exception& e) {
+      return file_error(path, StatusCode::parse_error, std::string("read failed: ") + e.what());
+    }
+  };
+  if (!options.isolate) return read();
+  return detail::read_in_child_process(
+      read, {.time_limit_s = options.time_limit_s, .memory_limit_mb = options.memory_limit_mb},
+      path.string());
 }
 
 }  // namespace argil::io

@@ -128,14 +128,15 @@ int centre_of(const Cell& c, VertexCache& cache) {
   return cache.index(0.5 * (c.u0 + c.u1), 0.5 * (c.v0 + c.v1));
 }
 
-// Unit normal at (u, v); at a degenerate point (a pole, a collapsed edge) the
-// normal of a point slightly towards the domain centre.
+// Unit normal at (u, v), the limit normal on a collapsed edge; where even that
+// is undefined (a fully collapsed corner) the normal of a point slightly
+// towards the domain centre.
 Eigen::Vector3d normal_at(const BSplineSurface& surface, Eigen::Vector2d uv) {
   const Eigen::Vector2d centre(
       0.5 * (surface.domain_start(Direction::u) + surface.domain_end(Direction::u)),
       0.5 * (surface.domain_start(Direction::v) + surface.domain_end(Direction::v)));
   for (int attempt = 0; attempt < 4; ++attempt) {
-    const Eigen::Vector3d n = unit_normal(evaluate_derivatives(surface, uv.x(), uv.y(), 1));
+    const Eigen::Vector3d n = unit_normal(surface, uv.x(), uv.y());
     if (n.squaredNorm() > 0.0) return n;
     uv += 1e-6 * (centre - uv);
   }

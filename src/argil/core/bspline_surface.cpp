@@ -26,16 +26,24 @@ const char* to_string(SurfaceDefect defect) {
       return "multiplicity_too_high";
     case SurfaceDefect::empty_domain:
       return "empty_domain";
+    case SurfaceDefect::knot_out_of_range:
+      return "knot_out_of_range";
+    case SurfaceDefect::span_too_short:
+      return "span_too_short";
     case SurfaceDefect::control_point_count:
       return "control_point_count";
     case SurfaceDefect::non_finite_control_point:
       return "non_finite_control_point";
+    case SurfaceDefect::control_point_out_of_range:
+      return "control_point_out_of_range";
     case SurfaceDefect::weight_count:
       return "weight_count";
     case SurfaceDefect::non_finite_weight:
       return "non_finite_weight";
     case SurfaceDefect::non_positive_weight:
       return "non_positive_weight";
+    case SurfaceDefect::weight_out_of_range:
+      return "weight_out_of_range";
   }
   return "unknown";
 }
@@ -67,6 +75,10 @@ SurfaceValidation validate_knots(const BSplineSurface& s, Direction d) {
     if (!std::isfinite(t[k])) {
       return defect(SurfaceDefect::non_finite_knot, "knots_", dir, "[", k, "] is ", t[k]);
     }
+    if (std::abs(t[k]) > kMaxKnotMagnitude) {
+      return defect(SurfaceDefect::knot_out_of_range, "knots_", dir, "[", k, "] is ", t[k],
+                    ", beyond the supported magnitude ", kMaxKnotMagnitude);
+    }
   }
   for (Eigen::Index k = 1; k < m; ++k) {
     if (t[k] < t[k - 1]) {
@@ -95,6 +107,19 @@ SurfaceValidation validate_knots(const BSplineSurface& s, Direction d) {
     }
     k += run;
   }
+  const double domain = t[m - 1] - t[0];
+  const double largest = std::max({1.0, std::abs(t[0]), std::abs(t[m - 1])});
+  if (domain < kMinSpanRatio * largest) {
+    return defect(SurfaceDefect::span_too_short, "knots_", dir, " domain [", t[0], ", ", t[m - 1],
+                  "] is shorter than ", kMinSpanRatio, " of its knots' magnitude ", largest);
+  }
+  for (Eigen::Index k = 1; k < m; ++k) {
+    if (t[k] > t[k - 1] && t[k] - t[k - 1] < kMinSpanRatio * domain) {
+      return defect(SurfaceDefect::span_too_short, "knots_", dir, " span [", t[k - 1], ", ", t[k],
+                    "] (index ", k - 1, ") is shorter than ", kMinSpanRatio,
+                    " of the domain length ", domain, ": merge the two knots");
+    }
+  }
   return {};
 }
 
@@ -117,6 +142,11 @@ SurfaceValidation validate(const BSplineSurface& s) {
                     "] (i = ", r / s.count(Direction::v), ", j = ", r % s.count(Direction::v),
                     ") is not finite");
     }
+    if (s.control_points.row(r).cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      return defect(SurfaceDefect::control_point_out_of_range, "control_points[", r,
+                    "] (i = ", r / s.count(Direction::v), ", j = ", r % s.count(Direction::v),
+                    ") has a coordinate beyond the supported ", kMaxCoordinate, " mm");
+    }
   }
   if (s.weights.size() != 0 && s.weights.size() != n) {
     return defect(SurfaceDefect::weight_count, "weights has ", s.weights.size(),
@@ -130,6 +160,14 @@ SurfaceValidation validate(const BSplineSurface& s) {
       return defect(SurfaceDefect::non_positive_weight, "weights[", r, "] is ", s.weights[r],
                     ", weights must be positive");
     }
+    if (s.weights[r] > kMaxWeight || s.weights[r] < 1.0 / kMaxWeight) {
+      return defect(SurfaceDefect::weight_out_of_range, "weights[", r, "] is ", s.weights[r],
+                    ", outside the supported [", 1.0 / kMaxWeight, ", ", kMaxWeight, "]");
+    }
+  }
+  if (s.weights.size() > 0 && s.weights.maxCoeff() > kMaxWeightRatio * s.weights.minCoeff()) {
+    return defect(SurfaceDefect::weight_out_of_range, "weights range from ", s.weights.minCoeff(),
+                  " to ", s.weights.maxCoeff(), ", a ratio above the supported ", kMaxWeightRatio);
   }
   return {};
 }

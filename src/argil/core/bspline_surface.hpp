@@ -23,6 +23,23 @@ const char* to_string(Direction d);
 /// Highest degree argil accepts in either direction (documented range).
 inline constexpr int kMaxDegree = 24;
 
+/// The rest of the documented range (docs/range.md). Inside it every
+/// evaluation, bound and query result is finite with room to spare (second
+/// derivatives stay below about 1e80); outside it validate() refuses.
+/// Largest |coordinate| of a control point [mm] (a million kilometres).
+inline constexpr double kMaxCoordinate = 1e12;
+/// Largest |knot value|.
+inline constexpr double kMaxKnotMagnitude = 1e12;
+/// Shortest non-empty knot span relative to the domain length, and shortest
+/// domain relative to max(1, largest |knot|): shorter spans are a few ulps
+/// wide, their derivatives rounding noise.
+inline constexpr double kMinSpanRatio = 1e-12;
+/// Weights lie in [1 / kMaxWeight, kMaxWeight], and the largest is at most
+/// kMaxWeightRatio times the smallest (derivative accuracy drops in
+/// proportion to that ratio).
+inline constexpr double kMaxWeight = 1e12;
+inline constexpr double kMaxWeightRatio = 1e8;
+
 /// A tensor-product B-spline surface, rational when `weights` is non-empty.
 ///
 /// S(u, v) = sum_ij N_i,p(u) N_j,q(v) w_ij P_ij / sum_ij N_i,p(u) N_j,q(v) w_ij
@@ -66,11 +83,15 @@ enum class SurfaceDefect {
   knots_not_clamped,      // end knots not repeated degree + 1 times
   multiplicity_too_high,  // interior knot repeated more than degree times
   empty_domain,           // first and last knot equal
+  knot_out_of_range,      // |knot| above kMaxKnotMagnitude
+  span_too_short,         // a non-empty span or the domain below kMinSpanRatio
   control_point_count,    // rows != n_u * n_v
   non_finite_control_point,
-  weight_count,  // neither empty nor n_u * n_v
+  control_point_out_of_range,  // |coordinate| above kMaxCoordinate
+  weight_count,                // neither empty nor n_u * n_v
   non_finite_weight,
   non_positive_weight,
+  weight_out_of_range,  // outside [1 / kMaxWeight, kMaxWeight] or ratio above kMaxWeightRatio
 };
 const char* to_string(SurfaceDefect defect);
 

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "argil/core/status.hpp"
 #include "argil/core/surface_hierarchy.hpp"
 
 namespace argil {
@@ -42,7 +43,7 @@ struct Contact {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();      // p_WC on surface a [mm]
   Eigen::Vector2d uv_a = Eigen::Vector2d::Zero();       // parameters on surface a
   Eigen::Vector2d uv_b = Eigen::Vector2d::Zero();       // parameters on surface b, if any
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();     // unit normal of a from S_u x S_v
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();     // unit normal of a (limit at a pole)
   Eigen::Vector3d tangent_u = Eigen::Vector3d::Zero();  // S_u [mm per unit u]
   Eigen::Vector3d tangent_v = Eigen::Vector3d::Zero();  // S_v [mm per unit v]
   /// Signed penetration depth [mm]: positive when the surface point is inside
@@ -52,6 +53,9 @@ struct Contact {
 };
 
 struct CollisionResult {
+  /// Not ok (and nothing computed) when the request is outside the documented
+  /// range for the surfaces queried: see check_request().
+  Status status;
   std::vector<Contact> contacts;  // grouped by region, deepest first within a region
   int region_count = 0;
   QueryCounters counters;
@@ -59,5 +63,19 @@ struct CollisionResult {
   /// triangle segments (empty for other queries).
   std::vector<IntersectionCurve> curves;
 };
+
+/// Smallest tolerance relative to the model: below it the flatness bounds and
+/// the Newton steps are rounding noise, and descents run to the deepest level.
+inline constexpr double kMinRelativeTolerance = 1e-12;
+
+/// Checks a request for a query on `surface` against the documented range
+/// (docs/range.md): tolerance finite, at most the surface's size (the
+/// diagonal of its control points' box) and at least kMinRelativeTolerance of
+/// that size and of the coordinates' magnitude (the largest |coordinate|,
+/// whose rounding no query can resolve); max_contacts >= 1; max_level in
+/// [0, SurfaceHierarchy::kMaxLevel]. Every query runs it first and returns
+/// its status (invalid_argument, naming the value and the limit) on failure.
+/// O(1) for unchanged control points (the root block's bound is cached).
+Status check_request(const CollisionRequest& request, SurfaceHierarchy& surface);
 
 }  // namespace argil

@@ -74,4 +74,28 @@ Eigen::Vector3d unit_normal(const SurfaceDerivatives& d) {
   return n / length;
 }
 
+Eigen::Vector3d unit_normal(const BSplineSurface& surface, double u, double v) {
+  const Eigen::Vector3d n = unit_normal(evaluate_derivatives(surface, u, v, 1));
+  if (n.squaredNorm() > 0.0) return n;
+  const SurfaceDerivatives d = evaluate_derivatives(surface, u, v, 2);
+  // A collapsed tangent is rounding noise next to the other one.
+  constexpr double kCollapsed = 1e-6;
+  const double su = d.du.norm(), sv = d.dv.norm();
+  Eigen::Vector3d limit = Eigen::Vector3d::Zero();
+  double scale = 0.0;
+  if (sv <= kCollapsed * su) {
+    const double side = u >= surface.domain_end(Direction::u) ? -1.0 : 1.0;
+    limit = side * d.du.cross(d.duv);
+    scale = su * d.duv.norm();
+  } else if (su <= kCollapsed * sv) {
+    const double side = v >= surface.domain_end(Direction::v) ? -1.0 : 1.0;
+    limit = side * d.duv.cross(d.dv);
+    scale = sv * d.duv.norm();
+  }
+  const double length = limit.norm();
+  constexpr double kDegenerate = 64.0 * std::numeric_limits<double>::epsilon();
+  if (!(length > kDegenerate * scale)) return Eigen::Vector3d::Zero();
+  return limit / length;
+}
+
 }  // namespace argil

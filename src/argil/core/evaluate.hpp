@@ -33,4 +33,14 @@ SurfaceDerivatives evaluate_derivatives(const BSplineSurface& surface, double u,
 /// max(|S_u|, |S_v|)^2 (a collapsed edge or pole, where one tangent is noise).
 Eigen::Vector3d unit_normal(const SurfaceDerivatives& d);
 
+/// Unit normal at (u, v), defined also on a collapsed edge (a pole), where one
+/// tangent vanishes along a whole iso-line: there it is the limit of the
+/// normal from inside the domain. With S_v = 0 along u = u*, S_v(u* + h, v) =
+/// h S_uv + O(h^2), so the normal tends to +-S_u x S_uv; likewise +-S_uv x S_v
+/// when S_u collapses. The sign is the side the domain lies on (the side of
+/// larger parameter, except on the domain's end). Zero where the limit is not
+/// defined either (both tangents vanish, or S_uv is parallel to the remaining
+/// tangent). (u, v) is clamped to the domain. Precondition: validate(surface).ok().
+Eigen::Vector3d unit_normal(const BSplineSurface& surface, double u, double v);
+
 }  // namespace argil

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
 
 #include "argil/core/contact_response.hpp"
 #include "argil/core/implicit_contact.hpp"
@@ -49,11 +50,24 @@ Result<int> HapticWorld::add_deformable(const BSplineSurface& surface, const Mat
                                         const BoundaryConditions& conditions) {
   Result<DeformableBody> body = DeformableBody::create(surface, material, conditions, *cache_);
   if (!body.ok()) return body.status();
+  if (Status s = check_tolerance(body.value().hierarchy()); !s.ok()) return s;
   Body b;
   b.friction = material.friction;
   b.deformable.emplace(std::move(body).value());
   bodies_.push_back(std::move(b));
   return body_count() - 1;
+}
+
+Status HapticWorld::check_tolerance(SurfaceHierarchy& surface) const {
+  // The proxies query at eps and at eps / 4: both must be in the documented
+  // range for this surface, or every contact query of a tick would fail.
+  for (const double tolerance : {options_.tolerance, 0.25 * options_.tolerance}) {
+    const Status s = check_request({.tolerance = tolerance}, surface);
+    if (!s.ok()) {
+      return Status::error(s.code, "body " + std::to_string(body_count()) + ": " + s.message);
+    }
+  }
+  return Status::success();
 }
 
 Result<int> HapticWorld::add_rigid(const BSplineSurface& surface, double friction) {
@@ -66,6 +80,7 @@ Result<int> HapticWorld::add_rigid(const BSplineSurface& surface, double frictio
   }
   Result<SurfaceHierarchy> h = SurfaceHierarchy::build(surface, *cache_);
   if (!h.ok()) return h.status();
+  if (Status s = check_tolerance(h.value()); !s.ok()) return s;
   Body b;
   b.friction = friction;
   b.rigid.emplace(std::move(h).value());
@@ -150,10 +165,12 @@ TickResult HapticWorld::step(const DevicePose& device, double dt) {
       }
     }
     const auto tool = make_sphere(next.position, sphere_->radius());
-    for (std::size_t b = 0; b < bodies_.size(); ++b)
-      r.body_contacts[b] =
-          collide(*surfs[b], *tool, {.tolerance = eps, .max_contacts = options_.max_contacts})
-              .contacts;
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      CollisionResult hit =
+          collide(*surfs[b], *tool, {.tolerance = eps, .max_contacts = options_.max_contacts});
+      if (!hit.status.ok() && r.status.ok()) r.status = hit.status;
+      r.body_contacts[b] = std::move(hit.contacts);
+    }
     outward = sphere_->nearest(surfs, next.position).outward_normal;
   } else {
     const ToolPose target{device.position, device.orientation};

@@ -84,7 +84,8 @@ class HapticWorld {
   /// Validates the options and the tool (radius >= 0, a valid tool surface).
   static Result<HapticWorld> create(const ToolShape& tool, const WorldOptions& options);
 
-  /// Adds a deformable body; returns its index.
+  /// Adds a deformable body; returns its index. Fails when the world's
+  /// tolerance is outside the documented range for it (check_request()).
   Result<int> add_deformable(const BSplineSurface& surface, const Material& material,
                              const BoundaryConditions& conditions);
   /// Adds a rigid body (collides, never deforms) with tool friction mu in [0, 10].
@@ -121,6 +122,8 @@ class HapticWorld {
   };
   HapticWorld() = default;
   std::vector<SurfaceHierarchy*> surfaces();
+  /// The world's tolerance checked against the documented range for a body.
+  Status check_tolerance(SurfaceHierarchy& surface) const;
   /// Steps every deformable body without tool load.
   Status relax(double dt);
 

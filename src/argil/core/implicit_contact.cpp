@@ -17,11 +17,13 @@ namespace argil {
 
 namespace {
 
-Contact make_contact(const PatchMinimum& m) {
+Contact make_contact(const BSplineSurface& s, const PatchMinimum& m) {
   Contact c;
   c.point = m.derivatives.point;
   c.uv_a = m.uv;
   c.normal = unit_normal(m.derivatives);
+  // At a pole: the limit normal (needs second derivatives, so only here).
+  if (c.normal.squaredNorm() == 0.0) c.normal = unit_normal(s, m.uv[0], m.uv[1]);
   c.tangent_u = m.derivatives.du;
   c.tangent_v = m.derivatives.dv;
   c.depth = -m.value;
@@ -54,7 +56,7 @@ void refine_region_heads(SurfaceHierarchy& h,
       const PatchMinimum m =
           minimize_on_patch(h.surface(), leaf->u0, leaf->u1, leaf->v0, leaf->v1, f, nullptr, patch);
       if (-m.value > best.depth) {
-        best = make_contact(m);
+        best = make_contact(h.surface(), m);
         best.region = leaves[begin].contact.region;
       }
     }
@@ -73,6 +75,8 @@ void refine_region_heads(SurfaceHierarchy& h,
 CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
                         const CollisionRequest& request) {
   CollisionResult result;
+  result.status = check_request(request, h);
+  if (!result.status.ok()) return result;
   const double eps = request.tolerance;
   const double lipschitz = tool.lipschitz();
   const auto f = [&tool](const Eigen::Vector3d& x) { return tool.distance(x); };
@@ -110,7 +114,8 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
       ++result.counters.leaf_pairs;
       const PatchMinimum m = best_sample_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1,
                                                   f, &node.bound.corners, &node.patch);
-      leaves.push_back({make_contact(m), node.u0, node.u1, node.v0, node.v1, lower, id});
+      leaves.push_back(
+          {make_contact(h.surface(), m), node.u0, node.u1, node.v0, node.v1, lower, id});
       continue;
     }
     const bool flat = node.bound.flatness <= eps || node.level >= SurfaceHierarchy::kMaxLevel;
@@ -136,14 +141,15 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
       const PatchMinimum sample = best_sample_on_patch(
           h.surface(), node.u0, node.u1, node.v0, node.v1, f, &node.bound.corners, &node.patch);
       if (sample.value <= eps) {
-        leaves.push_back(
-            {make_contact(sample), node.u0, node.u1, node.v0, node.v1, leaf_lower, id});
+        leaves.push_back({make_contact(h.surface(), sample), node.u0, node.u1, node.v0, node.v1,
+                          leaf_lower, id});
         continue;
       }
       const PatchMinimum m = minimize_on_patch(h.surface(), node.u0, node.u1, node.v0, node.v1, f,
                                                &node.bound.corners, &node.patch);
       if (m.value <= eps) {
-        leaves.push_back({make_contact(m), node.u0, node.u1, node.v0, node.v1, leaf_lower, id});
+        leaves.push_back(
+            {make_contact(h.surface(), m), node.u0, node.u1, node.v0, node.v1, leaf_lower, id});
         continue;
       }
       if (reach <= eps || node.level >= SurfaceHierarchy::kMaxLevel) continue;
@@ -175,6 +181,11 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
 ClosestPoint closest_point(SurfaceHierarchy& h, const Eigen::Vector3d& p,
                            const CollisionRequest& request) {
   ClosestPoint best;
+  best.status = check_request(request, h);
+  if (!best.status.ok()) {
+    best.distance = best.signed_distance = std::numeric_limits<double>::quiet_NaN();
+    return best;
+  }
   best.distance = std::numeric_limits<double>::infinity();
   const double eps = request.tolerance;
   const auto f = [&p](const Eigen::Vector3d& x) {
@@ -278,6 +289,8 @@ ClosestPoint closest_point(SurfaceHierarchy& h, const Eigen::Vector3d& p,
   best.point = d.point;
   best.distance = (p - d.point).norm();
   best.normal = unit_normal(d);
+  if (best.normal.squaredNorm() == 0.0)
+    best.normal = unit_normal(h.surface(), best_uv[0], best_uv[1]);
   best.signed_distance = (p - d.point).dot(best.normal) >= 0.0 ? best.distance : -best.distance;
   return best;
 }

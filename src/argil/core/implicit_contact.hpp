@@ -21,6 +21,9 @@ CollisionResult collide(SurfaceHierarchy& surface, const ImplicitTool& tool,
 
 /// Closest point on the surface to p_W (the point tool / proxy).
 struct ClosestPoint {
+  /// Not ok when the request is outside the documented range (check_request());
+  /// then nothing was searched and the distances are NaN.
+  Status status;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();
   double distance = 0.0;         // |p - S(uv)| [mm], within eps of the global minimum

@@ -121,7 +121,9 @@ PatchMinimum minimize_on_patch(const BSplineSurface& s, double u0, double u1, do
       }
     }
     const Eigen::Vector2d gf = grad.cwiseProduct(free_mask);
-    if (gf.isZero()) break;
+    // Exactly zero: Eigen's isZero() compares with an absolute 1e-12, which
+    // stops the descent at once on models a few micrometres across.
+    if ((gf.array() == 0.0).all()) break;
     Eigen::LLT<Eigen::Matrix2d> llt(Hf);
     if (llt.info() == Eigen::Success && Hf.determinant() > 0.0) {
       step = -llt.solve(gf);

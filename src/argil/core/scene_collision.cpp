@@ -49,6 +49,11 @@ Result<SceneCollision> collide_scene(std::span<const SceneBody> bodies,
       contacts.surface_side = pair.b;
       contacts.result = collide(*b.surface, *a.tool, request);
     }
+    if (!contacts.result.status.ok()) {
+      return Status::error(contacts.result.status.code, "scene bodies " + std::to_string(pair.a) +
+                                                            " and " + std::to_string(pair.b) +
+                                                            ": " + contacts.result.status.message);
+    }
     add(scene.counters, contacts.result.counters);
     if (!contacts.result.contacts.empty() || !contacts.result.curves.empty()) {
       scene.pairs.push_back(std::move(contacts));

@@ -45,7 +45,8 @@ struct SceneCollision {
 /// bodies are skipped. Each candidate pair gets the narrow-phase query with
 /// `request` (its tolerance is also the broad-phase margin), so a pair the
 /// broad phase drops has no contact within eps.
-/// Errors: a body with no surface and no tool, or with both.
+/// Errors: a body with no surface and no tool, or with both; a request outside
+/// the documented range for a candidate pair's surface (check_request()).
 Result<SceneCollision> collide_scene(std::span<const SceneBody> bodies,
                                      const CollisionRequest& request = {});
 

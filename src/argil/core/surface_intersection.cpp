@@ -442,6 +442,10 @@ RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b
 CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb,
                         const CollisionRequest& request) {
   CollisionResult result;
+  // The tolerance must suit both surfaces.
+  result.status = check_request(request, ha);
+  if (result.status.ok()) result.status = check_request(request, hb);
+  if (!result.status.ok()) return result;
   const double eps = request.tolerance;
   const double flat_tolerance = eps / 3.0;
   Side sa(ha, flat_tolerance, request.max_level, result.counters);
@@ -591,6 +595,7 @@ CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb,
     c.uv_b = p.uv_b;
     const SurfaceDerivatives d = evaluate_derivatives(a, c.uv_a[0], c.uv_a[1], 1);
     c.normal = unit_normal(d);
+    if (c.normal.squaredNorm() == 0.0) c.normal = unit_normal(a, c.uv_a[0], c.uv_a[1]);
     c.tangent_u = d.du;
     c.tangent_v = d.dv;
     leaves.push_back(p.leaf);
