@@ -17,7 +17,7 @@ PACKAGES := g++ make cmake ninja-build libeigen3-dev libocct-data-exchange-dev l
 BENCH_PACKAGES := libbenchmark-dev libfcl-dev libsisl-dev
 # libFuzzer ships with clang's compiler-rt.
 FUZZ_PACKAGES := clang-14 libclang-rt-14-dev
-FUZZ_TARGETS := fuzz_json_surfaces fuzz_step_import fuzz_iges_import
+FUZZ_TARGETS := fuzz_json_surfaces fuzz_step_import fuzz_iges_import fuzz_scene fuzz_script
 
 .PHONY: deps bench-deps fuzz-deps configure build test demo bench soak test-sanitize fuzz format \
         clean

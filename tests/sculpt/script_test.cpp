@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <random>
 
 #include "argil/sculpt/script.hpp"
@@ -230,6 +231,46 @@ TEST_CASE("read_script refuses unknown extensions and names missing files", "[sc
   const Result<Script> missing = read_script("/no/such/folder/stroke.csv");
   REQUIRE_FALSE(missing.ok());
   CHECK(missing.status().message.find("/no/such/folder/stroke.csv") != std::string::npos);
+}
+
+TEST_CASE("fuzz regression scripts are refused with a message naming the field",
+          "[script][bad-input]") {
+  const auto crash = read_script(std::filesystem::path(ARGIL_SOURCE_DIR) / "tests" / "data" /
+                                 "fuzz-regressions-sculpt" / "script-invalid-utf8-tool.csv");
+  REQUIRE_FALSE(crash.ok());
+  CHECK(crash.status().message.find("tool") != std::string::npos);
+  CHECK(crash.status().message.find("UTF-8") != std::string::npos);
+}
+
+TEST_CASE("tool names are one word of valid UTF-8 in both formats", "[script][bad-input]") {
+  const std::string frame = "t,x,y,z,qw,qx,qy,qz,event\n0,0,0,0,1,0,0,0,\n";
+  // Valid: ASCII and multibyte UTF-8 names round trip through both formats.
+  for (const std::string name : {"ball", "Daumen-\xc3\xa4", "\xe2\x9c\x8b"}) {
+    const auto csv = parse_script_csv("# tool: " + name + "\n" + frame, "s.csv");
+    REQUIRE(csv.ok());
+    CHECK(csv.value().tool == name);
+    const auto json = parse_script_json(script_to_json(csv.value()), "s.json");
+    REQUIRE(json.ok());
+    CHECK(json.value().tool == name);
+    CHECK(parse_script_csv(script_to_csv(json.value()), "again.csv").value().tool == name);
+  }
+  // Refused: invalid bytes, overlong forms, surrogates, two words, control characters.
+  for (const std::string name : {"\xd7\xd7", "\xc0\xaf", "\xed\xa0\x80", "a\x01b"}) {
+    const auto csv = parse_script_csv("# tool: " + name + "\n" + frame, "s.csv");
+    REQUIRE_FALSE(csv.ok());
+    CHECK(csv.status().message.find("tool") != std::string::npos);
+  }
+  CHECK_FALSE(parse_script_csv("# tool: two words\n" + frame, "s.csv").ok());
+  const auto spaced = parse_script_json(
+      R"({"format": "argil.script", "version": 1, "tool": "two words",
+          "keyframes": [{"t": 0, "position": [0, 0, 0], "orientation": [1, 0, 0, 0]}]})",
+      "s.json");
+  REQUIRE_FALSE(spaced.ok());
+  CHECK(spaced.status().message.find("tool") != std::string::npos);
+  Script bad;
+  bad.tool = "tab\there";
+  bad.keyframes.resize(1);
+  CHECK_FALSE(validate(bad).ok());
 }
 
 }  // namespace

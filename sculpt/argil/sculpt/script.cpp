@@ -46,6 +46,38 @@ std::string normalise_quaternion(Eigen::Quaterniond& q) {
   return "";
 }
 
+/// What is wrong with a tool name ("" when nothing): it must be one word of
+/// valid UTF-8 without spaces or control characters, so that both formats
+/// (the CSV header line reads one word) carry it unchanged.
+std::string tool_name_problem(const std::string& name) {
+  for (std::size_t i = 0; i < name.size();) {
+    const auto byte = static_cast<unsigned char>(name[i]);
+    if (byte <= 0x20 || byte == 0x7f)
+      return "tool name must be one word without control characters";
+    // Length of the UTF-8 sequence from its lead byte; continuation bytes are 10xxxxxx.
+    const std::size_t length = byte < 0x80           ? 1
+                               : (byte >> 5) == 0x6  ? 2
+                               : (byte >> 4) == 0xe  ? 3
+                               : (byte >> 3) == 0x1e ? 4
+                                                     : 0;
+    if (length == 0 || i + length > name.size()) return "tool name is not valid UTF-8";
+    for (std::size_t k = 1; k < length; ++k) {
+      if ((static_cast<unsigned char>(name[i + k]) >> 6) != 0x2)
+        return "tool name is not valid UTF-8";
+    }
+    // Overlong forms and surrogates are not valid UTF-8 either.
+    const auto next = static_cast<unsigned char>(length > 1 ? name[i + 1] : 0);
+    if ((length == 2 && byte < 0xc2) || (length == 3 && byte == 0xe0 && next < 0xa0) ||
+        (length == 3 && byte == 0xed && next >= 0xa0) ||
+        (length == 4 && byte == 0xf0 && next < 0x90) || (length == 4 && byte > 0xf4) ||
+        (length == 4 && byte == 0xf4 && next >= 0x90)) {
+      return "tool name is not valid UTF-8";
+    }
+    i += length;
+  }
+  return "";
+}
+
 /// The keyframe checks shared by both parsers and validate(); `where(k)` names
 /// keyframe k in messages.
 template <class Where>
@@ -111,6 +143,8 @@ class ScriptJsonReader {
     }
     if (const Json* tool = r_.member(root, "", "tool", false)) {
       if (!r_.string(*tool, "tool", out.tool)) return false;
+      if (const std::string problem = tool_name_problem(out.tool); !problem.empty())
+        return r_.fail("tool", problem);
     }
     const Json* keyframes = r_.member(root, "", "keyframes");
     if (keyframes == nullptr) return false;
@@ -231,6 +265,11 @@ Result<Script> parse_csv(std::string_view text, const std::string& source) {
         }
       } else if (first == "tool:") {
         if (second.empty()) return error("tool: missing name");
+        std::string rest;
+        if (words >> rest)
+          return error("tool: name must be one word, got more after '" + second + "'");
+        if (const std::string problem = tool_name_problem(second); !problem.empty())
+          return error("tool: " + problem);
         script.tool = second;
       }
       continue;
@@ -337,6 +376,8 @@ Result<Script> read_script(const std::filesystem::path& path) {
 }
 
 Status validate(const Script& script, const std::string& source_name) {
+  if (const std::string problem = tool_name_problem(script.tool); !problem.empty())
+    return Status::error(StatusCode::parse_error, source_name + ": tool: " + problem);
   return check_keyframes(script.keyframes, source_name, keyframe_path);
 }
 
