@@ -272,7 +272,8 @@ TEST_CASE("a node budget keeps memory bounded without changing any result") {
       CHECK(a.contacts[k].depth == b.contacts[k].depth);
     }
     const auto pa = argil::closest_point(bounded, at), pb = argil::closest_point(grown, at);
-    INFO("bounded " << pa.point.transpose() << " d " << pa.distance << " grown " << pb.point.transpose() << " d " << pb.distance);
+    INFO("bounded " << pa.point.transpose() << " d " << pa.distance << " grown "
+                    << pb.point.transpose() << " d " << pb.distance);
     CHECK(pa.point == pb.point);
     largest = std::max(largest, bounded.node_count());
     // After set_control_points the pool is within budget (queries may grow it again).
