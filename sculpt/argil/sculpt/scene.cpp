@@ -91,23 +91,7 @@ class SceneReader {
 
  private:
   bool header(const Json& root) {
-    const Json* format = r_.member(root, "", "format");
-    const Json* version = r_.member(root, "", "version");
-    if (format == nullptr || version == nullptr) return false;
-    std::string name;
-    if (!r_.string(*format, "format", name)) return false;
-    if (name != kSceneFormatName) {
-      return r_.fail("format",
-                     "expected \"" + std::string(kSceneFormatName) + "\", got \"" + name + "\"");
-    }
-    long long number = 0;
-    if (!r_.integer(*version, "version", number)) return false;
-    if (number != kSceneFormatVersion) {
-      return r_.fail("version", "unknown schema version " + std::to_string(number) +
-                                    " (this build reads version " +
-                                    std::to_string(kSceneFormatVersion) + ")");
-    }
-    return true;
+    return r_.format_header(root, kSceneFormatName, kSceneFormatVersion);
   }
 
   bool units(const Json& units) {

@@ -125,22 +125,7 @@ class ScriptJsonReader {
 
   bool script(const Json& root, Script& out) {
     if (!r_.only_known(root, "", {"format", "version", "tool", "keyframes"})) return false;
-    const Json* format = r_.member(root, "", "format");
-    const Json* version = r_.member(root, "", "version");
-    if (format == nullptr || version == nullptr) return false;
-    std::string name;
-    if (!r_.string(*format, "format", name)) return false;
-    if (name != kScriptFormatName) {
-      return r_.fail("format",
-                     "expected \"" + std::string(kScriptFormatName) + "\", got \"" + name + "\"");
-    }
-    long long number = 0;
-    if (!r_.integer(*version, "version", number)) return false;
-    if (number != kScriptFormatVersion) {
-      return r_.fail("version", "unknown schema version " + std::to_string(number) +
-                                    " (this build reads version " +
-                                    std::to_string(kScriptFormatVersion) + ")");
-    }
+    if (!r_.format_header(root, kScriptFormatName, kScriptFormatVersion)) return false;
     if (const Json* tool = r_.member(root, "", "tool", false)) {
       if (!r_.string(*tool, "tool", out.tool)) return false;
       if (const std::string problem = tool_name_problem(out.tool); !problem.empty())

@@ -152,4 +152,22 @@ std::string format_double(double x) {
   return buffer;
 }
 
+bool JsonReader::format_header(const Json& root, std::string_view format, long long version) {
+  const Json* format_value = member(root, "", "format");
+  const Json* version_value = member(root, "", "version");
+  if (format_value == nullptr || version_value == nullptr) return false;
+  std::string name;
+  if (!string(*format_value, "format", name)) return false;
+  if (name != format) {
+    return fail("format", "expected \"" + std::string(format) + "\", got \"" + name + "\"");
+  }
+  long long number = 0;
+  if (!integer(*version_value, "version", number)) return false;
+  if (number != version) {
+    return fail("version", "unknown schema version " + std::to_string(number) +
+                               " (this build reads version " + std::to_string(version) + ")");
+  }
+  return true;
+}
+
 }  // namespace argil::sculpt::internal

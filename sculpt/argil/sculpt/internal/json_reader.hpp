@@ -42,6 +42,9 @@ class JsonReader {
   bool integer(const Json& value, const std::string& path, long long& out);
   bool boolean(const Json& value, const std::string& path, bool& out);
   bool string(const Json& value, const std::string& path, std::string& out);
+  /// The document header: "format" equal to `format` and "version" equal to
+  /// `version` (an unknown version is named with the one this build reads).
+  bool format_header(const Json& root, std::string_view format, long long version);
   /// An array of exactly `count` finite numbers.
   bool numbers(const Json& value, const std::string& path, std::size_t count, double* out);
 
