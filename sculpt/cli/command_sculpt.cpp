@@ -16,6 +16,7 @@
 
 #include "argil/io/atomic_write.hpp"
 #include "argil/io/model_files.hpp"
+#include "argil/io/text_file.hpp"
 #include "argil/sculpt/journal.hpp"
 #include "argil/sculpt/scene.hpp"
 #include "argil/sculpt/script.hpp"
@@ -90,15 +91,6 @@ int parse(const std::vector<std::string>& args, Options& o) {
   return -1;
 }
 
-bool read_bytes(const std::filesystem::path& path, std::string& out) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream content;
-  content << in.rdbuf();
-  out = content.str();
-  return !in.bad();
-}
-
 /// CPU time of the calling thread [s]: a tick's own cost, excluding preemption.
 double thread_cpu_seconds() {
   timespec t{};
@@ -147,11 +139,12 @@ int run_sculpt(const std::vector<std::string>& args) {
   if (const int status = parse(args, o); status >= 0) return status;
 
   // ---- Inputs: everything is checked before anything is written. --------
-  std::string scene_bytes;
   Result<Scene> scene_read = read_scene(o.scene);
   if (!scene_read.ok()) return fail(scene_read.status().message);
   Scene scene = std::move(scene_read).value();
-  read_bytes(o.scene, scene_bytes);
+  const Result<std::string> scene_read_bytes = argil::io::read_text_file(o.scene);
+  if (!scene_read_bytes.ok()) return fail(scene_read_bytes.status().message);
+  const std::string& scene_bytes = scene_read_bytes.value();
   if (o.tolerance > 0.0) scene.tolerance = o.tolerance;
   if (o.script.empty()) o.script = scene.script;
   if (o.script.empty()) {
@@ -175,8 +168,9 @@ int run_sculpt(const std::vector<std::string>& args) {
         kMaxTicks);
     return fail(o.script.string() + message);
   }
-  std::string script_bytes;
-  if (!read_bytes(o.script, script_bytes)) return fail(o.script.string() + ": read failed");
+  const Result<std::string> script_read_bytes = argil::io::read_text_file(o.script);
+  if (!script_read_bytes.ok()) return fail(script_read_bytes.status().message);
+  const std::string& script_bytes = script_read_bytes.value();
   Result<Session> created = Session::create(scene, script.tool);
   if (!created.ok()) return fail(o.scene.string() + ": " + created.status().message);
   Session session = std::move(created).value();

@@ -1,6 +1,8 @@
 // The one translation unit that uses nlohmann-json.
 #include "argil/io/json_format.hpp"
 
+#include "argil/io/text_file.hpp"
+
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -297,14 +299,9 @@ Result<Model> parse_json(std::string_view text, const std::string& source_name) 
 }
 
 Result<Model> read_json(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    return Status::error(StatusCode::io_error, path.string() + ": cannot open (missing file?)");
-  }
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) return Status::error(StatusCode::io_error, path.string() + ": read failed");
-  return parse_json(content.str(), path.string());
+  const Result<std::string> content = read_text_file(path);
+  if (!content.ok()) return content.status();
+  return parse_json(content.value(), path.string());
 }
 
 Result<std::string> to_json(const Model& model) {

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "argil/io/text_file.hpp"
+
 namespace argil::sculpt {
 namespace {
 
@@ -136,11 +138,9 @@ bool checked_body(const std::string& line, std::string& body) {
 }  // namespace
 
 Result<JournalContents> read_journal(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status::error(StatusCode::io_error, path.string() + ": cannot open");
-  std::ostringstream content;
-  content << in.rdbuf();
-  const std::string text = content.str();
+  const Result<std::string> content = io::read_text_file(path);
+  if (!content.ok()) return content.status();
+  const std::string& text = content.value();
   JournalContents out;
   std::size_t pos = 0;
   int line_number = 0;

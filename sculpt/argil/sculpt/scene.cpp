@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "argil/io/text_file.hpp"
 #include "argil/sculpt/internal/json_reader.hpp"
 
 namespace argil::sculpt {
@@ -401,15 +402,10 @@ Result<Scene> parse_scene(std::string_view text, const std::string& source_name,
 }
 
 Result<Scene> read_scene(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    return Status::error(StatusCode::io_error, path.string() + ": cannot open (missing file?)");
-  }
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) return Status::error(StatusCode::io_error, path.string() + ": read failed");
+  const Result<std::string> content = io::read_text_file(path);
+  if (!content.ok()) return content.status();
   const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
-  Result<Scene> scene = parse_scene(content.str(), path.string(), folder);
+  Result<Scene> scene = parse_scene(content.value(), path.string(), folder);
   if (scene.ok()) scene.value().source = path;
   return scene;
 }

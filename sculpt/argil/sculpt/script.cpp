@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "argil/io/atomic_write.hpp"
+#include "argil/io/text_file.hpp"
 #include "argil/sculpt/internal/json_reader.hpp"
 
 namespace argil::sculpt {
@@ -349,15 +350,10 @@ Result<Script> read_script(const std::filesystem::path& path) {
     return Status::error(StatusCode::unsupported,
                          path.string() + ": unknown script extension (expected .json or .csv)");
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    return Status::error(StatusCode::io_error, path.string() + ": cannot open (missing file?)");
-  }
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) return Status::error(StatusCode::io_error, path.string() + ": read failed");
-  return ext == ".json" ? parse_script_json(content.str(), path.string())
-                        : parse_script_csv(content.str(), path.string());
+  const Result<std::string> content = io::read_text_file(path);
+  if (!content.ok()) return content.status();
+  return ext == ".json" ? parse_script_json(content.value(), path.string())
+                        : parse_script_csv(content.value(), path.string());
 }
 
 Status validate(const Script& script, const std::string& source_name) {
