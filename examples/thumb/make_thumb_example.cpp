@@ -15,11 +15,11 @@
 #include <cstdio>
 #include <string>
 
-#include "argil/core/evaluate.hpp"
-#include "argil/core/knot_insertion.hpp"
-#include "argil/io/json_format.hpp"
-#include "argil/io/model_files.hpp"
-#include "argil/sculpt/script.hpp"
+#include "argil/core/geometry/evaluate.hpp"
+#include "argil/core/geometry/knot_insertion.hpp"
+#include "argil/io/json/json_format.hpp"
+#include "argil/io/files/model_files.hpp"
+#include "argil/sculpt/script/script.hpp"
 
 namespace {
 

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "argil/core/bspline_surface.hpp"
-#include "argil/core/surface_hierarchy.hpp"
-#include "argil/core/surface_intersection.hpp"
-#include "argil/core/surface_operators.hpp"
-#include "argil/io/model_files.hpp"
+#include "argil/core/geometry/bspline_surface.hpp"
+#include "argil/core/hierarchy/surface_hierarchy.hpp"
+#include "argil/core/collision/surface_intersection.hpp"
+#include "argil/core/operators/surface_operators.hpp"
+#include "argil/io/files/model_files.hpp"
 #include "commands.hpp"
 
 namespace argil::cli {

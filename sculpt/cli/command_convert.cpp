@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "argil/io/model_files.hpp"
+#include "argil/io/files/model_files.hpp"
 #include "commands.hpp"
 
 namespace argil::cli {

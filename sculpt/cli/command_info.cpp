@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "argil/core/evaluate.hpp"
-#include "argil/io/model_files.hpp"
+#include "argil/core/geometry/evaluate.hpp"
+#include "argil/io/files/model_files.hpp"
 #include "commands.hpp"
 
 namespace argil::cli {

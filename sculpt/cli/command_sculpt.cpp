@@ -14,15 +14,15 @@
 #include <thread>
 #include <vector>
 
-#include "argil/io/atomic_write.hpp"
-#include "argil/io/model_files.hpp"
-#include "argil/io/text_file.hpp"
-#include "argil/sculpt/journal.hpp"
-#include "argil/sculpt/scene.hpp"
-#include "argil/sculpt/script.hpp"
-#include "argil/sculpt/session.hpp"
-#include "argil/sculpt/session_pictures.hpp"
-#include "argil/sculpt/tick_log.hpp"
+#include "argil/io/base/atomic_write.hpp"
+#include "argil/io/files/model_files.hpp"
+#include "argil/io/base/text_file.hpp"
+#include "argil/sculpt/session/journal.hpp"
+#include "argil/sculpt/scene/scene.hpp"
+#include "argil/sculpt/script/script.hpp"
+#include "argil/sculpt/session/session.hpp"
+#include "argil/sculpt/output/session_pictures.hpp"
+#include "argil/sculpt/output/tick_log.hpp"
 #include "commands.hpp"
 
 namespace argil::cli {

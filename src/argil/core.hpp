@@ -1,33 +1,47 @@
 #pragma once
-// argil::core entry header: surfaces, evaluation, precomputed operators, the
-// conservative hierarchy, collision queries, deformation and the haptic tick.
+// argil::core, the entry header. Modules from the bottom up (each includes only
+// those above it in this list): base (status, results), linalg (banded solvers),
+// geometry (B-spline surfaces, evaluation, Bezier patches, tool shapes),
+// operators (precomputed fitting and evaluation matrices), hierarchy (the
+// conservative lazy bound tree), collision (queries and contacts), deform
+// (materials and the deformable body), haptic (proxies, coupling, the tick).
 
-#include "argil/core/banded_cholesky.hpp"
-#include "argil/core/banded_lu.hpp"
-#include "argil/core/basis.hpp"
-#include "argil/core/bezier.hpp"
-#include "argil/core/broad_phase.hpp"
-#include "argil/core/bspline_surface.hpp"
-#include "argil/core/contact.hpp"
-#include "argil/core/contact_regions.hpp"
-#include "argil/core/contact_response.hpp"
-#include "argil/core/curve_operators.hpp"
-#include "argil/core/deformable_body.hpp"
-#include "argil/core/evaluate.hpp"
-#include "argil/core/haptic_tick.hpp"
-#include "argil/core/implicit_contact.hpp"
-#include "argil/core/implicit_tool.hpp"
-#include "argil/core/knot_insertion.hpp"
-#include "argil/core/mass_spring.hpp"
-#include "argil/core/material.hpp"
-#include "argil/core/patch_bound.hpp"
-#include "argil/core/scene_collision.hpp"
-#include "argil/core/sphere_proxy.hpp"
-#include "argil/core/status.hpp"
-#include "argil/core/surface_hierarchy.hpp"
-#include "argil/core/surface_intersection.hpp"
-#include "argil/core/surface_operators.hpp"
-#include "argil/core/surface_penetration.hpp"
-#include "argil/core/surface_tool_proxy.hpp"
-#include "argil/core/triangle_intersection.hpp"
-#include "argil/core/virtual_coupling.hpp"
+// base
+#include "argil/core/base/status.hpp"  // IWYU pragma: export
+// linalg
+#include "argil/core/linalg/banded_cholesky.hpp"  // IWYU pragma: export
+#include "argil/core/linalg/banded_lu.hpp"  // IWYU pragma: export
+// geometry
+#include "argil/core/geometry/basis.hpp"  // IWYU pragma: export
+#include "argil/core/geometry/bezier.hpp"  // IWYU pragma: export
+#include "argil/core/geometry/bspline_surface.hpp"  // IWYU pragma: export
+#include "argil/core/geometry/evaluate.hpp"  // IWYU pragma: export
+#include "argil/core/geometry/implicit_tool.hpp"  // IWYU pragma: export
+#include "argil/core/geometry/knot_insertion.hpp"  // IWYU pragma: export
+#include "argil/core/geometry/triangle_distance.hpp"  // IWYU pragma: export
+// operators
+#include "argil/core/operators/curve_operators.hpp"  // IWYU pragma: export
+#include "argil/core/operators/surface_operators.hpp"  // IWYU pragma: export
+// hierarchy
+#include "argil/core/hierarchy/patch_bound.hpp"  // IWYU pragma: export
+#include "argil/core/hierarchy/surface_hierarchy.hpp"  // IWYU pragma: export
+// collision
+#include "argil/core/collision/broad_phase.hpp"  // IWYU pragma: export
+#include "argil/core/collision/contact.hpp"  // IWYU pragma: export
+#include "argil/core/collision/contact_regions.hpp"  // IWYU pragma: export
+#include "argil/core/collision/implicit_contact.hpp"  // IWYU pragma: export
+#include "argil/core/collision/patch_minimize.hpp"  // IWYU pragma: export
+#include "argil/core/collision/scene_collision.hpp"  // IWYU pragma: export
+#include "argil/core/collision/surface_intersection.hpp"  // IWYU pragma: export
+#include "argil/core/collision/surface_penetration.hpp"  // IWYU pragma: export
+#include "argil/core/collision/triangle_intersection.hpp"  // IWYU pragma: export
+// deform
+#include "argil/core/deform/contact_response.hpp"  // IWYU pragma: export
+#include "argil/core/deform/deformable_body.hpp"  // IWYU pragma: export
+#include "argil/core/deform/mass_spring.hpp"  // IWYU pragma: export
+#include "argil/core/deform/material.hpp"  // IWYU pragma: export
+// haptic
+#include "argil/core/haptic/haptic_tick.hpp"  // IWYU pragma: export
+#include "argil/core/haptic/sphere_proxy.hpp"  // IWYU pragma: export
+#include "argil/core/haptic/surface_tool_proxy.hpp"  // IWYU pragma: export
+#include "argil/core/haptic/virtual_coupling.hpp"  // IWYU pragma: export

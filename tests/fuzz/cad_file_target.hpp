@@ -19,7 +19,7 @@
 #include <fstream>
 #include <string>
 
-#include "argil/io/cad_exchange.hpp"
+#include "argil/io/cad/cad_exchange.hpp"
 #include "model_checks.hpp"
 
 namespace argil::fuzz {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "argil/io/json_format.hpp"
+#include "argil/io/json/json_format.hpp"
 #include "model_checks.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "argil/sculpt/script.hpp"
+#include "argil/sculpt/script/script.hpp"
 
 namespace {
 

@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "argil/core/evaluate.hpp"
-#include "argil/io/json_format.hpp"
-#include "argil/io/model.hpp"
-#include "argil/io/trim_curve.hpp"
+#include "argil/core/geometry/evaluate.hpp"
+#include "argil/io/json/json_format.hpp"
+#include "argil/io/model/model.hpp"
+#include "argil/io/model/trim_curve.hpp"
 
 namespace argil::fuzz {
 

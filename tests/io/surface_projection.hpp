@@ -5,7 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 
-#include "argil/core/evaluate.hpp"
+#include "argil/core/geometry/evaluate.hpp"
 
 namespace argil::test {
 

@@ -27,10 +27,10 @@
 #include <string>
 #include <vector>
 
-#include "argil/core/evaluate.hpp"
-#include "argil/io/model_files.hpp"
-#include "argil/sculpt/scene.hpp"
-#include "argil/sculpt/script.hpp"
+#include "argil/core/geometry/evaluate.hpp"
+#include "argil/io/files/model_files.hpp"
+#include "argil/sculpt/scene/scene.hpp"
+#include "argil/sculpt/script/script.hpp"
 
 namespace {
 

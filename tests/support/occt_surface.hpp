@@ -12,7 +12,7 @@
 
 #include <vector>
 
-#include "argil/core/bspline_surface.hpp"
+#include "argil/core/geometry/bspline_surface.hpp"
 
 namespace argil::test {
 

@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "argil/core/bspline_surface.hpp"
+#include "argil/core/geometry/bspline_surface.hpp"
 
 namespace argil::test {
 

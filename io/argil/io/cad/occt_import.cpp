@@ -1,0 +1,600 @@
+// STEP and IGES import through OpenCASCADE (one of the two OCCT seams; the other
+// is occt_export.cpp). OCCT types stay in this file.
+#include <BRepBuilderAPI_NurbsConvert.hxx>
+#include <BRepTools.hxx>
+#include <BRepTools_WireExplorer.hxx>
+#include <BRep_Tool.hxx>
+#include <Geom2dConvert.hxx>
+#include <Geom2d_BSplineCurve.hxx>
+#include <Geom2d_TrimmedCurve.hxx>
+#include <GeomConvert.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Reader.hxx>
+#include <IGESData_GlobalSection.hxx>
+#include <IGESData_IGESEntity.hxx>
+#include <IGESData_IGESModel.hxx>
+#include <IGESData_UndefinedEntity.hxx>
+#include <Interface_Check.hxx>
+#include <Interface_CheckIterator.hxx>
+#include <Interface_InterfaceModel.hxx>
+#include <Interface_Static.hxx>
+#include <STEPControl_Reader.hxx>
+#include <Standard_Failure.hxx>
+#include <StepData_StepModel.hxx>
+#include <StepData_UndefinedEntity.hxx>
+#include <StepRepr_RepresentationItem.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColStd_Array2OfReal.hxx>
+#include <TColStd_SequenceOfAsciiString.hxx>
+#include <TColgp_Array1OfPnt2d.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <TCollection_HAsciiString.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Wire.hxx>
+#include <Transfer_TransientProcess.hxx>
+#include <XSControl_TransferReader.hxx>
+#include <XSControl_WorkSession.hxx>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "argil/io/cad/cad_exchange.hpp"
+#include "argil/io/cad/detail/isolated_read.hpp"
+#include "argil/io/cad/detail/occt_session.hpp"
+#include "argil/io/model/trim_curve.hpp"
+
+namespace argil::io {
+namespace {
+
+Status file_error(const std::filesystem::path& path, StatusCode code, const std::string& what) {
+  return Status::error(code, path.string() + ": " + what);
+}
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+// The head and tail of a file, for the cheap structural checks OCCT's parsers
+// skip (they accept a truncated file and return whatever they parsed).
+struct FileEnds {
+  std::string head, tail;
+};
+
+Result<FileEnds> read_ends(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    return file_error(path, StatusCode::io_error, "no such file");
+  }
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    return file_error(path, StatusCode::io_error, "not a regular file");
+  }
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) return file_error(path, StatusCode::io_error, "cannot read: " + ec.message());
+  if (size == 0) return file_error(path, StatusCode::parse_error, "empty file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return file_error(path, StatusCode::io_error, "cannot open");
+  constexpr std::uintmax_t kWindow = 4096;
+  FileEnds ends;
+  ends.head.resize(static_cast<std::size_t>(std::min(size, kWindow)));
+  in.read(ends.head.data(), static_cast<std::streamsize>(ends.head.size()));
+  const std::uintmax_t tail_size = std::min(size, kWindow);
+  in.seekg(static_cast<std::streamoff>(size - tail_size));
+  ends.tail.resize(static_cast<std::size_t>(tail_size));
+  in.read(ends.tail.data(), static_cast<std::streamsize>(ends.tail.size()));
+  if (!in) return file_error(path, StatusCode::io_error, "read failed");
+  return ends;
+}
+
+std::string trim_right(std::string text) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  return text;
+}
+
+// ISO 10303-21: the exchange structure starts with ISO-10303-21; and ends with
+// END-ISO-10303-21;.
+Status check_step_structure(const std::filesystem::path& path, const FileEnds& ends) {
+  const auto first = ends.head.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos || ends.head.compare(first, 13, "ISO-10303-21;") != 0) {
+    return file_error(path, StatusCode::parse_error,
+                      "not a STEP file (does not start with ISO-10303-21;)");
+  }
+  const std::string tail = trim_right(ends.tail);
+  const std::string terminator = "END-ISO-10303-21;";
+  if (tail.size() < terminator.size() ||
+      tail.compare(tail.size() - terminator.size(), terminator.size(), terminator) != 0) {
+    return file_error(path, StatusCode::parse_error,
+                      "truncated STEP file (no END-ISO-10303-21; at the end)");
+  }
+  return Status::success();
+}
+
+// IGES 5.3: fixed 80-column records, the section letter in column 73; the last
+// record is the Terminate section ('T').
+Status check_iges_structure(const std::filesystem::path& path, const FileEnds& ends) {
+  const auto line_end = ends.head.find_first_of("\r\n");
+  const std::string first = ends.head.substr(0, line_end);
+  if (first.size() < 73 || (first[72] != 'S' && first[72] != 'G' && first[72] != 'C')) {
+    return file_error(path, StatusCode::parse_error,
+                      "not an IGES file (first record has no section letter in column 73)");
+  }
+  const std::string tail = trim_right(ends.tail);
+  const auto last_start = tail.find_last_of("\r\n");
+  const std::string last = last_start == std::string::npos ? tail : tail.substr(last_start + 1);
+  if (last.size() < 73 || last[72] != 'T') {
+    return file_error(path, StatusCode::parse_error,
+                      "truncated IGES file (the last record is not the Terminate section)");
+  }
+  return Status::success();
+}
+
+// Length unit names as STEP and IGES spell them, to millimetres.
+double unit_to_mm(const std::string& name) {
+  const std::string n = lower(name);
+  if (n == "mm" || n == "millimetre" || n == "millimeter") return 1.0;
+  if (n == "m" || n == "metre" || n == "meter") return 1000.0;
+  if (n == "cm" || n == "centimetre" || n == "centimeter") return 10.0;
+  if (n == "in" || n == "inch") return 25.4;
+  if (n == "ft" || n == "foot") return 304.8;
+  if (n == "um" || n == "micrometre" || n == "micrometer" || n == "micron") return 1e-3;
+  if (n == "km" || n == "kilometre" || n == "kilometer") return 1e6;
+  if (n == "mil") return 0.0254;
+  return 0.0;
+}
+
+// IGES 5.3 global parameter 14 (unit flag); 3 means "see the unit name".
+double iges_unit_to_mm(int flag, const std::string& name) {
+  switch (flag) {
+    case 1:
+      return 25.4;
+    case 2:
+      return 1.0;
+    case 4:
+      return 304.8;
+    case 5:
+      return 1609344.0;
+    case 6:
+      return 1000.0;
+    case 7:
+      return 1e6;
+    case 8:
+      return 0.0254;
+    case 9:
+      return 1e-3;
+    case 10:
+      return 10.0;
+    case 11:
+      return 2.54e-5;
+    default:
+      return unit_to_mm(name);
+  }
+}
+
+// OCCT's knots-with-multiplicities to argil's flat clamped knot vector.
+Eigen::VectorXd flat_knots(const TColStd_Array1OfReal& sequence) {
+  Eigen::VectorXd knots(sequence.Length());
+  for (int k = sequence.Lower(); k <= sequence.Upper(); ++k) {
+    knots[k - sequence.Lower()] = sequence(k);
+  }
+  return knots;
+}
+
+BSplineSurface to_argil(const Handle(Geom_BSplineSurface) & s) {
+  BSplineSurface out;
+  out.degree = {s->UDegree(), s->VDegree()};
+  TColStd_Array1OfReal uk(1, s->NbUPoles() + s->UDegree() + 1);
+  TColStd_Array1OfReal vk(1, s->NbVPoles() + s->VDegree() + 1);
+  s->UKnotSequence(uk);
+  s->VKnotSequence(vk);
+  out.knots = {flat_knots(uk), flat_knots(vk)};
+  const int nu = s->NbUPoles(), nv = s->NbVPoles();
+  TColgp_Array2OfPnt poles(1, nu, 1, nv);
+  s->Poles(poles);
+  out.control_points.resize(static_cast<Eigen::Index>(nu) * nv, 3);
+  const bool rational = s->IsURational() || s->IsVRational();
+  TColStd_Array2OfReal weights(1, nu, 1, nv);
+  if (rational) {
+    s->Weights(weights);
+    out.weights.resize(static_cast<Eigen::Index>(nu) * nv);
+  }
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      const Eigen::Index row = out.pole_index(i, j);
+      const gp_Pnt& p = poles(i + 1, j + 1);
+      out.control_points.row(row) << p.X(), p.Y(), p.Z();
+      if (rational) out.weights[row] = weights(i + 1, j + 1);
+    }
+  }
+  return out;
+}
+
+TrimCurve to_argil(const Handle(Geom2d_BSplineCurve) & c) {
+  TrimCurve out;
+  out.degree = c->Degree();
+  TColStd_Array1OfReal knots(1, c->NbPoles() + c->Degree() + 1);
+  c->KnotSequence(knots);
+  out.knots = flat_knots(knots);
+  out.poles.resize(c->NbPoles(), 2);
+  for (int i = 1; i <= c->NbPoles(); ++i) {
+    out.poles.row(i - 1) << c->Pole(i).X(), c->Pole(i).Y();
+  }
+  if (c->IsRational()) {
+    out.weights.resize(c->NbPoles());
+    for (int i = 1; i <= c->NbPoles(); ++i) out.weights[i - 1] = c->Weight(i);
+  }
+  return out;
+}
+
+// Clamped, non-periodic copy of a B-spline surface: same geometry and parameters.
+Handle(Geom_BSplineSurface) clamped_copy(const Handle(Geom_BSplineSurface) & s) {
+  Handle(Geom_BSplineSurface) copy = Handle(Geom_BSplineSurface)::DownCast(s->Copy());
+  if (copy->IsUPeriodic()) copy->SetUNotPeriodic();
+  if (copy->IsVPeriodic()) copy->SetVNotPeriodic();
+  // Non-periodic OCCT surfaces may still have end knots of lower multiplicity
+  // (unclamped); segmenting to the full domain clamps them without changing
+  // the parametrisation.
+  const bool clamped = copy->UMultiplicity(1) == copy->UDegree() + 1 &&
+                       copy->UMultiplicity(copy->NbUKnots()) == copy->UDegree() + 1 &&
+                       copy->VMultiplicity(1) == copy->VDegree() + 1 &&
+                       copy->VMultiplicity(copy->NbVKnots()) == copy->VDegree() + 1;
+  if (!clamped) {
+    double u0 = 0.0, u1 = 0.0, v0 = 0.0, v1 = 0.0;
+    copy->Bounds(u0, u1, v0, v1);
+    copy->Segment(u0, u1, v0, v1);
+  }
+  return copy;
+}
+
+// The pcurve of an edge as a clamped B-spline, running in the edge's direction
+// within the face.
+Result<TrimCurve> edge_trim(const TopoDS_Edge& edge, const TopoDS_Face& face) {
+  double first = 0.0, last = 0.0;
+  const Handle(Geom2d_Curve) pcurve = BRep_Tool::CurveOnSurface(edge, face, first, last);
+  if (pcurve.IsNull()) {
+    return Status::error(StatusCode::unsupported, "edge without a parameter-space curve");
+  }
+  Handle(Geom2d_BSplineCurve) bspline = Handle(Geom2d_BSplineCurve)::DownCast(pcurve);
+  if (bspline.IsNull() || bspline->FirstParameter() != first || bspline->LastParameter() != last) {
+    bspline = Geom2dConvert::CurveToBSplineCurve(new Geom2d_TrimmedCurve(pcurve, first, last));
+  } else {
+    bspline = Handle(Geom2d_BSplineCurve)::DownCast(bspline->Copy());
+  }
+  if (bspline->IsPeriodic()) bspline->SetNotPeriodic();
+  const int degree = bspline->Degree();
+  if (bspline->Multiplicity(1) <= degree || bspline->Multiplicity(bspline->NbKnots()) <= degree) {
+    // Unclamped ends: segmenting to the full range clamps them, same curve.
+    bspline->Segment(bspline->FirstParameter(), bspline->LastParameter());
+  }
+  if (edge.Orientation() == TopAbs_REVERSED) bspline->Reverse();
+  return to_argil(bspline);
+}
+
+double signed_area(const std::vector<Eigen::Vector2d>& polygon) {
+  double area = 0.0;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    area += (polygon[j].x() - polygon[i].x()) * (polygon[j].y() + polygon[i].y());
+  }
+  return 0.5 * area;
+}
+
+std::vector<Eigen::Vector2d> coarse_polygon(const TrimLoop& loop) {
+  std::vector<Eigen::Vector2d> points;
+  for (const TrimCurve& c : loop.curves) {
+    for (Eigen::Index i = 0; i + 1 < c.poles.rows(); ++i) points.push_back(c.poles.row(i));
+  }
+  return points;
+}
+
+void reverse_loop(TrimLoop& loop) {
+  std::reverse(loop.curves.begin(), loop.curves.end());
+  for (TrimCurve& c : loop.curves) {
+    const double a = c.knots[0], b = c.knots[c.knots.size() - 1];
+    c.knots = (a + b - c.knots.reverse().array()).matrix();
+    c.poles = c.poles.colwise().reverse().eval();
+    if (c.is_rational()) c.weights = c.weights.reverse().eval();
+  }
+}
+
+// True when the loops are exactly the four sides of the surface domain.
+bool is_natural_boundary(const std::vector<TrimLoop>& loops, const BSplineSurface& s) {
+  if (loops.size() != 1) return false;
+  const double u0 = s.domain_start(Direction::u), u1 = s.domain_end(Direction::u);
+  const double v0 = s.domain_start(Direction::v), v1 = s.domain_end(Direction::v);
+  // Pcurves are computed to about 1e-9 of the domain; no real trim is that close.
+  const double tol_u = 1e-9 * (u1 - u0), tol_v = 1e-9 * (v1 - v0);
+  for (const TrimCurve& c : loops[0].curves) {
+    // All poles on one side line: the curve lies on it (convex hull property).
+    const auto on = [&](int col, double value, double tol) {
+      return ((c.poles.col(col).array() - value).abs() <= tol).all();
+    };
+    if (!on(0, u0, tol_u) && !on(0, u1, tol_u) && !on(1, v0, tol_v) && !on(1, v1, tol_v)) {
+      return false;
+    }
+  }
+  const double area = std::abs(signed_area(coarse_polygon(loops[0])));
+  return std::abs(area - (u1 - u0) * (v1 - v0)) <= 1e-9 * (u1 - u0) * (v1 - v0);
+}
+
+Result<std::vector<TrimLoop>> face_loops(const TopoDS_Face& face) {
+  std::vector<TrimLoop> loops;
+  const TopoDS_Wire outer = BRepTools::OuterWire(face);
+  for (TopExp_Explorer w(face, TopAbs_WIRE); w.More(); w.Next()) {
+    const TopoDS_Wire& wire = TopoDS::Wire(w.Current());
+    TrimLoop loop;
+    loop.outer = wire.IsSame(outer);
+    int edges_in_order = 0;
+    for (BRepTools_WireExplorer e(wire, face); e.More(); e.Next()) {
+      Result<TrimCurve> curve = edge_trim(e.Current(), face);
+      if (!curve.ok()) return curve.status();
+      loop.curves.push_back(std::move(curve).value());
+      ++edges_in_order;
+    }
+    int edges = 0;
+    for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next()) ++edges;
+    if (edges_in_order != edges) {
+      // A wire OCCT cannot chain: keep its stored order rather than drop edges.
+      loop.curves.clear();
+      for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next()) {
+        Result<TrimCurve> curve = edge_trim(TopoDS::Edge(e.Current()), face);
+        if (!curve.ok()) return curve.status();
+        loop.curves.push_back(std::move(curve).value());
+      }
+    }
+    if (loop.curves.empty()) continue;
+    const double area = signed_area(coarse_polygon(loop));
+    if ((loop.outer && area < 0.0) || (!loop.outer && area > 0.0)) reverse_loop(loop);
+    loops.push_back(std::move(loop));
+  }
+  // Outer loop first.
+  std::stable_partition(loops.begin(), loops.end(), [](const TrimLoop& l) { return l.outer; });
+  return loops;
+}
+
+// How the file itself names an entity: "#<id>" in STEP, "D<directory entry>" in IGES.
+std::string entity_label(const Handle(Interface_InterfaceModel) & model,
+                         const Handle(Standard_Transient) & entity, CadFormat format) {
+  const int number = model->Number(entity);
+  if (number <= 0) return "";
+  if (format == CadFormat::step) {
+    const auto step = Handle(StepData_StepModel)::DownCast(model);
+    const int id = step.IsNull() ? 0 : step->IdentLabel(entity);
+    return "#" + std::to_string(id > 0 ? id : number);
+  }
+  return "D" + std::to_string(2 * number - 1);
+}
+
+// Where a face came from: "#<entity>" in STEP, "D<directory entry>" in IGES.
+void describe_source(const Handle(XSControl_WorkSession) & session, const TopoDS_Shape& face,
+                     CadFormat format, FaceRecord& record) {
+  const Handle(XSControl_TransferReader) reader = session->TransferReader();
+  if (reader.IsNull()) return;
+  Handle(Standard_Transient) entity = reader->EntityFromShapeResult(face, 1);
+  if (entity.IsNull()) entity = reader->EntityFromShapeResult(face, -1);
+  if (entity.IsNull()) return;
+  record.source_id = entity_label(session->Model(), entity, format);
+  if (format == CadFormat::step) {
+    const auto item = Handle(StepRepr_RepresentationItem)::DownCast(entity);
+    if (!item.IsNull() && !item->Name().IsNull()) record.name = item->Name()->ToCString();
+  } else {
+    const auto iges = Handle(IGESData_IGESEntity)::DownCast(entity);
+    if (!iges.IsNull() && iges->HasName()) record.name = iges->NameValue()->ToCString();
+  }
+}
+
+Result<FaceRecord> face_record(const TopoDS_Face& oriented_face) {
+  FaceRecord record;
+  record.reversed = oriented_face.Orientation() == TopAbs_REVERSED;
+  TopoDS_Face face = TopoDS::Face(oriented_face.Oriented(TopAbs_FORWARD));
+  Handle(Geom_Surface) surface = BRep_Tool::Surface(face);  // with the face's location
+  if (surface.IsNull()) return Status::error(StatusCode::unsupported, "face without a surface");
+  const auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(surface);
+  if (!trimmed.IsNull()) surface = trimmed->BasisSurface();
+  Handle(Geom_BSplineSurface) bspline = Handle(Geom_BSplineSurface)::DownCast(surface);
+  if (bspline.IsNull()) {
+    // Converts surface and pcurves together, so the trims follow the new parameters.
+    BRepBuilderAPI_NurbsConvert convert(face, true);
+    if (!convert.IsDone()) {
+      return Status::error(
+          StatusCode::unsupported,
+          std::string("cannot convert ") + surface->DynamicType()->Name() + " to a B-spline");
+    }
+    face = TopoDS::Face(convert.Shape().Oriented(TopAbs_FORWARD));
+    Handle(Geom_Surface) converted = BRep_Tool::Surface(face);
+    const auto converted_trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(converted);
+    if (!converted_trimmed.IsNull()) converted = converted_trimmed->BasisSurface();
+    bspline = Handle(Geom_BSplineSurface)::DownCast(converted);
+    if (bspline.IsNull()) {
+      return Status::error(StatusCode::unsupported, std::string("conversion of ") +
+                                                        surface->DynamicType()->Name() +
+                                                        " gave no B-spline surface");
+    }
+  }
+  record.surface = to_argil(clamped_copy(bspline));
+  const SurfaceValidation check = validate(record.surface);
+  if (!check.ok()) return Status::error(StatusCode::invalid_surface, check.message);
+  Result<std::vector<TrimLoop>> loops = face_loops(face);
+  if (!loops.ok()) return loops.status();
+  record.loops = std::move(loops).value();
+  if (is_natural_boundary(record.loops, record.surface)) record.loops.clear();
+  const Status valid = validate_face(record, 0);
+  if (!valid.ok()) {
+    // Drop validate_face's "face 0" prefix: the caller names the face.
+    return Status::error(valid.code, valid.message.substr(valid.message.find(' ', 5) + 1));
+  }
+  return record;
+}
+
+// First failure OCCT recorded while loading, if any ("" when none).
+std::string first_load_failure(const Handle(XSControl_WorkSession) & session, CadFormat format) {
+  const Handle(Interface_InterfaceModel) model = session->Model();
+  const Interface_CheckIterator checks = session->ModelCheckList();
+  for (checks.Start(); checks.More(); checks.Next()) {
+    const Handle(Interface_Check) check = checks.Value();
+    if (check->HasFailed()) {
+      const int number = checks.Number();
+      std::string text;
+      if (number > 0 && number <= model->NbEntities()) {
+        text = " at entity " + entity_label(model, model->Value(number), format) + " (" +
+               model->TypeName(model->Value(number), false) + ")";
+      }
+      if (check->NbFails() > 0) text += ": " + std::string(check->CFail(1));
+      return text;
+    }
+  }
+  return "";
+}
+
+// Entities the reader did not recognise; a CAD import that silently dropped
+// geometry would be worse than a clear refusal.
+std::string first_unsupported_entity(const Handle(Interface_InterfaceModel) & model,
+                                     CadFormat format) {
+  for (int n = 1; n <= model->NbEntities(); ++n) {
+    const Handle(Standard_Transient) entity = model->Value(n);
+    if (format == CadFormat::step) {
+      const auto unknown = Handle(StepData_UndefinedEntity)::DownCast(entity);
+      if (!unknown.IsNull()) {
+        return entity_label(model, entity, format) + " (" + std::string(unknown->StepType()) + ")";
+      }
+    } else {
+      const auto unknown = Handle(IGESData_UndefinedEntity)::DownCast(entity);
+      if (!unknown.IsNull()) {
+        return entity_label(model, entity, format) + " (type " +
+               std::to_string(unknown->TypeNumber()) + ")";
+      }
+    }
+  }
+  return "";
+}
+
+Result<Model> read_with_occt(const std::filesystem::path& path, CadFormat format) {
+  const char* kind = format == CadFormat::step ? "STEP" : "IGES";
+  Model model;
+  TopoDS_Shape shape;
+  Handle(XSControl_WorkSession) session;
+  if (format == CadFormat::step) {
+    Interface_Static::SetCVal("xstep.cascade.unit", "MM");
+    STEPControl_Reader reader;
+    session = reader.WS();
+    if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) {
+      return file_error(path, StatusCode::parse_error, "malformed STEP file");
+    }
+    if (const std::string bad = first_unsupported_entity(session->Model(), format); !bad.empty()) {
+      return file_error(path, StatusCode::unsupported, "unsupported STEP entity " + bad);
+    }
+    if (const std::string fail = first_load_failure(session, format); !fail.empty()) {
+      return file_error(path, StatusCode::parse_error, "malformed STEP data" + fail);
+    }
+    TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
+    reader.FileUnits(lengths, angles, solid_angles);
+    if (lengths.Length() > 0) model.source_unit.name = lower(lengths(1).ToCString());
+    if (reader.NbRootsForTransfer() == 0) {
+      return file_error(path, StatusCode::unsupported, "no shapes to transfer (no faces)");
+    }
+    reader.TransferRoots();
+    shape = reader.OneShape();
+  } else {
+    IGESControl_Controller::Init();
+    Interface_Static::SetCVal("xstep.cascade.unit", "MM");
+    // 0: keep B-splines as written; the default 1 may remove knots to raise continuity.
+    Interface_Static::SetIVal("read.iges.bspline.continuity", 0);
+    IGESControl_Reader reader;
+    session = reader.WS();
+    if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) {
+      return file_error(path, StatusCode::parse_error, "malformed IGES file");
+    }
+    if (const std::string bad = first_unsupported_entity(session->Model(), format); !bad.empty()) {
+      return file_error(path, StatusCode::unsupported, "unsupported IGES entity " + bad);
+    }
+    if (const std::string fail = first_load_failure(session, format); !fail.empty()) {
+      return file_error(path, StatusCode::parse_error, "malformed IGES data" + fail);
+    }
+    const auto iges = Handle(IGESData_IGESModel)::DownCast(session->Model());
+    if (!iges.IsNull()) {
+      const IGESData_GlobalSection& global = iges->GlobalSection();
+      if (!global.UnitName().IsNull())
+        model.source_unit.name = lower(global.UnitName()->ToCString());
+      model.source_unit.to_mm = iges_unit_to_mm(global.UnitFlag(), model.source_unit.name);
+    }
+    if (reader.NbRootsForTransfer() == 0) {
+      return file_error(path, StatusCode::unsupported, "no shapes to transfer (no faces)");
+    }
+    reader.TransferRoots();
+    shape = reader.OneShape();
+  }
+  if (format == CadFormat::step) model.source_unit.to_mm = unit_to_mm(model.source_unit.name);
+  if (!(model.source_unit.to_mm > 0.0)) {
+    // The reader still converted to mm; only the record of the factor is missing.
+    model.source_unit.to_mm = 1.0;
+    model.metadata["source_unit_note"] = "unit name not recognised, factor unknown";
+  }
+  model.metadata["source_file"] = path.filename().string();
+  model.metadata["source_format"] = kind;
+  if (shape.IsNull()) {
+    return file_error(path, StatusCode::unsupported, "no shape could be read (no faces)");
+  }
+  int index = 0;
+  for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next(), ++index) {
+    Result<FaceRecord> record = face_record(TopoDS::Face(e.Current()));
+    if (!record.ok()) {
+      FaceRecord source;  // only for the entity id in the message
+      describe_source(session, e.Current(), format, source);
+      return file_error(path, record.status().code,
+                        "face " + std::to_string(index) +
+                            (source.source_id.empty() ? "" : " (" + source.source_id + ")") + ": " +
+                            record.status().message);
+    }
+    describe_source(session, e.Current(), format, record.value());
+    model.faces.push_back(std::move(record).value());
+  }
+  if (model.faces.empty()) {
+    return file_error(path, StatusCode::unsupported, std::string(kind) + " file has no faces");
+  }
+  return model;
+}
+
+}  // namespace
+
+std::optional<CadFormat> cad_format_for(const std::filesystem::path& path) {
+  const std::string ext = lower(path.extension().string());
+  if (ext == ".step" || ext == ".stp") return CadFormat::step;
+  if (ext == ".iges" || ext == ".igs") return CadFormat::iges;
+  return std::nullopt;
+}
+
+Result<Model> read_cad(const std::filesystem::path& path, CadFormat format,
+                       const CadReadOptions& options) {
+  detail::silence_occt_console();
+  const auto lock = detail::lock_occt_exchange();
+  Result<FileEnds> ends = read_ends(path);
+  if (!ends.ok()) return ends.status();
+  const Status structure = format == CadFormat::step ? check_step_structure(path, ends.value())
+                                                     : check_iges_structure(path, ends.value());
+  if (!structure.ok()) return structure;
+  const auto read = [&]() -> Result<Model> {
+    try {
+      return read_with_occt(path, format);
+    } catch (const Standard_Failure& failure) {
+      return file_error(path, StatusCode::parse_error,
+                        std::string("OpenCASCADE failed: ") + failure.GetMessageString());
+    } catch (const std::exception& e) {
+      return file_error(path, StatusCode::parse_error, std::string("read failed: ") + e.what());
+    }
+  };
+  if (!options.isolate) return read();
+  return detail::read_in_child_process(
+      read, {.time_limit_s = options.time_limit_s, .memory_limit_mb = options.memory_limit_mb},
+      path.string());
+}
+
+}  // namespace argil::io

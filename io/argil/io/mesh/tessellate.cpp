@@ -1,0 +1,297 @@
+#include "argil/io/mesh/tessellate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "argil/core/geometry/evaluate.hpp"
+#include "argil/io/model/trim_curve.hpp"
+
+namespace argil::io {
+namespace {
+
+struct Cell {
+  double u0, u1, v0, v1;
+  int depth;
+};
+
+// Surface points by exact (u, v): shared cell corners are computed by the same
+// midpoint arithmetic on both sides, so exact keys identify them.
+class VertexCache {
+ public:
+  explicit VertexCache(const BSplineSurface& surface) : surface_(surface) {}
+
+  int index(double u, double v) {
+    const auto [it, inserted] = index_.try_emplace({u, v}, static_cast<int>(uv_.size()));
+    if (inserted) {
+      uv_.emplace_back(u, v);
+      points_.push_back(evaluate(surface_, u, v));
+    }
+    return it->second;
+  }
+  const Eigen::Vector3d& point(int i) const { return points_[static_cast<std::size_t>(i)]; }
+  const Eigen::Vector2d& uv(int i) const { return uv_[static_cast<std::size_t>(i)]; }
+  std::size_t size() const { return uv_.size(); }
+  const BSplineSurface& surface() const { return surface_; }
+
+ private:
+  const BSplineSurface& surface_;
+  std::map<std::pair<double, double>, int> index_;
+  std::vector<Eigen::Vector2d> uv_;
+  std::vector<Eigen::Vector3d> points_;
+};
+
+// Upper bound of the chord error of the fan (centre, boundary[k], boundary[k+1])
+// at the sample points of its triangles, compared with the tolerance.
+bool fan_within(VertexCache& cache, int centre, const std::vector<int>& boundary,
+                double tolerance) {
+  const std::size_t n = boundary.size();
+  const auto deviation = [&](const Eigen::Vector2d& uv, const Eigen::Vector3d& linear) {
+    return (evaluate(cache.surface(), uv.x(), uv.y()) - linear).norm();
+  };
+  const Eigen::Vector2d& c_uv = cache.uv(centre);
+  const Eigen::Vector3d& c_p = cache.point(centre);
+  for (std::size_t k = 0; k < n; ++k) {
+    const int a = boundary[k];
+    const int b = boundary[(k + 1) % n];
+    const Eigen::Vector2d a_uv = cache.uv(a), b_uv = cache.uv(b);
+    const Eigen::Vector3d a_p = cache.point(a), b_p = cache.point(b);
+    if (deviation(0.5 * (a_uv + b_uv), 0.5 * (a_p + b_p)) > tolerance ||
+        deviation(0.5 * (c_uv + a_uv), 0.5 * (c_p + a_p)) > tolerance ||
+        deviation((c_uv + a_uv + b_uv) / 3.0, (c_p + a_p + b_p) / 3.0) > tolerance) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::array<Cell, 4> split(const Cell& c) {
+  const double um = 0.5 * (c.u0 + c.u1);
+  const double vm = 0.5 * (c.v0 + c.v1);
+  const int d = c.depth + 1;
+  return {Cell{c.u0, um, c.v0, vm, d}, Cell{um, c.u1, c.v0, vm, d}, Cell{c.u0, um, vm, c.v1, d},
+          Cell{um, c.u1, vm, c.v1, d}};
+}
+
+// Corner parameters of all leaves along every constant-u and constant-v line,
+// so a cell can find its neighbours' vertices on its own edges.
+struct CornerIndex {
+  std::map<double, std::vector<double>> v_on_u_line;
+  std::map<double, std::vector<double>> u_on_v_line;
+
+  explicit CornerIndex(const std::vector<Cell>& leaves) {
+    for (const Cell& c : leaves) {
+      for (double u : {c.u0, c.u1}) {
+        v_on_u_line[u].push_back(c.v0);
+        v_on_u_line[u].push_back(c.v1);
+      }
+      for (double v : {c.v0, c.v1}) {
+        u_on_v_line[v].push_back(c.u0);
+        u_on_v_line[v].push_back(c.u1);
+      }
+    }
+    for (auto* lines : {&v_on_u_line, &u_on_v_line}) {
+      for (auto& [key, values] : *lines) {
+        std::sort(values.begin(), values.end());
+        values.erase(std::unique(values.begin(), values.end()), values.end());
+      }
+    }
+  }
+
+  // Values on line `key` within [lo, hi), ascending.
+  static std::vector<double> between(const std::map<double, std::vector<double>>& lines, double key,
+                                     double lo, double hi) {
+    const std::vector<double>& values = lines.at(key);
+    return {std::lower_bound(values.begin(), values.end(), lo),
+            std::lower_bound(values.begin(), values.end(), hi)};
+  }
+
+  // Boundary vertices of a cell, counter-clockwise in (u, v) from (u0, v0).
+  std::vector<int> boundary(const Cell& c, VertexCache& cache) const {
+    std::vector<int> out;
+    for (double u : between(u_on_v_line, c.v0, c.u0, c.u1)) out.push_back(cache.index(u, c.v0));
+    for (double v : between(v_on_u_line, c.u1, c.v0, c.v1)) out.push_back(cache.index(c.u1, v));
+    std::vector<double> top = between(u_on_v_line, c.v1, c.u0, c.u1);
+    top.push_back(c.u1);
+    for (auto it = top.rbegin(); it != top.rend() - 1; ++it) out.push_back(cache.index(*it, c.v1));
+    std::vector<double> left = between(v_on_u_line, c.u0, c.v0, c.v1);
+    left.push_back(c.v1);
+    for (auto it = left.rbegin(); it != left.rend() - 1; ++it) {
+      out.push_back(cache.index(c.u0, *it));
+    }
+    return out;
+  }
+};
+
+int centre_of(const Cell& c, VertexCache& cache) {
+  return cache.index(0.5 * (c.u0 + c.u1), 0.5 * (c.v0 + c.v1));
+}
+
+// Unit normal at (u, v), the limit normal on a collapsed edge; where even that
+// is undefined (a fully collapsed corner) the normal of a point slightly
+// towards the domain centre.
+Eigen::Vector3d normal_at(const BSplineSurface& surface, Eigen::Vector2d uv) {
+  const Eigen::Vector2d centre(
+      0.5 * (surface.domain_start(Direction::u) + surface.domain_end(Direction::u)),
+      0.5 * (surface.domain_start(Direction::v) + surface.domain_end(Direction::v)));
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    const Eigen::Vector3d n = unit_normal(surface, uv.x(), uv.y());
+    if (n.squaredNorm() > 0.0) return n;
+    uv += 1e-6 * (centre - uv);
+  }
+  return Eigen::Vector3d::Zero();
+}
+
+}  // namespace
+
+TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& options,
+                             int face_index) {
+  const BSplineSurface& s = face.surface;
+  const double tolerance = options.chord_tolerance_mm;
+  // Bezier patches of degree above 3 can wiggle between the few samples of an
+  // unsplit cell; one more forced level makes that aliasing unlikely.
+  const int min_depth = std::max(s.degree[0], s.degree[1]) > 3 ? 2 : 1;
+  VertexCache cache(s);
+
+  // Phase 1: split each knot-span patch by the flatness of its own four-corner fan.
+  std::vector<Cell> stack;
+  for (Eigen::Index i = s.degree[0]; i < s.count(Direction::u); ++i) {
+    for (Eigen::Index j = s.degree[1]; j < s.count(Direction::v); ++j) {
+      const Cell root{s.knots[0][i], s.knots[0][i + 1], s.knots[1][j], s.knots[1][j + 1], 0};
+      if (root.u1 > root.u0 && root.v1 > root.v0) stack.push_back(root);
+    }
+  }
+  std::vector<Cell> leaves;
+  while (!stack.empty()) {
+    const Cell c = stack.back();
+    stack.pop_back();
+    bool flat = c.depth >= options.max_depth;
+    if (!flat && c.depth >= min_depth) {
+      const std::vector<int> corners{cache.index(c.u0, c.v0), cache.index(c.u1, c.v0),
+                                     cache.index(c.u1, c.v1), cache.index(c.u0, c.v1)};
+      flat = fan_within(cache, centre_of(c, cache), corners, tolerance);
+    }
+    if (flat) {
+      leaves.push_back(c);
+    } else {
+      for (const Cell& child : split(c)) stack.push_back(child);
+    }
+  }
+
+  // Phase 2: with neighbours' vertices in each fan, re-check and split until
+  // every fan is within tolerance (usually one or two rounds).
+  std::vector<std::vector<int>> boundaries;
+  while (true) {
+    const CornerIndex corners(leaves);
+    boundaries.assign(leaves.size(), {});
+    std::vector<Cell> next;
+    bool changed = false;
+    for (std::size_t k = 0; k < leaves.size(); ++k) {
+      boundaries[k] = corners.boundary(leaves[k], cache);
+      if (leaves[k].depth < options.max_depth && boundaries[k].size() > 4 &&
+          !fan_within(cache, centre_of(leaves[k], cache), boundaries[k], tolerance)) {
+        for (const Cell& child : split(leaves[k])) next.push_back(child);
+        changed = true;
+      } else {
+        next.push_back(leaves[k]);
+      }
+    }
+    if (!changed) break;
+    leaves = std::move(next);
+  }
+
+  // Phase 3: fans, trimmed by the centroid test.
+  std::vector<std::vector<Eigen::Vector2d>> polygons;
+  for (const TrimLoop& loop : face.loops) {
+    polygons.push_back(loop_polygon(loop, options.trim_samples_per_span));
+  }
+  std::vector<std::array<int, 3>> kept;
+  for (std::size_t k = 0; k < leaves.size(); ++k) {
+    const int c = centre_of(leaves[k], cache);
+    const std::vector<int>& b = boundaries[k];
+    for (std::size_t e = 0; e < b.size(); ++e) {
+      const std::array<int, 3> t{c, b[e], b[(e + 1) % b.size()]};
+      const Eigen::Vector2d centroid = (cache.uv(t[0]) + cache.uv(t[1]) + cache.uv(t[2])) / 3.0;
+      if (polygons.empty() || inside_trim(polygons, centroid)) kept.push_back(t);
+    }
+  }
+
+  // Compact to the vertices the kept triangles use.
+  std::vector<int> remap(cache.size(), -1);
+  int used = 0;
+  for (const auto& t : kept) {
+    for (int v : t) {
+      if (remap[static_cast<std::size_t>(v)] < 0) remap[static_cast<std::size_t>(v)] = used++;
+    }
+  }
+  TriangleMesh mesh;
+  mesh.positions.resize(used, 3);
+  mesh.normals.resize(used, 3);
+  mesh.uv.resize(used, 2);
+  mesh.vertex_face.assign(static_cast<std::size_t>(used), face_index);
+  const double side = face.reversed ? -1.0 : 1.0;
+  for (std::size_t v = 0; v < cache.size(); ++v) {
+    const int r = remap[v];
+    if (r < 0) continue;
+    const int vi = static_cast<int>(v);
+    mesh.positions.row(r) = cache.point(vi).transpose();
+    mesh.uv.row(r) = cache.uv(vi).transpose();
+    mesh.normals.row(r) = side * normal_at(s, cache.uv(vi)).transpose();
+  }
+  mesh.triangles.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const auto& t = kept[k];
+    const auto row = static_cast<Eigen::Index>(k);
+    // Counter-clockwise in (u, v) faces S_u x S_v; a reversed face flips the order.
+    mesh.triangles(row, 0) = remap[static_cast<std::size_t>(t[0])];
+    mesh.triangles(row, 1) = remap[static_cast<std::size_t>(face.reversed ? t[2] : t[1])];
+    mesh.triangles(row, 2) = remap[static_cast<std::size_t>(face.reversed ? t[1] : t[2])];
+  }
+  return mesh;
+}
+
+Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& options) {
+  if (!(options.chord_tolerance_mm > 0.0) || !std::isfinite(options.chord_tolerance_mm)) {
+    return Status::error(StatusCode::invalid_argument,
+                         "chord tolerance must be positive and finite [mm]");
+  }
+  // Mesh files store float32 coordinates (about 6e-8 relative); a finer chord
+  // tolerance buys nothing and would subdivide without bound.
+  constexpr double kFinestRelativeTolerance = 1e-7;
+  const double size = model_box(model).diagonal();
+  if (options.chord_tolerance_mm < kFinestRelativeTolerance * size) {
+    return Status::error(StatusCode::invalid_argument,
+                         "chord tolerance " + std::to_string(options.chord_tolerance_mm) +
+                             " mm is below 1e-7 of the model size (" + std::to_string(size) +
+                             " mm): finer than float32 mesh files can store");
+  }
+  TriangleMesh all;
+  std::vector<TriangleMesh> parts;
+  Eigen::Index vertices = 0, triangles = 0;
+  for (std::size_t f = 0; f < model.faces.size(); ++f) {
+    const Status check = validate_face(model.faces[f], f);
+    if (!check.ok()) return check;
+    parts.push_back(tessellate_face(model.faces[f], options, static_cast<int>(f)));
+    vertices += parts.back().positions.rows();
+    triangles += parts.back().triangles.rows();
+  }
+  all.positions.resize(vertices, 3);
+  all.normals.resize(vertices, 3);
+  all.uv.resize(vertices, 2);
+  all.triangles.resize(triangles, 3);
+  Eigen::Index v0 = 0, t0 = 0;
+  for (const TriangleMesh& part : parts) {
+    const Eigen::Index nv = part.positions.rows(), nt = part.triangles.rows();
+    all.positions.middleRows(v0, nv) = part.positions;
+    all.normals.middleRows(v0, nv) = part.normals;
+    all.uv.middleRows(v0, nv) = part.uv;
+    all.vertex_face.insert(all.vertex_face.end(), part.vertex_face.begin(), part.vertex_face.end());
+    all.triangles.middleRows(t0, nt) = part.triangles.array() + static_cast<int>(v0);
+    v0 += nv;
+    t0 += nt;
+  }
+  return all;
+}
+
+}  // namespace argil::io

@@ -1,0 +1,58 @@
+#pragma once
+// Adaptive triangulation of trimmed B-spline faces within a chord tolerance, for
+// mesh export and viewers. No third-party types: meshes are written elsewhere.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "argil/core/base/status.hpp"
+#include "argil/io/model/model.hpp"
+
+namespace argil::io {
+
+/// How finely tessellate() samples.
+struct TessellationOptions {
+  /// Largest allowed distance between the mesh and the surface [mm], checked at
+  /// every triangle's centroid and edge midpoints.
+  double chord_tolerance_mm = 0.05;
+  /// Subdivision depth limit below each knot-span patch (a cell is at least
+  /// 2^-max_depth of its span wide); reached only at singular points.
+  int max_depth = 16;
+  /// Trim loops become polygons with this many points per knot span of curved
+  /// trim curves.
+  int trim_samples_per_span = 32;
+};
+
+/// Triangles over all faces of a model. Every vertex keeps the face and (u, v)
+/// it was evaluated at, so its exact surface point is known.
+struct TriangleMesh {
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> positions;  // [mm]
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> normals;    // unit, face side
+  Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> uv;         // surface parameters
+  std::vector<int> vertex_face;                                         // face of each vertex
+  /// Vertex indices, counter-clockwise seen from the side the normals point to.
+  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> triangles;
+};
+
+/// Tessellates one face (precondition: validate_face(face).ok()). `face_index`
+/// fills TriangleMesh::vertex_face.
+///
+/// Method: each non-empty knot-span patch is split into four recursively until
+/// the fan of triangles from a cell's centre to its boundary vertices is within
+/// the chord tolerance at its edge midpoints and centroids (measured as
+/// |S(u, v) - linear interpolation| at the interpolated (u, v), an upper bound of
+/// the distance to the surface). Cells take their neighbours' vertices on shared
+/// edges into their fan, so the mesh has no cracks. Trimming keeps a triangle
+/// when its (u, v) centroid lies inside the trim polygons: the trimmed boundary
+/// is therefore approximated to within one triangle (not a conforming trim).
+/// Normals are S_u x S_v / |S_u x S_v| from the surface derivatives, flipped on
+/// reversed faces.
+TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& options = {},
+                             int face_index = 0);
+
+/// Tessellates every face and concatenates the meshes. Fails when a face does
+/// not validate or the tolerance is not positive or below 1e-7 of the model's
+/// control-point diagonal (mesh files hold float32 coordinates).
+Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& options = {});
+
+}  // namespace argil::io

@@ -1,0 +1,19 @@
+#pragma once
+// argil::sculpt, the entry header. Modules from the bottom up: scene (models,
+// tools, materials from JSON), script (timed tool poses from JSON or CSV),
+// session (the deterministic session and its journal), output (tick logs,
+// timing, pictures).
+
+#include "argil/io.hpp"  // IWYU pragma: export
+
+// scene
+#include "argil/sculpt/scene/scene.hpp"  // IWYU pragma: export
+// script
+#include "argil/sculpt/script/script.hpp"  // IWYU pragma: export
+// session
+#include "argil/sculpt/session/journal.hpp"  // IWYU pragma: export
+#include "argil/sculpt/session/session.hpp"  // IWYU pragma: export
+// output
+#include "argil/sculpt/output/pictures.hpp"  // IWYU pragma: export
+#include "argil/sculpt/output/session_pictures.hpp"  // IWYU pragma: export
+#include "argil/sculpt/output/tick_log.hpp"  // IWYU pragma: export

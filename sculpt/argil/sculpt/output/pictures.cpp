@@ -1,0 +1,360 @@
+// The one translation unit that uses cairo.
+#include "argil/sculpt/output/pictures.hpp"
+
+#include <cairo.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numeric>
+
+namespace argil::sculpt {
+namespace {
+
+struct SurfaceDeleter {
+  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
+};
+struct ContextDeleter {
+  void operator()(cairo_t* c) const { cairo_destroy(c); }
+};
+using SurfacePtr = std::unique_ptr<cairo_surface_t, SurfaceDeleter>;
+using ContextPtr = std::unique_ptr<cairo_t, ContextDeleter>;
+
+cairo_status_t append_png_bytes(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+Result<std::string> encode_png(cairo_surface_t* surface) {
+  cairo_surface_flush(surface);
+  std::string bytes;
+  const cairo_status_t status =
+      cairo_surface_write_to_png_stream(surface, append_png_bytes, &bytes);
+  if (status != CAIRO_STATUS_SUCCESS) {
+    return Status::error(StatusCode::io_error,
+                         std::string("PNG encoding failed: ") + cairo_status_to_string(status));
+  }
+  return bytes;
+}
+
+Result<std::pair<SurfacePtr, ContextPtr>> canvas(int width, int height) {
+  if (width < 16 || height < 16 || width > 8192 || height > 8192) {
+    return Status::error(StatusCode::invalid_argument, "picture size " + std::to_string(width) +
+                                                           " x " + std::to_string(height) +
+                                                           " is outside 16 .. 8192 pixels");
+  }
+  SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height));
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
+    return Status::error(StatusCode::io_error, "cannot create a cairo image surface");
+  }
+  ContextPtr context(cairo_create(surface.get()));
+  cairo_set_source_rgb(context.get(), 1.0, 1.0, 1.0);
+  cairo_paint(context.get());
+  return std::make_pair(std::move(surface), std::move(context));
+}
+
+/// Blue (0) through green and yellow to red (1): a perceptually ordered ramp.
+Eigen::Vector3d ramp(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  const Eigen::Vector3d stops[] = {
+      {0.23, 0.30, 0.75}, {0.25, 0.70, 0.60}, {0.95, 0.85, 0.25}, {0.85, 0.20, 0.15}};
+  const double x = t * 3.0;
+  const int k = std::min(2, static_cast<int>(x));
+  const double a = x - k;
+  return (1.0 - a) * stops[k] + a * stops[k + 1];
+}
+
+void draw_text(cairo_t* cr, double x, double y, const std::string& text, double size,
+               bool centred = false, bool right_aligned = false) {
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, size);
+  cairo_text_extents_t extents;
+  cairo_text_extents(cr, text.c_str(), &extents);
+  double left = x;
+  if (centred) left = x - extents.width / 2 - extents.x_bearing;
+  if (right_aligned) left = x - extents.width - extents.x_bearing;
+  cairo_move_to(cr, left, y);
+  cairo_show_text(cr, text.c_str());
+}
+
+std::string tick_label(double value, double step) {
+  // Enough decimals to tell neighbouring ticks apart.
+  const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
+  char buffer[32];
+  if (std::abs(value) < step * 1e-6) value = 0.0;
+  if (decimals > 6 || (std::abs(value) >= 1e6)) {
+    std::snprintf(buffer, sizeof buffer, "%.3g", value);
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+  }
+  return buffer;
+}
+
+}  // namespace
+
+Eigen::Vector2d Camera::project(const Eigen::Vector3d& p_W) const {
+  const Eigen::Vector3d d = p_W - centre;
+  return {0.5 * width + pixels_per_mm * d.dot(right), 0.5 * height - pixels_per_mm * d.dot(up)};
+}
+
+Eigen::Vector3d view_direction(double azimuth_deg, double elevation_deg) {
+  const double az = azimuth_deg * M_PI / 180.0, el = elevation_deg * M_PI / 180.0;
+  return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+}
+
+Camera fit_camera(const Box3& box, int width, int height, const Eigen::Vector3d& eye_direction) {
+  Camera c;
+  c.width = width;
+  c.height = height;
+  c.centre = 0.5 * (box.min + box.max);
+  c.eye_direction = eye_direction.normalized();
+  const Eigen::Vector3d world_up =
+      std::abs(c.eye_direction.z()) > 0.999 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitZ();
+  c.right = world_up.cross(c.eye_direction).normalized();
+  c.up = c.eye_direction.cross(c.right);
+  // The box's projected extent along right and up, with an 8% margin each side.
+  double half_x = 0.0, half_y = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d p((corner & 1) ? box.max.x() : box.min.x(),
+                            (corner & 2) ? box.max.y() : box.min.y(),
+                            (corner & 4) ? box.max.z() : box.min.z());
+    half_x = std::max(half_x, std::abs((p - c.centre).dot(c.right)));
+    half_y = std::max(half_y, std::abs((p - c.centre).dot(c.up)));
+  }
+  const double usable = 0.84;
+  const double sx = half_x > 0 ? usable * 0.5 * width / half_x : 1.0;
+  const double sy = half_y > 0 ? usable * 0.5 * height / half_y : 1.0;
+  c.pixels_per_mm = std::min(sx, sy);
+  if (!std::isfinite(c.pixels_per_mm) || c.pixels_per_mm <= 0) c.pixels_per_mm = 1.0;
+  return c;
+}
+
+Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolPath& path,
+                                       const Camera& camera, const SurfacePictureOptions& options) {
+  Result<std::pair<SurfacePtr, ContextPtr>> made = canvas(camera.width, camera.height);
+  if (!made.ok()) return made.status();
+  cairo_t* cr = made.value().second.get();
+  const bool coloured = !options.vertex_displacement.empty();
+  if (coloured &&
+      (options.vertex_displacement.size() != static_cast<std::size_t>(mesh.positions.rows()) ||
+       !(options.displacement_scale > 0.0))) {
+    return Status::error(StatusCode::invalid_argument,
+                         "vertex_displacement needs one value per vertex and a positive scale");
+  }
+
+  // Painter's algorithm: far triangles first.
+  const Eigen::Index count = mesh.triangles.rows();
+  std::vector<double> depth(static_cast<std::size_t>(count));
+  for (Eigen::Index t = 0; t < count; ++t) {
+    double d = 0.0;
+    for (int k = 0; k < 3; ++k)
+      d += camera.depth(mesh.positions.row(mesh.triangles(t, k)).transpose());
+    depth[static_cast<std::size_t>(t)] = d;
+  }
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(count));
+  std::iota(order.begin(), order.end(), Eigen::Index{0});
+  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
+    return depth[static_cast<std::size_t>(a)] < depth[static_cast<std::size_t>(b)];
+  });
+  // Light from over the viewer's left shoulder.
+  const Eigen::Vector3d light =
+      (camera.eye_direction + 0.5 * camera.up - 0.3 * camera.right).normalized();
+  const Eigen::Vector3d clay(0.82, 0.64, 0.47);
+  cairo_set_line_width(cr, 0.6);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (const Eigen::Index t : order) {
+    const Eigen::Vector3d a = mesh.positions.row(mesh.triangles(t, 0)).transpose();
+    const Eigen::Vector3d b = mesh.positions.row(mesh.triangles(t, 1)).transpose();
+    const Eigen::Vector3d c = mesh.positions.row(mesh.triangles(t, 2)).transpose();
+    Eigen::Vector3d n = (b - a).cross(c - a);
+    if (n.norm() == 0.0) continue;
+    n.normalize();
+    const double lambert = std::abs(n.dot(light));
+    Eigen::Vector3d base = clay;
+    if (coloured) {
+      double d = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        d += options.vertex_displacement[static_cast<std::size_t>(mesh.triangles(t, k))];
+      }
+      base = ramp(d / 3.0 / options.displacement_scale);
+    }
+    const Eigen::Vector3d colour = base * (0.3 + 0.7 * lambert);
+    const Eigen::Vector2d pa = camera.project(a), pb = camera.project(b), pc = camera.project(c);
+    cairo_move_to(cr, pa.x(), pa.y());
+    cairo_line_to(cr, pb.x(), pb.y());
+    cairo_line_to(cr, pc.x(), pc.y());
+    cairo_close_path(cr);
+    cairo_set_source_rgb(cr, colour.x(), colour.y(), colour.z());
+    // Stroking with the fill colour closes the hairline seams antialiasing leaves.
+    cairo_fill_preserve(cr);
+    cairo_stroke(cr);
+  }
+
+  // Tool path on top.
+  cairo_set_line_width(cr, 2.0);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  for (std::size_t k = 1; k < path.positions.size(); ++k) {
+    const bool on = k < path.engaged.size() && path.engaged[k] && path.engaged[k - 1];
+    if (on)
+      cairo_set_source_rgb(cr, 0.85, 0.05, 0.05);
+    else
+      cairo_set_source_rgba(cr, 0.25, 0.25, 0.25, 0.6);
+    const Eigen::Vector2d p0 = camera.project(path.positions[k - 1]);
+    const Eigen::Vector2d p1 = camera.project(path.positions[k]);
+    cairo_move_to(cr, p0.x(), p0.y());
+    cairo_line_to(cr, p1.x(), p1.y());
+    cairo_stroke(cr);
+  }
+
+  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+  draw_text(cr, 14, 26, options.title, 18);
+  cairo_set_source_rgb(cr, 0.85, 0.05, 0.05);
+  draw_text(cr, 14, camera.height - 14.0, "tool path (engaged)", 13);
+  cairo_set_source_rgb(cr, 0.4, 0.4, 0.4);
+  draw_text(cr, 160, camera.height - 14.0, "free move", 13);
+  if (coloured) {
+    // Colour bar: displacement 0 .. scale.
+    const double x0 = camera.width - 240.0, y0 = camera.height - 30.0, w = 200.0, h = 12.0;
+    for (int k = 0; k < 100; ++k) {
+      const Eigen::Vector3d col = ramp(k / 99.0);
+      cairo_set_source_rgb(cr, col.x(), col.y(), col.z());
+      cairo_rectangle(cr, x0 + w * k / 100.0, y0, w / 100.0 + 0.5, h);
+      cairo_fill(cr);
+    }
+    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    char label[64];
+    std::snprintf(label, sizeof label, "%.3g mm", options.displacement_scale);
+    draw_text(cr, x0, y0 - 4, "0", 12);
+    draw_text(cr, x0 + w, y0 - 4, label, 12, false, true);
+    draw_text(cr, x0 + w / 2, y0 + h + 13, "displacement", 12, true);
+  }
+  return encode_png(made.value().first.get());
+}
+
+std::vector<double> nice_ticks(double lo, double hi, int target) {
+  if (!(hi > lo)) {
+    const double pad = lo == 0.0 ? 1.0 : std::abs(lo) * 0.5;
+    lo -= pad;
+    hi += pad;
+  }
+  const double raw = (hi - lo) / std::max(1, target);
+  const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = magnitude;
+  for (const double m : {1.0, 2.0, 5.0, 10.0}) {
+    step = m * magnitude;
+    if (step >= raw) break;
+  }
+  std::vector<double> ticks;
+  const double first = std::floor(lo / step) * step;
+  for (double t = first; ticks.size() < 100; t += step) {
+    ticks.push_back(t);
+    if (t >= hi) break;
+  }
+  return ticks;
+}
+
+Result<std::string> plot_force_png(const std::vector<double>& times,
+                                   const std::vector<Eigen::Vector3d>& forces,
+                                   const std::string& title, int width, int height) {
+  if (times.size() != forces.size()) {
+    return Status::error(StatusCode::invalid_argument,
+                         "force plot: times and forces differ in length");
+  }
+  Result<std::pair<SurfacePtr, ContextPtr>> made = canvas(width, height);
+  if (!made.ok()) return made.status();
+  cairo_t* cr = made.value().second.get();
+
+  double t_lo = times.empty() ? 0.0 : times.front(), t_hi = times.empty() ? 1.0 : times.back();
+  double f_lo = 0.0, f_hi = 0.0;
+  for (const Eigen::Vector3d& f : forces) {
+    f_lo = std::min({f_lo, f.minCoeff()});
+    f_hi = std::max({f_hi, f.maxCoeff(), f.norm()});
+  }
+  const std::vector<double> xt = nice_ticks(t_lo, t_hi, 8);
+  const std::vector<double> yt = nice_ticks(f_lo, f_hi, 6);
+  t_lo = xt.front();
+  t_hi = xt.back();
+  f_lo = yt.front();
+  f_hi = yt.back();
+
+  const double left = 80, right = width - 30.0, top = 50, bottom = height - 60.0;
+  auto X = [&](double t) { return left + (t - t_lo) / (t_hi - t_lo) * (right - left); };
+  auto Y = [&](double f) { return bottom - (f - f_lo) / (f_hi - f_lo) * (bottom - top); };
+
+  // Grid, ticks and labels.
+  cairo_set_line_width(cr, 1.0);
+  for (const double t : xt) {
+    cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
+    cairo_move_to(cr, X(t), top);
+    cairo_line_to(cr, X(t), bottom);
+    cairo_stroke(cr);
+    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+    cairo_move_to(cr, X(t), bottom);
+    cairo_line_to(cr, X(t), bottom + 5);
+    cairo_stroke(cr);
+    draw_text(cr, X(t), bottom + 20, tick_label(t, xt.size() > 1 ? xt[1] - xt[0] : 1.0), 12, true);
+  }
+  for (const double f : yt) {
+    cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
+    cairo_move_to(cr, left, Y(f));
+    cairo_line_to(cr, right, Y(f));
+    cairo_stroke(cr);
+    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+    cairo_move_to(cr, left - 5, Y(f));
+    cairo_line_to(cr, left, Y(f));
+    cairo_stroke(cr);
+    draw_text(cr, left - 8, Y(f) + 4, tick_label(f, yt.size() > 1 ? yt[1] - yt[0] : 1.0), 12, false,
+              true);
+  }
+  cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+  cairo_rectangle(cr, left, top, right - left, bottom - top);
+  cairo_stroke(cr);
+  draw_text(cr, 0.5 * (left + right), height - 18.0, "time [s]", 14, true);
+  cairo_save(cr);
+  cairo_translate(cr, 22, 0.5 * (top + bottom));
+  cairo_rotate(cr, -M_PI / 2);
+  draw_text(cr, 0, 0, "force on the device [N]", 14, true);
+  cairo_restore(cr);
+  draw_text(cr, left, 30, title, 18);
+
+  // Curves: components thin, magnitude thick.
+  const struct {
+    int component;  // 3 = magnitude
+    double r, g, b, width;
+    const char* name;
+  } curves[] = {{0, 0.85, 0.25, 0.2, 1.2, "fx"},
+                {1, 0.2, 0.6, 0.25, 1.2, "fy"},
+                {2, 0.2, 0.35, 0.85, 1.2, "fz"},
+                {3, 0.05, 0.05, 0.05, 2.0, "|f|"}};
+  cairo_rectangle(cr, left, top, right - left, bottom - top);
+  cairo_clip(cr);
+  for (const auto& c : curves) {
+    cairo_set_source_rgb(cr, c.r, c.g, c.b);
+    cairo_set_line_width(cr, c.width);
+    for (std::size_t k = 0; k < times.size(); ++k) {
+      const double value = c.component == 3 ? forces[k].norm() : forces[k][c.component];
+      if (k == 0)
+        cairo_move_to(cr, X(times[k]), Y(value));
+      else
+        cairo_line_to(cr, X(times[k]), Y(value));
+    }
+    cairo_stroke(cr);
+  }
+  cairo_reset_clip(cr);
+  double legend_x = right - 260;
+  for (const auto& c : curves) {
+    cairo_set_source_rgb(cr, c.r, c.g, c.b);
+    cairo_set_line_width(cr, c.width + 1);
+    cairo_move_to(cr, legend_x, 32);
+    cairo_line_to(cr, legend_x + 22, 32);
+    cairo_stroke(cr);
+    draw_text(cr, legend_x + 27, 37, c.name, 13);
+    legend_x += 65;
+  }
+  return encode_png(made.value().first.get());
+}
+
+}  // namespace argil::sculpt

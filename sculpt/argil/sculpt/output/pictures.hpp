@@ -1,0 +1,72 @@
+#pragma once
+// Pictures of a session (PNG through cairo): shaded surfaces seen by an
+// orthographic camera with the tool path drawn over them, and a plot of the
+// device force over time. cairo rasterises; this module projects, sorts and shades.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "argil/core/geometry/bspline_surface.hpp"
+#include "argil/core/base/status.hpp"
+#include "argil/io/mesh/tessellate.hpp"
+
+namespace argil::sculpt {
+
+/// An orthographic view: the camera looks along -eye_direction (unit, from the
+/// scene towards the viewer), z up unless looking straight down it.
+struct Camera {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // [mm]
+  Eigen::Vector3d eye_direction = Eigen::Vector3d(0, 0, 1);
+  Eigen::Vector3d right = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  double pixels_per_mm = 1.0;
+  int width = 960, height = 720;  // [pixels]
+
+  /// Pixel coordinates (x right, y down) of a point.
+  Eigen::Vector2d project(const Eigen::Vector3d& p_W) const;
+  /// Distance towards the viewer [mm]: larger is nearer.
+  double depth(const Eigen::Vector3d& p_W) const { return (p_W - centre).dot(eye_direction); }
+};
+
+/// Unit direction towards the viewer from azimuth and elevation [deg]
+/// (azimuth about z from +x, elevation above the xy plane).
+Eigen::Vector3d view_direction(double azimuth_deg, double elevation_deg);
+
+/// A camera seeing `box` whole with a margin, looking along -eye_direction.
+Camera fit_camera(const Box3& box, int width, int height,
+                  const Eigen::Vector3d& eye_direction = view_direction(-60.0, 35.0));
+
+/// A device path: positions [mm] and whether the tool was engaged there.
+struct ToolPath {
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<bool> engaged;
+};
+
+/// What a surface picture shows beyond the shaded mesh.
+struct SurfacePictureOptions {
+  std::string title;
+  /// Per-vertex displacement magnitude [mm] to colour by (empty: plain clay colour).
+  std::vector<double> vertex_displacement;
+  /// Displacement mapped to the full colour ramp [mm] (> 0 when colouring).
+  double displacement_scale = 0.0;
+};
+
+/// The mesh shaded (Lambert, two-sided, painter's order back to front) with the
+/// tool path on top (engaged segments red, free moves grey), as PNG bytes.
+Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolPath& path,
+                                       const Camera& camera,
+                                       const SurfacePictureOptions& options = {});
+
+/// Force on the device over time: |f| and the x, y, z components [N] against
+/// time [s], with axes, ticks, labels and a legend, as PNG bytes.
+/// `times` and `forces` have the same length.
+Result<std::string> plot_force_png(const std::vector<double>& times,
+                                   const std::vector<Eigen::Vector3d>& forces,
+                                   const std::string& title, int width = 960, int height = 540);
+
+/// Axis ticks for [lo, hi]: round numbers 1, 2 or 5 times a power of ten, about
+/// `target` of them, covering the range.
+std::vector<double> nice_ticks(double lo, double hi, int target = 6);
+
+}  // namespace argil::sculpt

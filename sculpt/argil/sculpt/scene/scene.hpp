@@ -1,0 +1,82 @@
+#pragma once
+// A sculpting scene (docs/formats.md, "argil.scene" version 1): which faces of
+// which files are modelled and how (rigid or deformable, material, boundary
+// conditions), the tools, the tolerance eps, the haptic rate and the outputs.
+// Loading checks every field and names the bad one; it reads no model file.
+
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "argil/core/deform/material.hpp"
+#include "argil/core/base/status.hpp"
+
+namespace argil::sculpt {
+
+/// The "format" value of a scene file and the one schema version this build reads.
+inline constexpr std::string_view kSceneFormatName = "argil.scene";
+inline constexpr int kSceneFormatVersion = 1;
+
+/// One model: faces of a CAD or JSON file.
+struct ModelSpec {
+  std::string name;             // unique in the scene; names the output files
+  std::filesystem::path file;   // resolved against the scene file's folder
+  std::vector<int> faces;       // face indices in the file; empty: every face
+  bool deformable = true;       // rigid models collide but never move
+  Material material;            // deformable models only (units: material.hpp)
+  BoundaryConditions boundary;  // deformable models only
+  double rigid_friction = 0.3;  // rigid models: Coulomb coefficient against the tool
+};
+
+enum class ToolType { sphere, bspline, point };
+const char* to_string(ToolType type);
+
+/// A tool, in its own frame T (origin at the device point); the device pose
+/// X_WT places it in the world. The haptic tick (argil/core/haptic/haptic_tick.hpp)
+/// drives an implicit sphere, a rigid B-spline surface, or a point.
+struct ToolSpec {
+  std::string name;
+  ToolType type = ToolType::sphere;
+  double radius = 0.0;         // sphere [mm], centred on the tool frame origin
+  std::filesystem::path file;  // bspline: surface file, resolved like models
+  int face = 0;                // bspline: face index in `file`
+};
+
+/// Spring-damper between the device and the tool proxy, and the device's force limit.
+struct CouplingSpec {
+  double stiffness = 1.0;   // [N/mm]
+  double damping = 0.002;   // [N s/mm]
+  double max_force = 10.0;  // [N]
+};
+
+/// Mesh and picture formats a run writes, and the logs.
+struct OutputSpec {
+  bool step = true, iges = true, json = true;
+  bool forces = true, contacts = true, timing = true, pictures = true;
+};
+
+struct Scene {
+  std::filesystem::path source;   // the scene file (empty when parsed from text)
+  std::vector<ModelSpec> models;  // at least one deformable
+  std::vector<ToolSpec> tools;    // at least one
+  double tolerance = 0.0;         // eps [mm], > 0
+  double haptic_rate = 1000.0;    // [Hz]
+  CouplingSpec coupling;
+  OutputSpec outputs;
+  std::filesystem::path script;  // default script, resolved; empty: none
+
+  /// Index of the tool called `name` (the first tool when `name` is empty); -1 if none.
+  int tool_index(std::string_view name) const;
+};
+
+/// Parses a scene document. `source_name` starts every error message; relative
+/// paths are resolved against `base_dir`. Does not open the files it names.
+Result<Scene> parse_scene(std::string_view text, const std::string& source_name,
+                          const std::filesystem::path& base_dir);
+
+/// Reads and parses a scene file; paths are relative to its folder.
+Result<Scene> read_scene(const std::filesystem::path& path);
+
+}  // namespace argil::sculpt

@@ -1,0 +1,492 @@
+#include "argil/sculpt/script/script.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "argil/io/base/atomic_write.hpp"
+#include "argil/io/base/text_file.hpp"
+#include "argil/sculpt/detail/json_reader.hpp"
+
+namespace argil::sculpt {
+namespace {
+
+using internal::format_double;
+using internal::Json;
+using internal::JsonReader;
+
+// Exactly unit within rounding: such quaternions are kept bit for bit.
+constexpr double kUnitNormRounding = 1e-12;
+// A keyframe within this many ticks after a tick counts as at that tick
+// (rounding of times written in decimal or computed by sums).
+constexpr double kTickRounding = 1e-6;
+
+bool parse_event(std::string_view text, ScriptEvent& out) {
+  if (text.empty() || text == "none")
+    out = ScriptEvent::none;
+  else if (text == "engage")
+    out = ScriptEvent::engage;
+  else if (text == "release")
+    out = ScriptEvent::release;
+  else
+    return false;
+  return true;
+}
+
+/// Checks the norm and normalises when it is not unit already; error text or "".
+std::string normalise_quaternion(Eigen::Quaterniond& q) {
+  const double norm = q.norm();
+  if (!std::isfinite(norm) || std::abs(norm - 1.0) > kQuaternionNormTolerance) {
+    return "not a unit quaternion (w, x, y, z): norm " + format_double(norm);
+  }
+  if (std::abs(norm - 1.0) > kUnitNormRounding) q.coeffs() /= norm;
+  return "";
+}
+
+/// What is wrong with a tool name ("" when nothing): it must be one word of
+/// valid UTF-8 without spaces or control characters, so that both formats
+/// (the CSV header line reads one word) carry it unchanged.
+std::string tool_name_problem(const std::string& name) {
+  for (std::size_t i = 0; i < name.size();) {
+    const auto byte = static_cast<unsigned char>(name[i]);
+    if (byte <= 0x20 || byte == 0x7f)
+      return "tool name must be one word without control characters";
+    // Length of the UTF-8 sequence from its lead byte; continuation bytes are 10xxxxxx.
+    const std::size_t length = byte < 0x80           ? 1
+                               : (byte >> 5) == 0x6  ? 2
+                               : (byte >> 4) == 0xe  ? 3
+                               : (byte >> 3) == 0x1e ? 4
+                                                     : 0;
+    if (length == 0 || i + length > name.size()) return "tool name is not valid UTF-8";
+    for (std::size_t k = 1; k < length; ++k) {
+      if ((static_cast<unsigned char>(name[i + k]) >> 6) != 0x2)
+        return "tool name is not valid UTF-8";
+    }
+    // Overlong forms and surrogates are not valid UTF-8 either.
+    const auto next = static_cast<unsigned char>(length > 1 ? name[i + 1] : 0);
+    if ((length == 2 && byte < 0xc2) || (length == 3 && byte == 0xe0 && next < 0xa0) ||
+        (length == 3 && byte == 0xed && next >= 0xa0) ||
+        (length == 4 && byte == 0xf0 && next < 0x90) || (length == 4 && byte > 0xf4) ||
+        (length == 4 && byte == 0xf4 && next >= 0x90)) {
+      return "tool name is not valid UTF-8";
+    }
+    i += length;
+  }
+  return "";
+}
+
+/// The keyframe checks shared by both parsers and validate(); `where(k)` names
+/// keyframe k in messages.
+template <class Where>
+Status check_keyframes(const std::vector<Keyframe>& keyframes, const std::string& source,
+                       const Where& where) {
+  auto error = [&](std::size_t k, const std::string& field, const std::string& what) {
+    return Status::error(StatusCode::parse_error, source + ": " + where(k, field) + ": " + what);
+  };
+  if (keyframes.empty()) {
+    return Status::error(StatusCode::parse_error, source + ": keyframes: no keyframes");
+  }
+  bool engaged = false;
+  for (std::size_t k = 0; k < keyframes.size(); ++k) {
+    const Keyframe& f = keyframes[k];
+    if (!std::isfinite(f.time)) return error(k, "t", "time must be finite");
+    if (f.time < 0.0) return error(k, "t", "time must be >= 0, got " + format_double(f.time));
+    if (k > 0 && !(f.time > keyframes[k - 1].time)) {
+      return error(k, "t",
+                   "time " + format_double(f.time) + " s is not after the previous keyframe's " +
+                       format_double(keyframes[k - 1].time) + " s (times must increase)");
+    }
+    if (!f.position.allFinite()) return error(k, "position", "must be finite");
+    const double norm = f.orientation.norm();
+    if (!std::isfinite(norm) || std::abs(norm - 1.0) > kQuaternionNormTolerance) {
+      return error(k, "orientation",
+                   "not a unit quaternion (w, x, y, z): norm " + format_double(norm));
+    }
+    if (f.event == ScriptEvent::engage) {
+      if (engaged) return error(k, "event", "engage while already engaged");
+      engaged = true;
+    } else if (f.event == ScriptEvent::release) {
+      if (!engaged) return error(k, "event", "release while not engaged");
+      engaged = false;
+    }
+  }
+  return Status::success();
+}
+
+// ---- JSON -----------------------------------------------------------------
+
+class ScriptJsonReader {
+ public:
+  explicit ScriptJsonReader(const std::string& source) : r_(source) {}
+  Status error() const { return r_.error(); }
+
+  bool script(const Json& root, Script& out) {
+    if (!r_.only_known(root, "", {"format", "version", "tool", "keyframes"})) return false;
+    if (!r_.format_header(root, kScriptFormatName, kScriptFormatVersion)) return false;
+    if (const Json* tool = r_.member(root, "", "tool", false)) {
+      if (!r_.string(*tool, "tool", out.tool)) return false;
+      if (const std::string problem = tool_name_problem(out.tool); !problem.empty())
+        return r_.fail("tool", problem);
+    }
+    const Json* keyframes = r_.member(root, "", "keyframes");
+    if (keyframes == nullptr) return false;
+    if (!keyframes->is_array()) return r_.fail("keyframes", "expected an array of keyframes");
+    out.keyframes.resize(keyframes->size());
+    for (std::size_t k = 0; k < keyframes->size(); ++k) {
+      if (!keyframe((*keyframes)[k], JsonReader::index("keyframes", k), out.keyframes[k])) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+ private:
+  bool keyframe(const Json& value, const std::string& path, Keyframe& out) {
+    if (!r_.only_known(value, path, {"t", "position", "orientation", "event"})) return false;
+    const Json* t = r_.member(value, path, "t");
+    const Json* position = r_.member(value, path, "position");
+    if (t == nullptr || position == nullptr) return false;
+    if (!r_.number(*t, path + ".t", out.time) ||
+        !r_.numbers(*position, path + ".position", 3, out.position.data())) {
+      return false;
+    }
+    if (const Json* q = r_.member(value, path, "orientation", false)) {
+      double wxyz[4];
+      if (!r_.numbers(*q, path + ".orientation", 4, wxyz)) return false;
+      out.orientation = Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
+      const std::string problem = normalise_quaternion(out.orientation);
+      if (!problem.empty()) return r_.fail(path + ".orientation", problem);
+    }
+    if (const Json* event = r_.member(value, path, "event", false)) {
+      std::string text;
+      if (!r_.string(*event, path + ".event", text)) return false;
+      if (!parse_event(text, out.event)) {
+        return r_.fail(path + ".event",
+                       "expected \"engage\", \"release\" or \"none\", got \"" + text + "\"");
+      }
+    }
+    return true;
+  }
+
+  JsonReader r_;
+};
+
+// ---- CSV ------------------------------------------------------------------
+
+constexpr const char* kCsvColumns[] = {"t", "x", "y", "z", "qw", "qx", "qy", "qz", "event"};
+constexpr std::size_t kCsvColumnCount = 9;
+
+std::string trim(std::string_view s) {
+  const std::size_t b = s.find_first_not_of(" \t\r");
+  if (b == std::string_view::npos) return "";
+  const std::size_t e = s.find_last_not_of(" \t\r");
+  return std::string(s.substr(b, e - b + 1));
+}
+
+std::vector<std::string> split_csv(std::string_view line) {
+  std::vector<std::string> cells;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    cells.push_back(
+        trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return cells;
+}
+
+/// Parses a whole cell as a finite double; error text or "".
+std::string parse_csv_number(const std::string& cell, double& out) {
+  if (cell.empty()) return "empty cell where a number belongs";
+  errno = 0;
+  char* end = nullptr;
+  out = std::strtod(cell.c_str(), &end);
+  if (end == cell.c_str() || *end != '\0') return "expected a number, got '" + cell + "'";
+  if (!std::isfinite(out) || errno == ERANGE) {
+    if (std::isfinite(out)) return "";  // underflow to a subnormal or zero is fine
+    return "'" + cell + "' is not allowed (finite numbers only)";
+  }
+  return "";
+}
+
+Result<Script> parse_csv(std::string_view text, const std::string& source) {
+  Script script;
+  std::vector<std::size_t> lines;  // line number of each keyframe
+  bool header_seen = false;
+  std::size_t line_number = 0;
+  std::size_t pos = 0;
+  auto error = [&](const std::string& what) -> Status {
+    return Status::error(StatusCode::parse_error,
+                         source + ": line " + std::to_string(line_number) + ": " + what);
+  };
+  if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
+    return Status::error(StatusCode::parse_error, source + ": empty file");
+  }
+  while (pos <= text.size()) {
+    const std::size_t newline = text.find('\n', pos);
+    const std::string_view raw =
+        text.substr(pos, newline == std::string_view::npos ? text.npos : newline - pos);
+    pos = newline == std::string_view::npos ? text.size() + 1 : newline + 1;
+    ++line_number;
+    const std::string line = trim(raw);
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      // "# argil.script version N" declares the schema; "# tool: NAME" the tool.
+      std::istringstream words(line.substr(1));
+      std::string first, second;
+      words >> first >> second;
+      if (first == kScriptFormatName) {
+        long long version = -1;
+        if (second != "version" || !(words >> version)) {
+          return error("expected '# argil.script version 1'");
+        }
+        if (version != kScriptFormatVersion) {
+          return error("unknown schema version " + std::to_string(version) +
+                       " (this build reads version " + std::to_string(kScriptFormatVersion) + ")");
+        }
+      } else if (first == "tool:") {
+        if (second.empty()) return error("tool: missing name");
+        std::string rest;
+        if (words >> rest)
+          return error("tool: name must be one word, got more after '" + second + "'");
+        if (const std::string problem = tool_name_problem(second); !problem.empty())
+          return error("tool: " + problem);
+        script.tool = second;
+      }
+      continue;
+    }
+    const std::vector<std::string> cells = split_csv(line);
+    if (!header_seen) {
+      bool matches = cells.size() == kCsvColumnCount || cells.size() == kCsvColumnCount - 1;
+      for (std::size_t c = 0; matches && c < cells.size(); ++c)
+        matches = cells[c] == kCsvColumns[c];
+      if (!matches) {
+        return error("expected the header 't,x,y,z,qw,qx,qy,qz,event', got '" + line + "'");
+      }
+      header_seen = true;
+      continue;
+    }
+    if (cells.size() != kCsvColumnCount && cells.size() != kCsvColumnCount - 1) {
+      return error("expected 8 or 9 columns (t,x,y,z,qw,qx,qy,qz[,event]), got " +
+                   std::to_string(cells.size()));
+    }
+    Keyframe f;
+    double values[8];
+    for (std::size_t c = 0; c < 8; ++c) {
+      const std::string problem = parse_csv_number(cells[c], values[c]);
+      if (!problem.empty()) return error(std::string(kCsvColumns[c]) + ": " + problem);
+    }
+    f.time = values[0];
+    f.position = Eigen::Vector3d(values[1], values[2], values[3]);
+    f.orientation = Eigen::Quaterniond(values[4], values[5], values[6], values[7]);
+    const std::string problem = normalise_quaternion(f.orientation);
+    if (!problem.empty()) return error("qw..qz: " + problem);
+    if (cells.size() == kCsvColumnCount && !parse_event(cells[8], f.event)) {
+      return error("event: expected engage, release, none or nothing, got '" + cells[8] + "'");
+    }
+    script.keyframes.push_back(f);
+    lines.push_back(line_number);
+  }
+  if (!header_seen) {
+    return Status::error(StatusCode::parse_error,
+                         source + ": missing the header 't,x,y,z,qw,qx,qy,qz,event'");
+  }
+  const Status check =
+      check_keyframes(script.keyframes, source, [&](std::size_t k, const std::string& field) {
+        return "line " + std::to_string(lines[k]) + ": " + field;
+      });
+  if (!check.ok()) return check;
+  return script;
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+std::string keyframe_path(std::size_t k, const std::string& field) {
+  return "keyframes[" + std::to_string(k) + "]." + field;
+}
+
+}  // namespace
+
+const char* to_string(ScriptEvent event) {
+  switch (event) {
+    case ScriptEvent::none:
+      return "none";
+    case ScriptEvent::engage:
+      return "engage";
+    case ScriptEvent::release:
+      return "release";
+  }
+  return "none";
+}
+
+Result<Script> parse_script_json(std::string_view text, const std::string& source_name) {
+  Result<Json> root = internal::parse_json_text(text, source_name);
+  if (!root.ok()) return root.status();
+  ScriptJsonReader reader(source_name);
+  Script script;
+  if (!reader.script(root.value(), script)) return reader.error();
+  const Status check = check_keyframes(script.keyframes, source_name, keyframe_path);
+  if (!check.ok()) return check;
+  return script;
+}
+
+Result<Script> parse_script_csv(std::string_view text, const std::string& source_name) {
+  return parse_csv(text, source_name);
+}
+
+Result<Script> read_script(const std::filesystem::path& path) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".json" && ext != ".csv") {
+    return Status::error(StatusCode::unsupported,
+                         path.string() + ": unknown script extension (expected .json or .csv)");
+  }
+  const Result<std::string> content = io::read_text_file(path);
+  if (!content.ok()) return content.status();
+  return ext == ".json" ? parse_script_json(content.value(), path.string())
+                        : parse_script_csv(content.value(), path.string());
+}
+
+Status validate(const Script& script, const std::string& source_name) {
+  if (const std::string problem = tool_name_problem(script.tool); !problem.empty())
+    return Status::error(StatusCode::parse_error, source_name + ": tool: " + problem);
+  return check_keyframes(script.keyframes, source_name, keyframe_path);
+}
+
+std::string script_to_json(const Script& script) {
+  // Written by hand (not through nlohmann) to control the number format: 17 digits.
+  std::string out = "{\n  \"format\": \"" + std::string(kScriptFormatName) +
+                    "\",\n  \"version\": " + std::to_string(kScriptFormatVersion) + ",\n";
+  if (!script.tool.empty()) out += "  \"tool\": " + Json(script.tool).dump() + ",\n";
+  out += "  \"keyframes\": [";
+  for (std::size_t k = 0; k < script.keyframes.size(); ++k) {
+    const Keyframe& f = script.keyframes[k];
+    out += k == 0 ? "\n" : ",\n";
+    out += "    {\"t\": " + format_double(f.time) + ", \"position\": [" +
+           format_double(f.position.x()) + ", " + format_double(f.position.y()) + ", " +
+           format_double(f.position.z()) + "], \"orientation\": [" +
+           format_double(f.orientation.w()) + ", " + format_double(f.orientation.x()) + ", " +
+           format_double(f.orientation.y()) + ", " + format_double(f.orientation.z()) + "]";
+    if (f.event != ScriptEvent::none)
+      out += ", \"event\": \"" + std::string(to_string(f.event)) + "\"";
+    out += "}";
+  }
+  out += "\n  ]\n}\n";
+  return out;
+}
+
+std::string script_to_csv(const Script& script) {
+  std::string out = "# " + std::string(kScriptFormatName) + " version " +
+                    std::to_string(kScriptFormatVersion) + "\n";
+  if (!script.tool.empty()) out += "# tool: " + script.tool + "\n";
+  out += "t,x,y,z,qw,qx,qy,qz,event\n";
+  for (const Keyframe& f : script.keyframes) {
+    const double values[8] = {f.time,
+                              f.position.x(),
+                              f.position.y(),
+                              f.position.z(),
+                              f.orientation.w(),
+                              f.orientation.x(),
+                              f.orientation.y(),
+                              f.orientation.z()};
+    for (const double v : values) out += format_double(v) + ",";
+    if (f.event != ScriptEvent::none) out += to_string(f.event);
+    out += "\n";
+  }
+  return out;
+}
+
+Status write_script(const Script& script, const std::filesystem::path& path) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".json" && ext != ".csv") {
+    return Status::error(StatusCode::unsupported,
+                         path.string() + ": unknown script extension (expected .json or .csv)");
+  }
+  const Status check = validate(script, path.string());
+  if (!check.ok()) return check;
+  return io::write_bytes_atomically(
+      path, ext == ".json" ? script_to_json(script) : script_to_csv(script));
+}
+
+ScriptSampler::ScriptSampler(Script script, double rate_hz)
+    : script_(std::move(script)), rate_(rate_hz) {
+  assert(validate(script_).ok() && rate_hz > 0.0);
+  const double last = script_.keyframes.back().time;
+  // The last tick is the first at or after the last keyframe, so its event is
+  // seen even when k / rate lands a rounding error short of it (0.5 + 0.18 is
+  // 0.67999999999999994, tick 680 is 0.68).
+  tick_count_ = static_cast<long long>(std::ceil(last * rate_ - kTickRounding)) + 1;
+  bool engaged = false;
+  engaged_after_.reserve(script_.keyframes.size());
+  for (const Keyframe& f : script_.keyframes) {
+    if (f.event == ScriptEvent::engage) engaged = true;
+    if (f.event == ScriptEvent::release) engaged = false;
+    engaged_after_.push_back(engaged);
+  }
+  long long first = -1;
+  for (long long t = 0; t < tick_count_; ++t) {
+    const bool on = sample(t).engaged;
+    if (on && first < 0) first = t;
+    if (!on && first >= 0) {
+      strokes_.push_back({first, t - 1});
+      first = -1;
+    }
+  }
+  if (first >= 0) strokes_.push_back({first, tick_count_ - 1});
+}
+
+DeviceSample ScriptSampler::sample(long long tick) const {
+  DeviceSample s;
+  s.tick = tick;
+  s.time = tick_time(tick, rate_);
+  const std::vector<Keyframe>& frames = script_.keyframes;
+  // First keyframe after t; the segment is [next - 1, next].
+  const auto next = std::upper_bound(frames.begin(), frames.end(), s.time,
+                                     [](double t, const Keyframe& f) { return t < f.time; });
+  if (next == frames.begin()) {
+    s.position = frames.front().position;
+    s.orientation = frames.front().orientation;
+    s.engaged = false;
+    return s;
+  }
+  const std::size_t k = static_cast<std::size_t>(next - frames.begin()) - 1;
+  const Keyframe& a = frames[k];
+  s.engaged = engaged_after_[k];
+  if (next == frames.end() || s.time == a.time) {
+    s.position = a.position;
+    s.orientation = a.orientation;
+    return s;
+  }
+  const Keyframe& b = *next;
+  const double alpha = (s.time - a.time) / (b.time - a.time);
+  s.position = a.position + alpha * (b.position - a.position);
+  s.orientation = a.orientation.slerp(alpha, b.orientation);
+  return s;
+}
+
+Script record_script(const std::vector<DeviceSample>& samples, const std::string& tool) {
+  Script script;
+  script.tool = tool;
+  bool engaged = false;
+  for (const DeviceSample& s : samples) {
+    Keyframe f;
+    f.time = s.time;
+    f.position = s.position;
+    f.orientation = s.orientation;
+    if (s.engaged != engaged) f.event = s.engaged ? ScriptEvent::engage : ScriptEvent::release;
+    engaged = s.engaged;
+    script.keyframes.push_back(f);
+  }
+  return script;
+}
+
+}  // namespace argil::sculpt

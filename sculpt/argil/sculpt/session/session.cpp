@@ -1,0 +1,253 @@
+#include "argil/sculpt/session/session.hpp"
+
+#include <cstring>
+
+#include "argil/io/files/model_files.hpp"
+#include "argil/sculpt/detail/fnv_hash.hpp"
+
+namespace argil::sculpt {
+namespace {
+
+std::string model_path(std::size_t k) { return "models[" + std::to_string(k) + "]"; }
+
+/// Reads a model file; errors name the scene field that points at it.
+Result<io::Model> read_for(const std::filesystem::path& file, const std::string& field) {
+  Result<io::Model> read = io::read_model(file);
+  if (!read.ok()) return Status::error(read.status().code, field + ": " + read.status().message);
+  return read;
+}
+
+void hash_bytes(std::uint64_t& h, const void* data, std::size_t size) {
+  h = fnv1a64(std::string_view(static_cast<const char*>(data), size), h);
+}
+
+}  // namespace
+
+Result<Session> Session::create(const Scene& scene, const std::string& tool_name) {
+  Session s;
+  s.scene_ = scene;
+  s.tool_index_ = scene.tool_index(tool_name);
+  if (s.tool_index_ < 0) {
+    return Status::error(StatusCode::invalid_argument,
+                         "tool \"" + tool_name + "\" is not in the scene's tools");
+  }
+  const ToolSpec& tool = scene.tools[static_cast<std::size_t>(s.tool_index_)];
+  const std::string tool_field = "tools[" + std::to_string(s.tool_index_) + "]";
+  switch (tool.type) {
+    case ToolType::sphere:
+      s.tool_shape_ = SphereToolShape{tool.radius};
+      break;
+    case ToolType::point:
+      s.tool_shape_ = SphereToolShape{0.0};
+      break;
+    case ToolType::bspline: {
+      Result<io::Model> read = read_for(tool.file, tool_field + ".file");
+      if (!read.ok()) return read.status();
+      const auto& faces = read.value().faces;
+      if (tool.face >= static_cast<int>(faces.size())) {
+        return Status::error(StatusCode::invalid_argument,
+                             tool_field + ".face: face " + std::to_string(tool.face) +
+                                 " is out of range: " + tool.file.string() + " has " +
+                                 std::to_string(faces.size()) + " faces");
+      }
+      s.tool_shape_ = SurfaceToolShape{faces[static_cast<std::size_t>(tool.face)].surface};
+      break;
+    }
+  }
+  for (std::size_t m = 0; m < scene.models.size(); ++m) {
+    const ModelSpec& spec = scene.models[m];
+    Result<io::Model> read = read_for(spec.file, model_path(m) + ".file");
+    if (!read.ok()) return read.status();
+    io::Model& file = read.value();
+    LoadedModel loaded;
+    loaded.spec = spec;
+    loaded.initial.source_unit = file.source_unit;
+    loaded.initial.metadata = file.metadata;
+    loaded.initial.metadata["sculpt_scene"] = scene.source.string();
+    loaded.initial.metadata["sculpt_model"] = spec.name;
+    std::vector<int> wanted = spec.faces;
+    if (wanted.empty()) {
+      for (std::size_t f = 0; f < file.faces.size(); ++f) wanted.push_back(static_cast<int>(f));
+    }
+    for (std::size_t k = 0; k < wanted.size(); ++k) {
+      const int f = wanted[k];
+      if (f >= static_cast<int>(file.faces.size())) {
+        return Status::error(StatusCode::invalid_argument,
+                             model_path(m) + ".faces[" + std::to_string(k) + "]: face " +
+                                 std::to_string(f) + " is out of range: " + spec.file.string() +
+                                 " has " + std::to_string(file.faces.size()) + " faces");
+      }
+      loaded.initial.faces.push_back(std::move(file.faces[static_cast<std::size_t>(f)]));
+      loaded.file_faces.push_back(f);
+    }
+    if (loaded.initial.faces.empty()) {
+      return Status::error(StatusCode::invalid_argument,
+                           model_path(m) + ".file: " + spec.file.string() + " has no faces");
+    }
+    s.models_.push_back(std::move(loaded));
+  }
+  const Status built = s.rebuild_world();
+  if (!built.ok()) return built;
+  return s;
+}
+
+Status Session::rebuild_world() {
+  WorldOptions options;
+  options.tolerance = scene_.tolerance;
+  options.coupling.stiffness = scene_.coupling.stiffness;
+  options.coupling.damping = scene_.coupling.damping;
+  options.coupling.max_force = scene_.coupling.max_force;
+  Result<HapticWorld> world = HapticWorld::create(tool_shape_, options);
+  if (!world.ok()) {
+    return Status::error(world.status().code, "tools[" + std::to_string(tool_index_) +
+                                                  "] or coupling: " + world.status().message);
+  }
+  world_.emplace(std::move(world).value());
+  body_owner_.clear();
+  for (std::size_t m = 0; m < models_.size(); ++m) {
+    LoadedModel& loaded = models_[m];
+    loaded.bodies.clear();
+    for (std::size_t f = 0; f < loaded.initial.faces.size(); ++f) {
+      const BSplineSurface& surface = loaded.initial.faces[f].surface;
+      const Result<int> body =
+          loaded.spec.deformable
+              ? world_->add_deformable(surface, loaded.spec.material, loaded.spec.boundary)
+              : world_->add_rigid(surface, loaded.spec.rigid_friction);
+      if (!body.ok()) {
+        return Status::error(body.status().code, model_path(m) + " face " +
+                                                     std::to_string(loaded.file_faces[f]) + ": " +
+                                                     body.status().message);
+      }
+      loaded.bodies.push_back(body.value());
+      body_owner_.emplace_back(static_cast<int>(m), static_cast<int>(f));
+    }
+  }
+  return Status::success();
+}
+
+Result<TickReport> Session::advance(const DeviceSample& sample) {
+  DevicePose pose;
+  pose.position = sample.position;
+  pose.orientation = sample.orientation;
+  pose.engaged = sample.engaged;
+  const TickResult r = world_->step(pose, time_step());
+  if (!r.status.ok()) {
+    return Status::error(r.status.code,
+                         "tick " + std::to_string(sample.tick) + ": " + r.status.message);
+  }
+  TickReport report;
+  report.tick = sample.tick;
+  report.time = sample.time;
+  report.force = r.force;
+  report.clamped = r.clamped;
+  report.proxy = r.proxy.position;
+  report.max_depth = r.max_depth;
+  for (std::size_t b = 0; b < r.body_contacts.size() && b < body_owner_.size(); ++b) {
+    const auto [model, face] = body_owner_[b];
+    for (const Contact& c : r.body_contacts[b]) {
+      ContactRecord record;
+      record.model = model;
+      record.face =
+          models_[static_cast<std::size_t>(model)].file_faces[static_cast<std::size_t>(face)];
+      record.uv = c.uv_a;
+      record.point = c.point;
+      record.normal = c.normal;
+      record.depth = c.depth;
+      report.contacts.push_back(record);
+    }
+  }
+  return report;
+}
+
+Result<TickReport> Session::step(const DeviceSample& sample) {
+  if (sample.engaged && !engaged_) {
+    stroke_start_ = history_.size();
+    redo_.clear();  // a new stroke forks the history
+  }
+  Result<TickReport> report = advance(sample);
+  if (!report.ok()) return report;
+  history_.push_back(sample);
+  if (!sample.engaged && engaged_) {
+    strokes_.push_back({stroke_start_, history_.size()});
+    report.value().stroke_finished = true;
+  }
+  engaged_ = sample.engaged;
+  return report;
+}
+
+Status Session::undo() {
+  if (engaged_) return Status::error(StatusCode::invalid_argument, "undo: a stroke is in progress");
+  if (strokes_.empty()) return Status::error(StatusCode::invalid_argument, "undo: nothing to undo");
+  const StrokeSpan stroke = strokes_.back();
+  strokes_.pop_back();
+  RedoEntry entry;
+  entry.start = stroke.start;
+  entry.samples.assign(history_.begin() + static_cast<std::ptrdiff_t>(stroke.start),
+                       history_.begin() + static_cast<std::ptrdiff_t>(stroke.end));
+  redo_.push_back(std::move(entry));
+  history_.resize(stroke.start);
+  engaged_ = false;
+  // Exact restore: a fresh world replays the inputs that led to the stroke's start.
+  return replay_history();
+}
+
+Status Session::redo() {
+  if (engaged_) return Status::error(StatusCode::invalid_argument, "redo: a stroke is in progress");
+  if (redo_.empty()) return Status::error(StatusCode::invalid_argument, "redo: nothing to redo");
+  RedoEntry entry = std::move(redo_.back());
+  redo_.pop_back();
+  if (history_.size() != entry.start) {
+    // Free moves came after the undo: drop them so the result is exactly the
+    // state the stroke finished with.
+    history_.resize(entry.start);
+    const Status replayed = replay_history();
+    if (!replayed.ok()) return replayed;
+  }
+  for (const DeviceSample& s : entry.samples) {
+    const Result<TickReport> r = advance(s);
+    if (!r.ok()) return r.status();
+    history_.push_back(s);
+  }
+  strokes_.push_back({entry.start, history_.size()});
+  engaged_ = false;
+  return Status::success();
+}
+
+Status Session::replay_history() {
+  const Status built = rebuild_world();
+  if (!built.ok()) return built;
+  for (const DeviceSample& s : history_) {
+    const Result<TickReport> r = advance(s);
+    if (!r.ok()) return r.status();
+  }
+  return Status::success();
+}
+
+io::Model Session::current_model(int index) {
+  const LoadedModel& loaded = models_[static_cast<std::size_t>(index)];
+  io::Model model = loaded.initial;
+  for (std::size_t f = 0; f < model.faces.size(); ++f) {
+    model.faces[f].surface = world_->surface(loaded.bodies[f]);
+  }
+  return model;
+}
+
+std::uint64_t Session::state_hash() {
+  std::uint64_t h = fnv1a64("argil.session");
+  for (int b = 0; b < world_->body_count(); ++b) {
+    const ControlNet& points = world_->surface(b).control_points;
+    hash_bytes(h, points.data(), static_cast<std::size_t>(points.size()) * sizeof(double));
+    if (const DeformableBody* body = world_->deformable(b)) {
+      hash_bytes(h, body->rest_nodes().data(),
+                 static_cast<std::size_t>(body->rest_nodes().size()) * sizeof(double));
+      hash_bytes(h, body->velocities().data(),
+                 static_cast<std::size_t>(body->velocities().size()) * sizeof(double));
+    }
+  }
+  const ToolState& proxy = world_->proxy();
+  hash_bytes(h, proxy.position.data(), 3 * sizeof(double));
+  hash_bytes(h, proxy.velocity.data(), 3 * sizeof(double));
+  return h;
+}
+
+}  // namespace argil::sculpt

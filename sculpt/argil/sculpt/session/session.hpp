@@ -1,0 +1,121 @@
+#pragma once
+// A sculpting session: the scene's named faces loaded into a HapticWorld with
+// its tool, stepped once per device sample, with undo and redo of strokes.
+//
+// Session::step reads no clock and starts no thread: the same scene and the
+// same samples (and undo/redo calls) give bit-identical control points.
+// Measure time around it, never inside.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "argil/core/haptic/haptic_tick.hpp"
+#include "argil/core/base/status.hpp"
+#include "argil/io/model/model.hpp"
+#include "argil/sculpt/scene/scene.hpp"
+#include "argil/sculpt/script/script.hpp"
+
+namespace argil::sculpt {
+
+/// A contact of the tool with one model face during a tick.
+struct ContactRecord {
+  int model = 0;                                     // index in Scene::models
+  int face = 0;                                      // face index in the model's file
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();      // on the face
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // p_WC [mm]
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit, S_u x S_v
+  double depth = 0.0;                                // [mm], positive inside the tool
+};
+
+/// What one tick did, for logs and pictures.
+struct TickReport {
+  long long tick = 0;
+  double time = 0.0;                                // [s]
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // on the device [N], clamped
+  bool clamped = false;
+  Eigen::Vector3d proxy = Eigen::Vector3d::Zero();  // tool proxy position [mm]
+  double max_depth = 0.0;                           // [mm]
+  std::vector<ContactRecord> contacts;
+  bool stroke_finished = false;  // this sample released the tool
+};
+
+/// One scene model as loaded: the faces the scene names (with their trims,
+/// in the scene's order) and their bodies in the world.
+struct LoadedModel {
+  ModelSpec spec;
+  io::Model initial;            // the named faces only, as read
+  std::vector<int> file_faces;  // face index in the file of each loaded face
+  std::vector<int> bodies;      // world body of each loaded face
+};
+
+class Session {
+ public:
+  /// Reads the faces the scene names (only those), builds a body for each
+  /// (deformable with the model's material and boundary conditions, or rigid)
+  /// and the tool `tool_name` (empty: the scene's first tool). Errors name the
+  /// scene field ("models[1].faces[2]: face 9 is out of range ...").
+  static Result<Session> create(const Scene& scene, const std::string& tool_name = "");
+
+  /// One haptic tick of 1 / haptic_rate seconds with the device at `sample`.
+  /// An engaged sample after a released one starts a stroke; a released one
+  /// after an engaged one finishes it (TickReport::stroke_finished).
+  Result<TickReport> step(const DeviceSample& sample);
+
+  /// Strokes that can be undone (finished, not undone) and redone.
+  int undo_depth() const { return static_cast<int>(strokes_.size()); }
+  int redo_depth() const { return static_cast<int>(redo_.size()); }
+  bool engaged() const { return engaged_; }
+  /// Restores the state just before the last finished stroke began, exactly:
+  /// the world is rebuilt and the inputs before the stroke replayed (cost:
+  /// the ticks before it; HapticWorld has no state snapshot to restore).
+  /// Free moves made after the stroke are dropped. Refused during a stroke or
+  /// with nothing to undo.
+  Status undo();
+  /// Restores the state right after the last undone stroke finished: its
+  /// samples are stepped again from its start (free moves made since the undo
+  /// are dropped). A new stroke after an undo clears the redo list.
+  Status redo();
+
+  const Scene& scene() const { return scene_; }
+  const std::vector<LoadedModel>& models() const { return models_; }
+  /// Model `index` with every face's current (sculpted) surface.
+  io::Model current_model(int index);
+  /// The tool the device holds.
+  const ToolSpec& tool() const { return scene_.tools[static_cast<std::size_t>(tool_index_)]; }
+  /// FNV-1a hash of every body's control points and the proxy state: equal
+  /// hashes mean (with overwhelming probability) bit-identical states.
+  std::uint64_t state_hash();
+  double time_step() const { return 1.0 / scene_.haptic_rate; }
+
+ private:
+  struct StrokeSpan {
+    std::size_t start = 0;  // index in history_ of the stroke's first sample
+    std::size_t end = 0;    // one past its release sample
+  };
+  struct RedoEntry {
+    std::size_t start = 0;              // history length the stroke started at
+    std::vector<DeviceSample> samples;  // the stroke through its release sample
+  };
+  Session() = default;
+  Status rebuild_world();
+  /// A fresh world stepped through history_.
+  Status replay_history();
+  Result<TickReport> advance(const DeviceSample& sample);
+
+  Scene scene_;
+  int tool_index_ = 0;
+  ToolShape tool_shape_;
+  std::vector<LoadedModel> models_;
+  std::vector<std::pair<int, int>> body_owner_;  // body -> (model, loaded face)
+  std::optional<HapticWorld> world_;
+  std::vector<DeviceSample> history_;  // every sample the current state results from
+  std::vector<StrokeSpan> strokes_;    // finished, undoable
+  std::vector<RedoEntry> redo_;        // undone strokes, last on top
+  std::size_t stroke_start_ = 0;
+  bool engaged_ = false;
+};
+
+}  // namespace argil::sculpt

@@ -1,0 +1,74 @@
+#pragma once
+// Surface against surface (ARCHITECTURE 3.4): simultaneous descent over node
+// pairs of two conservative hierarchies, triangle-triangle tests at flat leaf
+// pairs, intersection curves with (u, v) on both surfaces, near-touching
+// contacts, and optional Newton refinement onto both exact surfaces.
+
+#include <Eigen/Core>
+
+#include "argil/core/geometry/bspline_surface.hpp"
+#include "argil/core/collision/contact.hpp"
+#include "argil/core/hierarchy/surface_hierarchy.hpp"
+
+namespace argil {
+
+/// Intersections and near-touches of surfaces a and b within eps =
+/// request.tolerance [mm].
+///
+/// Descent: node pairs are pruned when their spheres, then their boxes, are
+/// more than eps apart; otherwise the node that is not yet flat (the larger
+/// sphere when both are not) is split. A node is flat when its flatness bound
+/// is at most eps/3 (or its radius at most eps/6, or it sits at
+/// request.max_level). At a pair of flat nodes each node is replaced by its two
+/// corner triangles, which lie within eps/3 of the surface at the same
+/// parameters, and the four triangle pairs are intersected.
+///
+/// The eps budget: eps/3 for a's triangles, eps/3 for b's, and eps/3 of
+/// touching margin, so a leaf pair is a contact when its triangles cross or
+/// are at most eps apart. Then
+/// - every point where the surfaces cross, or come within eps/3 of each
+///   other, lies in a reported leaf pair (no intersection is missed);
+/// - every reported point lies within eps/3 (curve points) or 5 eps/6
+///   (near-touch contacts) of both surfaces, before refinement.
+///
+/// Results: `curves` are the triangle intersection segments chained where
+/// their end points coincide (3D distance at most eps and parameters within
+/// half a leaf on both surfaces); each point carries (u, v) on a and b by
+/// barycentric interpolation of the leaf's parameter corners. `contacts` has
+/// one record per leaf pair in contact: on its longest crossing segment's
+/// midpoint (depth 0), or halfway between the closest triangle points
+/// (depth = -their distance, just apart). Normal and tangents are a's, from
+/// its derivatives. Contacts whose leaf rectangles on a touch form a region.
+///
+/// With request.refine, every curve point and crossing contact is moved onto
+/// both exact surfaces by Gauss-Newton on S_a(u, v) = S_b(s, t) with a plane
+/// constraint across the curve (or the domain edge it lies on), to ~1e-12 of
+/// the model size; near-touch contacts move to a local closest pair, with
+/// depth = -gap (0 when the surfaces turn out to cross there). A point whose
+/// iteration does not converge near its leaf keeps its unrefined value.
+CollisionResult collide(SurfaceHierarchy& a, SurfaceHierarchy& b,
+                        const CollisionRequest& request = {});
+
+/// A pair of surface points after refine_surface_pair().
+struct RefinedPair {
+  Eigen::Vector2d uv_a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d uv_b = Eigen::Vector2d::Zero();
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // midpoint of S_a(uv_a) and S_b(uv_b) [mm]
+  double gap = 0.0;                                 // |S_a(uv_a) - S_b(uv_b)| [mm]
+  int iterations = 0;
+};
+
+/// Gauss-Newton from (uv_a, uv_b) on F = S_a(u, v) - S_b(s, t) with
+/// minimum-norm steps in the 4 parameters, clamped to both domains.
+/// `on_curve`: adds the constraint that keeps the point from sliding along
+/// the intersection curve: a parameter that starts exactly on its domain edge
+/// stays there; otherwise the point stays on the plane through the start point
+/// across the curve (normal n_a x n_b there). Without it (or where the
+/// surfaces are tangent) the iteration converges to a local minimum of |F|:
+/// a local closest pair. Stops when |F| <= 1e-14 of `scale` [mm] or the step
+/// stalls, after at most 40 iterations.
+RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b,
+                                const Eigen::Vector2d& uv_a, const Eigen::Vector2d& uv_b,
+                                bool on_curve, double scale);
+
+}  // namespace argil

@@ -1,0 +1,277 @@
+#include "argil/core/collision/triangle_intersection.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "argil/core/geometry/triangle_distance.hpp"
+
+namespace argil {
+
+namespace {
+
+constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() / 2;  // 2^-53
+
+/// Points where a triangle meets the other triangle's plane, with their
+/// barycentric coordinates: one or two points (three only when coplanar).
+struct PlaneCut {
+  int count = 0;
+  std::array<Eigen::Vector3d, 3> points;
+  std::array<Eigen::Vector3d, 3> bary;
+};
+
+PlaneCut cut_by_plane(const Triangle& t, const std::array<Orientation, 3>& side) {
+  PlaneCut cut;
+  for (int i = 0; i < 3; ++i) {
+    if (side[static_cast<std::size_t>(i)].sign == 0) {
+      cut.points[static_cast<std::size_t>(cut.count)] = t[static_cast<std::size_t>(i)];
+      cut.bary[static_cast<std::size_t>(cut.count)] = Eigen::Vector3d::Unit(i);
+      ++cut.count;
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    const Orientation& si = side[static_cast<std::size_t>(i)];
+    const Orientation& sj = side[static_cast<std::size_t>(j)];
+    if (si.sign * sj.sign >= 0) continue;
+    // The determinants are signed distances times one common factor, so the
+    // crossing is at the same fraction of the edge.
+    const double lambda = si.value / (si.value - sj.value);
+    const auto& pi = t[static_cast<std::size_t>(i)];
+    const auto& pj = t[static_cast<std::size_t>(j)];
+    cut.points[static_cast<std::size_t>(cut.count)] = pi + lambda * (pj - pi);
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    b[i] = 1.0 - lambda;
+    b[j] = lambda;
+    cut.bary[static_cast<std::size_t>(cut.count)] = b;
+    ++cut.count;
+  }
+  return cut;
+}
+
+/// 2D coordinates in the plane that drops the normal's largest axis.
+Eigen::Vector2d drop_axis(const Eigen::Vector3d& p, int axis) {
+  return axis == 0 ? Eigen::Vector2d(p.y(), p.z())
+                   : (axis == 1 ? Eigen::Vector2d(p.z(), p.x()) : Eigen::Vector2d(p.x(), p.y()));
+}
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+/// Overlap of coplanar triangles: a clipped by b's three edge half-planes
+/// (Sutherland-Hodgman, boundary inclusive), reported at the polygon's centroid.
+TriangleIntersection coplanar_overlap(const Triangle& a, const Triangle& b) {
+  TriangleIntersection out;
+  const Eigen::Vector3d na = (a[1] - a[0]).cross(a[2] - a[0]);
+  const Eigen::Vector3d nb = (b[1] - b[0]).cross(b[2] - b[0]);
+  const Eigen::Vector3d n = na.squaredNorm() >= nb.squaredNorm() ? na : nb;
+  int axis = 0;
+  n.cwiseAbs().maxCoeff(&axis);
+  std::array<Eigen::Vector2d, 3> b2;
+  for (std::size_t k = 0; k < 3; ++k) b2[k] = drop_axis(b[k], axis);
+  const double area_b = cross2(b2[1] - b2[0], b2[2] - b2[0]);
+  if (area_b == 0.0) return out;  // b is a segment in this projection: no area to share
+  const double orientation = area_b > 0 ? 1.0 : -1.0;
+  std::vector<Eigen::Vector3d> polygon(a.begin(), a.end());
+  std::vector<Eigen::Vector3d> next;
+  for (std::size_t e = 0; e < 3 && !polygon.empty(); ++e) {
+    const Eigen::Vector2d& p = b2[e];
+    const Eigen::Vector2d& q = b2[(e + 1) % 3];
+    const auto side = [&](const Eigen::Vector3d& x) {
+      return orientation * cross2(q - p, drop_axis(x, axis) - p);
+    };
+    next.clear();
+    for (std::size_t k = 0; k < polygon.size(); ++k) {
+      const Eigen::Vector3d& x = polygon[k];
+      const Eigen::Vector3d& y = polygon[(k + 1) % polygon.size()];
+      const double sx = side(x), sy = side(y);
+      if (sx >= 0) next.push_back(x);
+      if ((sx > 0 && sy < 0) || (sx < 0 && sy > 0)) next.push_back(x + (y - x) * (sx / (sx - sy)));
+    }
+    polygon.swap(next);
+  }
+  if (polygon.empty()) return out;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& x : polygon) centroid += x;
+  centroid /= static_cast<double>(polygon.size());
+  out.kind = TriangleIntersection::Kind::coplanar;
+  out.points = {centroid, centroid};
+  const Eigen::Vector3d ba = barycentric(centroid, a), bb = barycentric(centroid, b);
+  out.bary_a = {ba, ba};
+  out.bary_b = {bb, bb};
+  return out;
+}
+
+}  // namespace
+
+Orientation orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                     const Eigen::Vector3d& d) {
+  // Shewchuk's orient3d on differences to d, with its static error bound
+  // (Adaptive Precision Floating-Point Arithmetic, 1997): a determinant whose
+  // magnitude exceeds the bound has the sign of the exact one.
+  const Eigen::Vector3d ad = a - d, bd = b - d, cd = c - d;
+  const double bc_yz = bd.y() * cd.z(), cb_yz = bd.z() * cd.y();
+  const double ca_yz = cd.y() * ad.z(), ac_yz = cd.z() * ad.y();
+  const double ab_yz = ad.y() * bd.z(), ba_yz = ad.z() * bd.y();
+  const double det = ad.x() * (bc_yz - cb_yz) + bd.x() * (ca_yz - ac_yz) + cd.x() * (ab_yz - ba_yz);
+  const double permanent = (std::abs(bc_yz) + std::abs(cb_yz)) * std::abs(ad.x()) +
+                           (std::abs(ca_yz) + std::abs(ac_yz)) * std::abs(bd.x()) +
+                           (std::abs(ab_yz) + std::abs(ba_yz)) * std::abs(cd.x());
+  const double bound = (7.0 + 56.0 * kUnitRoundoff) * kUnitRoundoff * permanent;
+  // Shewchuk's determinant is positive below the plane; ours is positive on
+  // the side (b - a) x (c - a) points to.
+  Orientation o;
+  if (det > bound) {
+    o = {-1, -det};
+  } else if (det < -bound) {
+    o = {1, -det};
+  }
+  return o;
+}
+
+TriangleIntersection intersect_triangles(const Triangle& a, const Triangle& b) {
+  TriangleIntersection out;
+  std::array<Orientation, 3> side_a, side_b;  // corners of a against plane b, and back
+  for (std::size_t k = 0; k < 3; ++k) side_a[k] = orient3d(b[0], b[1], b[2], a[k]);
+  const auto all_same = [](const std::array<Orientation, 3>& s) {
+    return (s[0].sign > 0 && s[1].sign > 0 && s[2].sign > 0) ||
+           (s[0].sign < 0 && s[1].sign < 0 && s[2].sign < 0);
+  };
+  const auto all_zero = [](const std::array<Orientation, 3>& s) {
+    return s[0].sign == 0 && s[1].sign == 0 && s[2].sign == 0;
+  };
+  if (all_same(side_a)) return out;
+  for (std::size_t k = 0; k < 3; ++k) side_b[k] = orient3d(a[0], a[1], a[2], b[k]);
+  if (all_same(side_b)) return out;
+  if (all_zero(side_a) || all_zero(side_b)) return coplanar_overlap(a, b);
+
+  const PlaneCut cut_a = cut_by_plane(a, side_a);
+  const PlaneCut cut_b = cut_by_plane(b, side_b);
+  if (cut_a.count == 0 || cut_b.count == 0) return out;
+  // Both cuts lie on the planes' common line; compare them along it (or along
+  // the longer cut when the planes are too close to parallel to give a line).
+  const Eigen::Vector3d na = (a[1] - a[0]).cross(a[2] - a[0]);
+  const Eigen::Vector3d nb = (b[1] - b[0]).cross(b[2] - b[0]);
+  Eigen::Vector3d axis = na.cross(nb);
+  if (axis.squaredNorm() <= 1e-24 * na.squaredNorm() * nb.squaredNorm()) {
+    const Eigen::Vector3d da =
+        cut_a.points[static_cast<std::size_t>(cut_a.count - 1)] - cut_a.points[0];
+    const Eigen::Vector3d db =
+        cut_b.points[static_cast<std::size_t>(cut_b.count - 1)] - cut_b.points[0];
+    axis = da.squaredNorm() >= db.squaredNorm() ? da : db;
+    if (axis.squaredNorm() == 0.0)
+      return out;  // two single points: touching is left to the distance test
+  }
+  const auto interval = [&axis](const PlaneCut& c, int& lo, int& hi) {
+    lo = 0;
+    hi = c.count - 1;
+    if (axis.dot(c.points[static_cast<std::size_t>(hi)]) <
+        axis.dot(c.points[static_cast<std::size_t>(lo)]))
+      std::swap(lo, hi);
+  };
+  int a_lo, a_hi, b_lo, b_hi;
+  interval(cut_a, a_lo, a_hi);
+  interval(cut_b, b_lo, b_hi);
+  const double ta0 = axis.dot(cut_a.points[static_cast<std::size_t>(a_lo)]);
+  const double ta1 = axis.dot(cut_a.points[static_cast<std::size_t>(a_hi)]);
+  const double tb0 = axis.dot(cut_b.points[static_cast<std::size_t>(b_lo)]);
+  const double tb1 = axis.dot(cut_b.points[static_cast<std::size_t>(b_hi)]);
+  if (ta1 < tb0 || tb1 < ta0) return out;
+  // Barycentric coordinates of the point at axis value x on a cut.
+  const auto along = [](const PlaneCut& c, int lo, int hi, double t0, double t1, double x) {
+    const double f = t1 > t0 ? std::clamp((x - t0) / (t1 - t0), 0.0, 1.0) : 0.0;
+    return Eigen::Vector3d((1.0 - f) * c.bary[static_cast<std::size_t>(lo)] +
+                           f * c.bary[static_cast<std::size_t>(hi)]);
+  };
+  const auto point_of = [](const Triangle& t, const Eigen::Vector3d& w) {
+    return Eigen::Vector3d(w[0] * t[0] + w[1] * t[1] + w[2] * t[2]);
+  };
+  out.kind = TriangleIntersection::Kind::segment;
+  // Lower end: the later start of the two cuts; upper end: the earlier finish.
+  if (ta0 >= tb0) {
+    out.bary_a[0] = cut_a.bary[static_cast<std::size_t>(a_lo)];
+    out.bary_b[0] = along(cut_b, b_lo, b_hi, tb0, tb1, ta0);
+  } else {
+    out.bary_b[0] = cut_b.bary[static_cast<std::size_t>(b_lo)];
+    out.bary_a[0] = along(cut_a, a_lo, a_hi, ta0, ta1, tb0);
+  }
+  if (ta1 <= tb1) {
+    out.bary_a[1] = cut_a.bary[static_cast<std::size_t>(a_hi)];
+    out.bary_b[1] = along(cut_b, b_lo, b_hi, tb0, tb1, ta1);
+  } else {
+    out.bary_b[1] = cut_b.bary[static_cast<std::size_t>(b_hi)];
+    out.bary_a[1] = along(cut_a, a_lo, a_hi, ta0, ta1, tb1);
+  }
+  for (std::size_t k = 0; k < 2; ++k) {
+    // Both evaluations lie on the common line; their mean splits the rounding.
+    out.points[k] = 0.5 * (point_of(a, out.bary_a[k]) + point_of(b, out.bary_b[k]));
+  }
+  return out;
+}
+
+Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Triangle& t) {
+  const Eigen::Vector3d q = closest_point_on_triangle(p, t[0], t[1], t[2]);
+  const Eigen::Vector3d v0 = t[1] - t[0], v1 = t[2] - t[0], v2 = q - t[0];
+  const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1);
+  const double d20 = v2.dot(v0), d21 = v2.dot(v1);
+  const double denom = d00 * d11 - d01 * d01;
+  if (!(denom > 1e-30 * std::max(d00 * d11, std::numeric_limits<double>::min()))) {
+    int best = 0;
+    double best_d = (p - t[0]).squaredNorm();
+    for (int k = 1; k < 3; ++k) {
+      const double d = (p - t[static_cast<std::size_t>(k)]).squaredNorm();
+      if (d < best_d) {
+        best_d = d;
+        best = k;
+      }
+    }
+    return Eigen::Vector3d::Unit(best);
+  }
+  const double v = (d11 * d20 - d01 * d21) / denom;
+  const double w = (d00 * d21 - d01 * d20) / denom;
+  Eigen::Vector3d b(1.0 - v - w, v, w);
+  b = b.cwiseMax(0.0);
+  return b / b.sum();
+}
+
+TriangleDistance triangle_distance(const Triangle& a, const Triangle& b) {
+  TriangleDistance best;
+  best.distance = std::numeric_limits<double>::infinity();
+  const auto consider = [&best](const Eigen::Vector3d& pa, const Eigen::Vector3d& pb,
+                                const Eigen::Vector3d& wa, const Eigen::Vector3d& wb) {
+    const double d = (pa - pb).norm();
+    if (d < best.distance) best = {d, pa, pb, wa, wb};
+  };
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d& pa = a[static_cast<std::size_t>(k)];
+    const Eigen::Vector3d qb = closest_point_on_triangle(pa, b[0], b[1], b[2]);
+    consider(pa, qb, Eigen::Vector3d::Unit(k), barycentric(qb, b));
+    const Eigen::Vector3d& pb = b[static_cast<std::size_t>(k)];
+    const Eigen::Vector3d qa = closest_point_on_triangle(pb, a[0], a[1], a[2]);
+    consider(qa, pb, barycentric(qa, a), Eigen::Vector3d::Unit(k));
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3;
+      double s = 0, t = 0;
+      const auto& p0 = a[static_cast<std::size_t>(i)];
+      const auto& p1 = a[static_cast<std::size_t>(i1)];
+      const auto& q0 = b[static_cast<std::size_t>(j)];
+      const auto& q1 = b[static_cast<std::size_t>(j1)];
+      closest_on_segments(p0, p1, q0, q1, s, t);
+      Eigen::Vector3d wa = Eigen::Vector3d::Zero(), wb = Eigen::Vector3d::Zero();
+      wa[i] = 1.0 - s;
+      wa[i1] = s;
+      wb[j] = 1.0 - t;
+      wb[j1] = t;
+      consider(p0 + s * (p1 - p0), q0 + t * (q1 - q0), wa, wb);
+    }
+  }
+  return best;
+}
+
+}  // namespace argil

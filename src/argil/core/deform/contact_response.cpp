@@ -1,0 +1,71 @@
+#include "argil/core/deform/contact_response.hpp"
+
+#include <algorithm>
+
+#include "argil/core/geometry/basis.hpp"
+
+namespace argil {
+
+std::vector<double> contact_shares(const std::vector<Contact>& contacts, double eps) {
+  std::vector<double> shares;
+  shares.reserve(contacts.size());
+  double total = 0.0;
+  for (const Contact& c : contacts) {
+    // A floor keeps contacts reported at exactly -eps in the sum.
+    shares.push_back(std::max(c.depth + eps, 1e-3 * eps));
+    total += shares.back();
+  }
+  for (double& s : shares) s /= total;
+  return shares;
+}
+
+Eigen::VectorXd contact_load_pattern(const BSplineSurface& s, const SurfaceOperators& ops,
+                                     const std::vector<Contact>& contacts,
+                                     const std::vector<double>& shares) {
+  assert(contacts.size() == shares.size());
+  const int nu = s.count(Direction::u);
+  const int nv = s.count(Direction::v);
+  const int p = s.degree[0];
+  const int q = s.degree[1];
+  Eigen::MatrixXd control(static_cast<Eigen::Index>(nu) * nv, 1);
+  control.setZero();
+  Eigen::MatrixXd bu(1, p + 1), bv(1, q + 1);
+  Eigen::MatrixXd local(p + 1, q + 1);
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const double u =
+        std::clamp(contacts[k].uv_a.x(), s.domain_start(Direction::u), s.domain_end(Direction::u));
+    const double v =
+        std::clamp(contacts[k].uv_a.y(), s.domain_start(Direction::v), s.domain_end(Direction::v));
+    const int su = find_span(p, s.knots[0], nu, u);
+    const int sv = find_span(q, s.knots[1], nv, v);
+    basis_derivatives(p, s.knots[0], su, u, 0, bu);
+    basis_derivatives(q, s.knots[1], sv, v, 0, bv);
+    double sum = 0.0;
+    for (int a = 0; a <= p; ++a)
+      for (int b = 0; b <= q; ++b) {
+        const double w = s.is_rational() ? s.weights[s.pole_index(su - p + a, sv - q + b)] : 1.0;
+        local(a, b) = bu(0, a) * bv(0, b) * w;
+        sum += local(a, b);
+      }
+    for (int a = 0; a <= p; ++a)
+      for (int b = 0; b <= q; ++b)
+        control(s.pole_index(su - p + a, sv - q + b), 0) += shares[k] * local(a, b) / sum;
+  }
+  return fit_adjoint(s, ops, control).col(0);
+}
+
+FrictionOutcome coulomb_friction(const Eigen::Vector3d& spring_force,
+                                 const Eigen::Vector3d& outward_normal, double mu,
+                                 double stiffness) {
+  FrictionOutcome out;
+  out.normal_force = -spring_force.dot(outward_normal);
+  out.tangential_force = spring_force + out.normal_force * outward_normal;
+  const double pull = out.tangential_force.norm();
+  const double limit = mu * std::max(out.normal_force, 0.0);
+  if (out.normal_force > 0.0 && pull <= limit) return out;
+  out.stick = false;
+  if (pull > 0.0) out.slide = out.tangential_force * ((pull - limit) / (pull * stiffness));
+  return out;
+}
+
+}  // namespace argil

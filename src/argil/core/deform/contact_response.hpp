@@ -1,0 +1,48 @@
+#pragma once
+// From collision contacts to forces (ARCHITECTURE 3.5): how a tool force is
+// shared among contacts, carried exactly onto the nodes, and split by Coulomb
+// friction into stick and slip.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "argil/core/collision/contact.hpp"
+#include "argil/core/operators/surface_operators.hpp"
+
+namespace argil {
+
+/// Share of a tool force each contact carries, summing to 1: proportional to
+/// depth + eps (touching within eps counts, so every reported contact carries
+/// some). Empty for no contacts.
+std::vector<double> contact_shares(const std::vector<Contact>& contacts, double eps);
+
+/// Generalised node weights g (n_u * n_v entries) of a unit force applied at
+/// the contacts' points S(uv_a) with the given shares: the control-point
+/// forces Q_ij = sum_k share_k R_ij(uv_k) (rational basis) carried to the nodes
+/// by fit_adjoint. A force F through the pattern gives node forces g_i F whose
+/// sum is F and whose moment is sum_k share_k S(uv_k) x F, exactly (virtual
+/// work: g . x is the shared contact point for any node positions x).
+Eigen::VectorXd contact_load_pattern(const BSplineSurface& surface, const SurfaceOperators& ops,
+                                     const std::vector<Contact>& contacts,
+                                     const std::vector<double>& shares);
+
+/// Coulomb friction for a proxy held by a spring (stiffness k [N/mm]) at its
+/// stick point on a surface with outward unit normal n (from the surface
+/// towards the proxy): the spring force F = k (device - stick point) [N]
+/// presses with N = -F . n and pulls along the surface with F_t = F + N n.
+struct FrictionOutcome {
+  double normal_force = 0.0;                                   // N [N], > 0 when pressing
+  Eigen::Vector3d tangential_force = Eigen::Vector3d::Zero();  // F_t [N]
+  /// |F_t| <= mu N: the proxy stays at its stick point.
+  bool stick = true;
+  /// Slip: how far the proxy slides along the surface so that the remaining
+  /// tangential pull is mu N, (|F_t| - mu N) / k along F_t [mm]. Zero on stick.
+  Eigen::Vector3d slide = Eigen::Vector3d::Zero();
+};
+/// Not pressing (N <= 0) counts as slip with the whole tangential pull released
+/// (the proxy is free to leave the surface).
+FrictionOutcome coulomb_friction(const Eigen::Vector3d& spring_force,
+                                 const Eigen::Vector3d& outward_normal, double mu,
+                                 double stiffness);
+
+}  // namespace argil

@@ -1,0 +1,42 @@
+#include "argil/core/deform/material.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace argil {
+
+namespace {
+
+/// Error naming `field`, its value and the range [low, high] with its unit.
+Status out_of_range(const char* field, double value, double low, double high, const char* unit) {
+  std::ostringstream m;
+  m.precision(17);
+  m << "material." << field << " = " << value << " is outside [" << low << ", " << high << "] "
+    << unit;
+  return Status::error(StatusCode::invalid_argument, m.str());
+}
+
+bool within(double value, double low, double high) { return value >= low && value <= high; }
+
+}  // namespace
+
+Status validate(const Material& m) {
+  const MaterialRange& r = kMaterialRange;
+  if (!within(m.density, r.density_min, r.density_max))
+    return out_of_range("density", m.density, r.density_min, r.density_max, "kg/mm^2");
+  if (!within(m.stiffness, 0.0, r.stiffness_max))
+    return out_of_range("stiffness", m.stiffness, 0.0, r.stiffness_max, "N/mm");
+  if (!within(m.damping, 0.0, r.damping_max))
+    return out_of_range("damping", m.damping, 0.0, r.damping_max, "s");
+  if (!within(m.anchor_stiffness, 0.0, r.anchor_stiffness_max))
+    return out_of_range("anchor_stiffness", m.anchor_stiffness, 0.0, r.anchor_stiffness_max,
+                        "N/mm");
+  if (!(m.yield >= r.yield_min))  // +infinity is valid (elastic); NaN is not
+    return out_of_range("yield", m.yield, r.yield_min, std::numeric_limits<double>::infinity(),
+                        "mm");
+  if (!within(m.friction, 0.0, r.friction_max))
+    return out_of_range("friction", m.friction, 0.0, r.friction_max, "(coefficient)");
+  return Status::success();
+}
+
+}  // namespace argil

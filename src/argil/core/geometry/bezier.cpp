@@ -1,0 +1,194 @@
+#include "argil/core/geometry/bezier.hpp"
+#include <array>
+#include <cmath>
+
+#include "argil/core/geometry/basis.hpp"
+#include "argil/core/geometry/detail/homogeneous_derivatives.hpp"
+#include "argil/core/geometry/knot_insertion.hpp"
+
+namespace argil {
+
+namespace {
+
+int count_equal(const Eigen::VectorXd& knots, double t) { return knot_multiplicity(knots, t); }
+
+int last_index_of(const Eigen::VectorXd& knots, double t) {
+  for (Eigen::Index k = knots.size() - 1; k >= 0; --k) {
+    if (knots[k] == t) return static_cast<int>(k);
+  }
+  return -1;
+}
+
+/// Operator of span s: insert both span ends to multiplicity p into the local
+/// knot vector U[s-p .. s+p+1] refining the identity "points".
+Eigen::MatrixXd span_operator(int p, const Eigen::VectorXd& U, int s) {
+  CurveNet local{p, U.segment(s - p, 2 * p + 2), Eigen::MatrixXd::Identity(p + 1, p + 1)};
+  const double a = U[s];
+  const double b = U[s + 1];
+  const int missing_a = p - count_equal(local.knots, a);
+  if (missing_a > 0) local = insert_knot(local, a, missing_a);
+  const int missing_b = p - count_equal(local.knots, b);
+  if (missing_b > 0) local = insert_knot(local, b, missing_b);
+  const int k = last_index_of(local.knots, a);
+  return local.points.middleRows(k - p, p + 1);
+}
+
+}  // namespace
+
+BezierExtraction bezier_extraction(int degree, const Eigen::VectorXd& knots) {
+  BezierExtraction out;
+  const int count = static_cast<int>(knots.size()) - degree - 1;
+  for (int s = degree; s < count; ++s) {
+    if (knots[s] < knots[s + 1]) {
+      out.spans.push_back(s);
+      out.operators.push_back(span_operator(degree, knots, s));
+    }
+  }
+  return out;
+}
+
+SubdivisionMatrices subdivision_matrices(int p) {
+  // Binomial coefficients C(i, j) by Pascal's rule, exact in double up to p ~ 50.
+  Eigen::MatrixXd binomial = Eigen::MatrixXd::Zero(p + 1, p + 1);
+  for (int i = 0; i <= p; ++i) {
+    binomial(i, 0) = 1.0;
+    for (int j = 1; j <= i; ++j)
+      binomial(i, j) = binomial(i - 1, j - 1) + (j < i ? binomial(i - 1, j) : 0.0);
+  }
+  SubdivisionMatrices m{Eigen::MatrixXd::Zero(p + 1, p + 1), Eigen::MatrixXd::Zero(p + 1, p + 1)};
+  for (int i = 0; i <= p; ++i) {
+    const double left_scale = std::ldexp(1.0, -i);
+    const double right_scale = std::ldexp(1.0, -(p - i));
+    for (int j = 0; j <= i; ++j) m.left(i, j) = binomial(i, j) * left_scale;
+    for (int j = i; j <= p; ++j) m.right(i, j) = binomial(p - i, j - i) * right_scale;
+  }
+  return m;
+}
+
+Eigen::Vector3d evaluate(const BezierPatch& patch, double s, double t) {
+  const Eigen::VectorXd bu = bernstein(patch.degree_u, s);
+  const Eigen::VectorXd bv = bernstein(patch.degree_v, t);
+  Eigen::Vector4d h = Eigen::Vector4d::Zero();
+  for (int a = 0; a <= patch.degree_u; ++a) {
+    for (int b = 0; b <= patch.degree_v; ++b) {
+      h += bu[a] * bv[b] * patch.points.row(a * (patch.degree_v + 1) + b).transpose();
+    }
+  }
+  return h.head<3>() / h[3];
+}
+
+namespace {
+
+/// Bernstein polynomials of `degree` at t and their first and second
+/// derivatives: d/dt B_i^p = p (B_{i-1}^{p-1} - B_i^{p-1}), and the same again
+/// for the second derivative from degree p - 2.
+struct BernsteinRows {
+  std::array<double, kMaxDegree + 1> value{}, d1{}, d2{};
+};
+
+BernsteinRows bernstein_rows(int p, double t, int order) {
+  // One recurrence (as bernstein()), keeping the rows of degree p - 2 and
+  // p - 1 on the way; entries past a row's degree stay zero.
+  std::array<double, kMaxDegree + 1> b{}, low1{}, low2{};
+  b[0] = 1.0;
+  const double s = 1.0 - t;
+  for (int j = 1; j <= p; ++j) {
+    if (j == p - 1) low2 = b;
+    if (j == p) low1 = b;
+    double saved = 0.0;
+    for (int k = 0; k < j; ++k) {
+      const double temp = b[static_cast<std::size_t>(k)];
+      b[static_cast<std::size_t>(k)] = saved + s * temp;
+      saved = t * temp;
+    }
+    b[static_cast<std::size_t>(j)] = saved;
+  }
+  BernsteinRows r;
+  r.value = b;
+  const auto at = [](const std::array<double, kMaxDegree + 1>& row, int i) {
+    return i < 0 ? 0.0 : row[static_cast<std::size_t>(i)];
+  };
+  if (order >= 1 && p >= 1) {
+    for (int i = 0; i <= p; ++i)
+      r.d1[static_cast<std::size_t>(i)] = p * (at(low1, i - 1) - at(low1, i));
+  }
+  if (order >= 2 && p >= 2) {
+    for (int i = 0; i <= p; ++i) {
+      r.d2[static_cast<std::size_t>(i)] =
+          p * (p - 1) * (at(low2, i - 2) - 2.0 * at(low2, i - 1) + at(low2, i));
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
+SurfaceDerivatives evaluate_derivatives(const BezierPatch& patch, double s, double t, int order) {
+  const int p = patch.degree_u, q = patch.degree_v;
+  const BernsteinRows bu = bernstein_rows(p, s, order);
+  const BernsteinRows bv = bernstein_rows(q, t, order);
+  detail::HomogeneousDerivatives h;
+  for (int a = 0; a <= p; ++a) {
+    // Sums along v first: the net row a against the v rows.
+    Eigen::Vector4d r0 = Eigen::Vector4d::Zero(), r1 = r0, r2 = r0;
+    for (int b = 0; b <= q; ++b) {
+      const Eigen::Vector4d x = patch.points.row(a * (q + 1) + b).transpose();
+      const std::size_t jb = static_cast<std::size_t>(b);
+      r0 += bv.value[jb] * x;
+      if (order >= 1) r1 += bv.d1[jb] * x;
+      if (order >= 2) r2 += bv.d2[jb] * x;
+    }
+    const std::size_t ia = static_cast<std::size_t>(a);
+    h.a00 += bu.value[ia] * r0;
+    if (order >= 1) {
+      h.a10 += bu.d1[ia] * r0;
+      h.a01 += bu.value[ia] * r1;
+    }
+    if (order >= 2) {
+      h.a20 += bu.d2[ia] * r0;
+      h.a11 += bu.d1[ia] * r1;
+      h.a02 += bu.value[ia] * r2;
+    }
+  }
+  return detail::cartesian(h, order);
+}
+
+Eigen::MatrixX4d transform_net(const Eigen::MatrixXd* m_u, const Eigen::MatrixXd* m_v,
+                               const Eigen::MatrixX4d& net, int p, int q) {
+  Eigen::MatrixX4d along_u = net;
+  if (m_u) {
+    for (int a = 0; a <= p; ++a) {
+      for (int b = 0; b <= q; ++b) {
+        Eigen::RowVector4d sum = Eigen::RowVector4d::Zero();
+        for (int i = 0; i <= p; ++i) {
+          if ((*m_u)(a, i) != 0.0) sum += (*m_u)(a, i) * net.row(i * (q + 1) + b);
+        }
+        along_u.row(a * (q + 1) + b) = sum;
+      }
+    }
+  }
+  if (!m_v) return along_u;
+  Eigen::MatrixX4d out(along_u.rows(), 4);
+  for (int a = 0; a <= p; ++a) {
+    for (int b = 0; b <= q; ++b) {
+      Eigen::RowVector4d sum = Eigen::RowVector4d::Zero();
+      for (int j = 0; j <= q; ++j) {
+        if ((*m_v)(b, j) != 0.0) sum += (*m_v)(b, j) * along_u.row(a * (q + 1) + j);
+      }
+      out.row(a * (q + 1) + b) = sum;
+    }
+  }
+  return out;
+}
+
+BezierPatch subdivide(const BezierPatch& patch, const SubdivisionMatrices& su,
+                      const SubdivisionMatrices& sv, bool split_u, int half_u, bool split_v,
+                      int half_v) {
+  const Eigen::MatrixXd& hu = half_u == 0 ? su.left : su.right;
+  const Eigen::MatrixXd& hv = half_v == 0 ? sv.left : sv.right;
+  return {patch.degree_u, patch.degree_v,
+          transform_net(split_u ? &hu : nullptr, split_v ? &hv : nullptr, patch.points,
+                        patch.degree_u, patch.degree_v)};
+}
+
+}  // namespace argil

@@ -1,0 +1,57 @@
+#pragma once
+// Bezier forms: per-span extraction operators of a B-spline basis, subdivision
+// matrices of a Bezier segment, and Bezier patches (the hierarchy's nodes).
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "argil/core/geometry/evaluate.hpp"
+
+namespace argil {
+
+/// Extraction operators of one knot vector (Borden et al. 2011, built here by
+/// local knot insertion): for each non-empty span `spans[e]`, the Bezier
+/// control points of that span are `operators[e] * P.middleRows(spans[e] - degree, degree + 1)`.
+struct BezierExtraction {
+  std::vector<int> spans;                  // knot span index of each element
+  std::vector<Eigen::MatrixXd> operators;  // (degree+1) x (degree+1) each
+};
+BezierExtraction bezier_extraction(int degree, const Eigen::VectorXd& knots);
+
+/// de Casteljau split of a degree-p Bezier segment at t = 1/2: the halves'
+/// control points are `left * B` and `right * B`.
+struct SubdivisionMatrices {
+  Eigen::MatrixXd left;   // (p+1) x (p+1), lower triangular
+  Eigen::MatrixXd right;  // (p+1) x (p+1), upper triangular
+};
+SubdivisionMatrices subdivision_matrices(int degree);
+
+/// A tensor-product Bezier patch in homogeneous coordinates (w x, w y, w z, w),
+/// row a * (degree_v + 1) + b, over its own domain [0, 1]^2.
+struct BezierPatch {
+  int degree_u = 1;
+  int degree_v = 1;
+  Eigen::MatrixX4d points;
+};
+
+/// Point of the patch at local (s, t) in [0, 1]^2.
+Eigen::Vector3d evaluate(const BezierPatch& patch, double s, double t);
+
+/// Point and derivatives with respect to the local (s, t) up to `order` (0, 1
+/// or 2), rational by the quotient rule: no knot search, so the leaves of the
+/// hierarchy evaluate through their own patch. Degree at most kMaxDegree.
+SurfaceDerivatives evaluate_derivatives(const BezierPatch& patch, double s, double t, int order);
+
+/// M_u * B * M_v^T applied to a homogeneous net with rows a * (q + 1) + b;
+/// a null matrix leaves that direction as it is. Two passes of 4-vector sums
+/// without temporaries: node refreshes run it every tick.
+Eigen::MatrixX4d transform_net(const Eigen::MatrixXd* m_u, const Eigen::MatrixXd* m_v,
+                               const Eigen::MatrixX4d& net, int p, int q);
+
+/// Child patch: `half_u`, `half_v` in {0 (lower half), 1 (upper half)}; a
+/// direction is split only when its `split_*` flag is set.
+BezierPatch subdivide(const BezierPatch& patch, const SubdivisionMatrices& su,
+                      const SubdivisionMatrices& sv, bool split_u, int half_u, bool split_v,
+                      int half_v);
+
+}  // namespace argil

@@ -1,0 +1,86 @@
+#include "argil/core/haptic/sphere_proxy.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "argil/core/collision/implicit_contact.hpp"
+
+namespace argil {
+
+namespace {
+
+/// True when (u, v) lies on the domain boundary: there the closest point may
+/// be reached from either side without crossing the surface.
+bool on_boundary(const BSplineSurface& s, const Eigen::Vector2d& uv) {
+  return uv.x() <= s.domain_start(Direction::u) || uv.x() >= s.domain_end(Direction::u) ||
+         uv.y() <= s.domain_start(Direction::v) || uv.y() >= s.domain_end(Direction::v);
+}
+
+}  // namespace
+
+int& SphereProxy::side(std::size_t index) {
+  if (sides_.size() <= index) sides_.resize(index + 1, 0);
+  return sides_[index];
+}
+
+bool SphereProxy::push_out(SurfaceHierarchy& surface, std::size_t index, Eigen::Vector3d& c) {
+  const ClosestPoint cp = closest_point(surface, c, {.tolerance = 0.25 * eps_});
+  int& s = side(index);
+  const double tiny = 1e-3 * eps_;  // below it the sign of a distance is noise
+  if (s == 0) s = cp.signed_distance < 0.0 ? -1 : 1;
+  const bool crossed = s * cp.signed_distance < -tiny && !on_boundary(surface.surface(), cp.uv);
+  if (!crossed && cp.distance >= radius_) {
+    if (cp.distance > radius_ + tiny && std::abs(cp.signed_distance) > tiny &&
+        on_boundary(surface.surface(), cp.uv))
+      s = cp.signed_distance < 0.0 ? -1 : 1;  // went round the edge
+    return false;
+  }
+  Eigen::Vector3d direction = s * cp.normal;
+  if (!crossed && cp.distance > tiny) direction = (c - cp.point) / cp.distance;
+  if (direction.squaredNorm() == 0.0) return false;  // degenerate normal and no offset
+  // A point tool stays a hair off the surface so its side stays readable.
+  c = cp.point + direction * std::max(radius_, 2.0 * tiny);
+  return true;
+}
+
+Eigen::Vector3d SphereProxy::project(const std::vector<SurfaceHierarchy*>& surfaces,
+                                     Eigen::Vector3d centre) {
+  for (int round = 0; round < 8; ++round) {
+    bool moved = false;
+    for (std::size_t b = 0; b < surfaces.size(); ++b)
+      moved = push_out(*surfaces[b], b, centre) || moved;
+    if (!moved) break;
+  }
+  return centre;
+}
+
+Eigen::Vector3d SphereProxy::move(const std::vector<SurfaceHierarchy*>& surfaces,
+                                  const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+  const double step = std::max(0.5 * radius_, 10.0 * eps_);
+  const int count =
+      std::clamp(static_cast<int>(std::ceil((to - from).norm() / step)), 1, kMaxSubsteps);
+  const Eigen::Vector3d increment = (to - from) / count;
+  Eigen::Vector3d centre = project(surfaces, from);
+  for (int k = 0; k < count; ++k) centre = project(surfaces, centre + increment);
+  return centre;
+}
+
+ProxyContact SphereProxy::nearest(const std::vector<SurfaceHierarchy*>& surfaces,
+                                  const Eigen::Vector3d& centre) {
+  ProxyContact best;
+  for (std::size_t b = 0; b < surfaces.size(); ++b) {
+    const ClosestPoint cp = closest_point(*surfaces[b], centre, {.tolerance = 0.25 * eps_});
+    const double clearance = cp.distance - radius_;
+    if (best.body >= 0 && clearance >= best.clearance) continue;
+    best.body = static_cast<int>(b);
+    best.clearance = clearance;
+    best.point = cp.point;
+    const int s = side(b) == 0 ? (cp.signed_distance < 0.0 ? -1 : 1) : side(b);
+    best.outward_normal = cp.distance > 1e-3 * eps_
+                              ? Eigen::Vector3d((centre - cp.point) / cp.distance)
+                              : Eigen::Vector3d(s * cp.normal);
+  }
+  return best;
+}
+
+}  // namespace argil

@@ -1,0 +1,55 @@
+#pragma once
+// A god-object proxy for a sphere (or point, radius 0) tool: it follows the
+// device but never sinks into a surface by more than eps, and never passes
+// through one, however fast the device moves.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "argil/core/hierarchy/surface_hierarchy.hpp"
+
+namespace argil {
+
+/// The surface nearest to a proxy.
+struct ProxyContact {
+  int body = -1;           // index into the surfaces, -1 when there are none
+  double clearance = 0.0;  // distance from the centre minus the radius [mm]; < 0 when sinking
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // closest surface point [mm]
+  /// Unit vector from the surface towards the proxy centre (the side the proxy is on).
+  Eigen::Vector3d outward_normal = Eigen::Vector3d::Zero();
+};
+
+/// Moves a sphere of radius r [mm] among surfaces, keeping it on the side of
+/// each surface it started on. Each move goes in straight substeps of at most
+/// max(r / 2, 10 eps); after each substep the centre is pushed out of every
+/// surface to distance r (closest points certified within eps / 4), so the
+/// sphere's depth is at most eps / 4 after a move, and a surface the centre
+/// crossed (the closest point is interior and on the other side) pushes it back
+/// to the side it came from. Sides change only around a surface's boundary.
+class SphereProxy {
+ public:
+  SphereProxy(double radius, double eps) : radius_(radius), eps_(eps) {}
+  double radius() const { return radius_; }
+
+  /// Moves the centre from `from` towards `to` and returns where it stops.
+  Eigen::Vector3d move(const std::vector<SurfaceHierarchy*>& surfaces, const Eigen::Vector3d& from,
+                       const Eigen::Vector3d& to);
+  /// The centre pushed out of every surface (at most 8 rounds over all surfaces).
+  Eigen::Vector3d project(const std::vector<SurfaceHierarchy*>& surfaces, Eigen::Vector3d centre);
+  /// The nearest surface to `centre` (and updates the side record far from surfaces).
+  ProxyContact nearest(const std::vector<SurfaceHierarchy*>& surfaces,
+                       const Eigen::Vector3d& centre);
+  /// Largest number of substeps in one move (a longer move stops early).
+  static constexpr int kMaxSubsteps = 256;
+
+ private:
+  /// Pushes the centre out of one surface; true when it moved.
+  bool push_out(SurfaceHierarchy& surface, std::size_t index, Eigen::Vector3d& centre);
+  int& side(std::size_t index);
+
+  double radius_;
+  double eps_;
+  std::vector<int> sides_;  // +1 / -1 along / against each surface's normal, 0 unknown
+};
+
+}  // namespace argil

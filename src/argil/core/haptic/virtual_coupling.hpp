@@ -1,0 +1,35 @@
+#pragma once
+// The virtual coupling (ARCHITECTURE 3.5): a spring-damper between the haptic
+// device and the tool proxy, and the one force per tick it renders.
+
+#include <Eigen/Core>
+
+#include "argil/core/base/status.hpp"
+
+namespace argil {
+
+struct CouplingParams {
+  double stiffness = 1.0;  // [N/mm], (0, 1e6]
+  double damping = 0.0;    // [N s/mm], [0, 1e3]
+  double max_force = 8.0;  // the device's maximum force [N], (0, 1e4]
+};
+
+/// ok, or invalid_argument naming the field outside its range.
+Status validate(const CouplingParams& coupling);
+
+/// The coupling force on a compliant surface, solved backwards in time.
+/// The proxy rests on the loaded point, so when the surface gives way by s
+/// along the force direction the spring shortens by s. With f0 the explicit
+/// force magnitude [N], s_free the loaded point's motion without the tool
+/// [mm] and c its compliance [mm/N] (DeformableBody::begin_step), the force at
+/// the end of the step is f = k (f0 / k - s_free - c f), that is
+///   f = (f0 - k s_free) / (1 + k c),
+/// at least 0 (a tool only pushes). A rigid surface (c = 0, s_free = 0) gives f0.
+double implicit_coupling_force(double explicit_force, double stiffness, double free_motion,
+                               double compliance);
+
+/// `force` scaled to at most max_force [N] in magnitude; `clamped` tells
+/// whether it was.
+Eigen::Vector3d clamp_force(const Eigen::Vector3d& force, double max_force, bool& clamped);
+
+}  // namespace argil

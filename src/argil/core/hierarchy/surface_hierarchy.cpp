@@ -1,0 +1,162 @@
+#include "argil/core/hierarchy/surface_hierarchy.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+namespace argil {
+
+Result<SurfaceHierarchy> SurfaceHierarchy::build(const BSplineSurface& surface,
+                                                 OperatorCache& cache) {
+  Result<SurfaceOperators> ops = surface_operators(surface, cache);
+  if (!ops.ok()) return ops.status();
+  SurfaceHierarchy h;
+  h.surface_ = surface;
+  h.ops_ = ops.value();
+  const BezierExtraction& xu = h.ops_.u->extraction();
+  const BezierExtraction& xv = h.ops_.v->extraction();
+  for (std::size_t eu = 0; eu < xu.spans.size(); ++eu) {
+    for (std::size_t ev = 0; ev < xv.spans.size(); ++ev) {
+      HierarchyNode n;
+      n.element_u = static_cast<int>(eu);
+      n.element_v = static_cast<int>(ev);
+      n.u0 = surface.knots[0][xu.spans[eu]];
+      n.u1 = surface.knots[0][xu.spans[eu] + 1];
+      n.v0 = surface.knots[1][xv.spans[ev]];
+      n.v1 = surface.knots[1][xv.spans[ev] + 1];
+      n.version = 0;  // stale: built on first visit
+      h.roots_.push_back(static_cast<int>(h.nodes_.size()));
+      h.nodes_.push_back(std::move(n));
+    }
+  }
+  h.build_block(0, static_cast<int>(xu.spans.size()), 0, static_cast<int>(xv.spans.size()));
+  return h;
+}
+
+int SurfaceHierarchy::build_block(int eu0, int eu1, int ev0, int ev1) {
+  const int id = static_cast<int>(blocks_.size());
+  ElementBlock fresh;
+  fresh.eu0 = eu0;
+  fresh.eu1 = eu1;
+  fresh.ev0 = ev0;
+  fresh.ev1 = ev1;
+  blocks_.push_back(fresh);
+  const int elements_v = ops_.v->element_count();
+  if (eu1 - eu0 == 1 && ev1 - ev0 == 1) {
+    blocks_[static_cast<std::size_t>(id)].element_node =
+        roots_[static_cast<std::size_t>(eu0 * elements_v + ev0)];
+    return id;
+  }
+  // Halve every range that has more than one element.
+  const int mu = eu1 - eu0 > 1 ? (eu0 + eu1) / 2 : eu1;
+  const int mv = ev1 - ev0 > 1 ? (ev0 + ev1) / 2 : ev1;
+  const int u_ranges[2][2] = {{eu0, mu}, {mu, eu1}};
+  const int v_ranges[2][2] = {{ev0, mv}, {mv, ev1}};
+  for (int hu = 0; hu < 2; ++hu) {
+    for (int hv = 0; hv < 2; ++hv) {
+      const int* ru = u_ranges[hu];
+      const int* rv = v_ranges[hv];
+      if (ru[0] >= ru[1] || rv[0] >= rv[1]) continue;
+      const int c = build_block(ru[0], ru[1], rv[0], rv[1]);
+      blocks_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(hu * 2 + hv)] = c;
+    }
+  }
+  return id;
+}
+
+const ElementBlock& SurfaceHierarchy::block(int id, QueryCounters* counters) {
+  ElementBlock& b = blocks_[static_cast<std::size_t>(id)];
+  if (counters) ++counters->nodes_visited;
+  if (b.version == version_) return b;
+  const int p = surface_.degree[0];
+  const int q = surface_.degree[1];
+  const int i0 = ops_.u->extraction().spans[static_cast<std::size_t>(b.eu0)] - p;
+  const int i1 = ops_.u->extraction().spans[static_cast<std::size_t>(b.eu1 - 1)];
+  const int j0 = ops_.v->extraction().spans[static_cast<std::size_t>(b.ev0)] - q;
+  const int j1 = ops_.v->extraction().spans[static_cast<std::size_t>(b.ev1 - 1)];
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (int i = i0; i <= i1; ++i) {
+    for (int j = j0; j <= j1; ++j) {
+      const Eigen::Vector3d x = surface_.control_points.row(surface_.pole_index(i, j)).transpose();
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+  }
+  // One pass over the poles: the box, and the sphere around it (looser than
+  // the tightest, but blocks are refreshed every tick on a deforming surface).
+  b.bound.box = {lo, hi};
+  b.bound.center = 0.5 * (lo + hi);
+  b.bound.radius = 0.5 * (hi - lo).norm();
+  b.bound.flatness = std::numeric_limits<double>::infinity();
+  b.version = version_;
+  if (counters) ++counters->nodes_refreshed;
+  return b;
+}
+
+void SurfaceHierarchy::set_control_points(const ControlNet& points,
+                                          const Eigen::VectorXd& weights) {
+  assert(points.rows() == surface_.control_points.rows());
+  assert(weights.size() == 0 || weights.size() == surface_.weights.size());
+  surface_.control_points = points;
+  if (weights.size() > 0) surface_.weights = weights;
+  ++version_;
+  if (nodes_.size() > node_budget_) release_nodes();
+}
+
+void SurfaceHierarchy::release_nodes() {
+  // Roots are the first nodes (build() creates them before any child).
+  nodes_.resize(roots_.size());
+  for (HierarchyNode& root : nodes_) root.children = {-1, -1, -1, -1};
+}
+
+void SurfaceHierarchy::refresh(int id, QueryCounters* counters) {
+  HierarchyNode& self = nodes_[static_cast<std::size_t>(id)];
+  if (self.version == version_) return;
+  if (self.parent < 0) {
+    self.patch = bezier_patch(surface_, ops_, self.element_u, self.element_v);
+  } else {
+    refresh(self.parent, counters);  // creates no nodes, so `self` stays valid
+    const HierarchyNode& parent = nodes_[static_cast<std::size_t>(self.parent)];
+    self.patch = subdivide(parent.patch, ops_.u->subdivision(), ops_.v->subdivision(), true,
+                           self.half_u, true, self.half_v);
+  }
+  self.bound = bound_patch(self.patch);
+  self.version = version_;
+  if (counters) ++counters->nodes_refreshed;
+}
+
+const HierarchyNode& SurfaceHierarchy::node(int id, QueryCounters* counters) {
+  refresh(id, counters);
+  if (counters) ++counters->nodes_visited;
+  return nodes_[static_cast<std::size_t>(id)];
+}
+
+int SurfaceHierarchy::child(int id, int half_u, int half_v) {
+  const int slot = half_u * 2 + half_v;
+  const int existing =
+      nodes_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(slot)];
+  if (existing >= 0) return existing;
+  const HierarchyNode& parent = nodes_[static_cast<std::size_t>(id)];
+  HierarchyNode c;
+  c.element_u = parent.element_u;
+  c.element_v = parent.element_v;
+  c.level = parent.level + 1;
+  c.parent = id;
+  c.half_u = half_u;
+  c.half_v = half_v;
+  const double um = 0.5 * (parent.u0 + parent.u1);
+  const double vm = 0.5 * (parent.v0 + parent.v1);
+  c.u0 = half_u == 0 ? parent.u0 : um;
+  c.u1 = half_u == 0 ? um : parent.u1;
+  c.v0 = half_v == 0 ? parent.v0 : vm;
+  c.v1 = half_v == 0 ? vm : parent.v1;
+  c.version = 0;
+  const int index = static_cast<int>(nodes_.size());
+  nodes_.push_back(std::move(c));  // may reallocate: no references held across this
+  nodes_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(slot)] = index;
+  return index;
+}
+
+}  // namespace argil

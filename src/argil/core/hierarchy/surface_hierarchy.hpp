@@ -1,0 +1,109 @@
+#pragma once
+// The conservative, lazy hierarchy of ARCHITECTURE 3.3: Bezier sub-patch nodes
+// bounded from their control points, created only where queries reach and
+// refreshed only where queries reach after the control points change.
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "argil/core/geometry/bezier.hpp"
+#include "argil/core/geometry/bspline_surface.hpp"
+#include "argil/core/hierarchy/patch_bound.hpp"
+#include "argil/core/base/status.hpp"
+#include "argil/core/operators/surface_operators.hpp"
+
+namespace argil {
+
+/// One node: the Bezier sub-patch over [u0, u1] x [v0, v1] of element
+/// (element_u, element_v) at `level` (each level halves both directions).
+struct HierarchyNode {
+  int element_u = 0;
+  int element_v = 0;
+  int level = 0;
+  int parent = -1;
+  int half_u = 0;  // which half of the parent, in u and v
+  int half_v = 0;
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  std::array<int, 4> children{-1, -1, -1, -1};  // index half_u * 2 + half_v
+  BezierPatch patch;
+  PatchBound bound;
+  std::uint64_t version = 0;  // control-point version the patch was built from
+};
+
+/// A block of Bezier elements [eu0, eu1) x [ev0, ev1) above the element roots,
+/// so a query reaches the few elements near a tool in O(log) sphere tests
+/// instead of testing every element. Its bound encloses the B-spline control
+/// points acting on those elements (convex hull property of the B-spline).
+struct ElementBlock {
+  int eu0 = 0, eu1 = 0, ev0 = 0, ev1 = 0;
+  std::array<int, 4> children{-1, -1, -1, -1};  // sub-blocks; -1 where a range cannot split
+  int element_node = -1;  // the element's root node when the block is one element
+  PatchBound bound;       // centre, radius and box only (flatness is not defined)
+  std::uint64_t version = 0;
+};
+
+/// Work a query did, for benchmarks and the speed/accuracy trade.
+struct QueryCounters {
+  long nodes_visited = 0;    // node bounds tested
+  long nodes_refreshed = 0;  // nodes whose Bezier net was (re)computed
+  long leaf_pairs = 0;       // leaves (or leaf pairs) examined exactly
+  long triangle_tests = 0;   // triangle-triangle or triangle-tool tests
+};
+
+/// Owns a copy of the surface's control points (the per-frame state), shares
+/// its operators, and grows nodes on demand. Not thread-safe: one per model.
+class SurfaceHierarchy {
+ public:
+  /// Validates the surface and fetches its operators from `cache`.
+  static Result<SurfaceHierarchy> build(const BSplineSurface& surface, OperatorCache& cache);
+
+  const BSplineSurface& surface() const { return surface_; }
+  const SurfaceOperators& operators() const { return ops_; }
+  std::uint64_t version() const { return version_; }
+
+  /// New control points (and weights for a rational surface), same structure:
+  /// O(n) copy; every node becomes stale and is refreshed when next reached.
+  void set_control_points(const ControlNet& points, const Eigen::VectorXd& weights = {});
+
+  /// One node per Bezier element: the hierarchy's roots.
+  const std::vector<int>& roots() const { return roots_; }
+  /// The block tree over the elements (built with the structure; bounds lazy).
+  /// Block 0 covers every element: its bound is the broad-phase bound of the surface.
+  const ElementBlock& block(int id, QueryCounters* counters = nullptr);
+  /// The node with fresh bounds (refreshing its ancestors first if needed).
+  const HierarchyNode& node(int id, QueryCounters* counters = nullptr);
+  /// Index of child (half_u, half_v) of `id`, created on first use.
+  int child(int id, int half_u, int half_v);
+
+  /// Number of nodes created so far (for tests and memory accounting).
+  std::size_t node_count() const { return nodes_.size(); }
+  /// Memory bound: when set_control_points finds more nodes than this, it
+  /// drops every node below the roots (queries grow them again where they
+  /// reach). On a deforming surface every node goes stale each tick anyway, so
+  /// this costs allocations only, never results: a query gives the same answer
+  /// on a collapsed hierarchy as on a grown one.
+  void set_node_budget(std::size_t nodes) { node_budget_ = nodes; }
+  std::size_t node_budget() const { return node_budget_; }
+  /// Drops every node below the roots now.
+  void release_nodes();
+  /// Deepest level a query may split to; below it a node is treated as a leaf
+  /// whatever its flatness (guards against endless refinement at degeneracies).
+  static constexpr int kMaxLevel = 24;
+
+ private:
+  SurfaceHierarchy() = default;
+  void refresh(int id, QueryCounters* counters);
+  int build_block(int eu0, int eu1, int ev0, int ev1);
+
+  BSplineSurface surface_;
+  SurfaceOperators ops_;
+  std::uint64_t version_ = 1;
+  std::vector<HierarchyNode> nodes_;
+  std::vector<int> roots_;
+  std::vector<ElementBlock> blocks_;
+  std::size_t node_budget_ = std::size_t{1} << 15;  // about 25 MB of bicubic nodes
+};
+
+}  // namespace argil

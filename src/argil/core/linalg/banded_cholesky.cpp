@@ -1,0 +1,93 @@
+#include "argil/core/linalg/banded_cholesky.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace argil {
+
+Result<BandedCholesky> BandedCholesky::factorize(SymmetricBandMatrix a) {
+  const int n = a.size();
+  const int b = a.bandwidth();
+  for (int i = 0; i < n; ++i) {
+    const int first = std::max(0, i - b);
+    for (int j = first; j <= i; ++j) {
+      // L(i, j) = (A(i, j) - sum_k L(i, k) L(j, k)) / L(j, j), k over both bands.
+      const int k0 = std::max(first, j - b);
+      double sum = a.at(i, j);
+      for (int k = k0; k < j; ++k) sum -= a.at(i, k) * a.at(j, k);
+      if (j < i) {
+        a.at(i, j) = sum / a.at(j, j);
+        continue;
+      }
+      const double diagonal = a.at(i, i);  // before elimination: the scale of the pivot
+      if (!(sum > diagonal * 64 * std::numeric_limits<double>::epsilon())) {
+        std::ostringstream m;
+        m.precision(17);
+        m << "banded Cholesky: pivot " << i << " of " << n << " is " << sum << " against diagonal "
+          << diagonal << ": the matrix is not positive definite to working precision";
+        return Status::error(StatusCode::numerical_failure, m.str());
+      }
+      a.at(i, i) = std::sqrt(sum);
+    }
+  }
+  BandedCholesky out;
+  out.l_ = std::move(a);
+  return out;
+}
+
+namespace {
+
+/// The two triangular sweeps with C right-hand sides per row, C fixed so the
+/// inner loops unroll and vectorise. `l` is row-major band storage of L.
+template <int C>
+void solve_rows(const double* l, int n, int b, double* x) {
+  const int stride = b + 1;
+  for (int i = 0; i < n; ++i) {                                           // L y = b
+    const double* row = l + static_cast<std::ptrdiff_t>(i) * stride + b;  // row[k - i] = L(i, k)
+    double acc[C];
+    for (int c = 0; c < C; ++c) acc[c] = x[i * C + c];
+    for (int k = std::max(0, i - b); k < i; ++k) {
+      const double v = row[k - i];
+      for (int c = 0; c < C; ++c) acc[c] -= v * x[k * C + c];
+    }
+    const double inverse = 1.0 / row[0];
+    for (int c = 0; c < C; ++c) x[i * C + c] = acc[c] * inverse;
+  }
+  for (int i = n - 1; i >= 0; --i) {  // L^T x = y: row i of L scatters upwards
+    const double* row = l + static_cast<std::ptrdiff_t>(i) * stride + b;
+    const double inverse = 1.0 / row[0];
+    double xi[C];
+    for (int c = 0; c < C; ++c) xi[c] = (x[i * C + c] *= inverse);
+    for (int k = std::max(0, i - b); k < i; ++k) {
+      const double v = row[k - i];
+      for (int c = 0; c < C; ++c) x[k * C + c] -= v * xi[c];
+    }
+  }
+}
+
+}  // namespace
+
+void BandedCholesky::solve_in_place(RowMajorMatrix& x) const {
+  const int n = l_.size();
+  const int b = l_.bandwidth();
+  assert(x.rows() == n);
+  const double* l = l_.lower_.data();
+  switch (x.cols()) {
+    case 1:
+      return solve_rows<1>(l, n, b, x.data());
+    case 3:
+      return solve_rows<3>(l, n, b, x.data());
+    case 4:
+      return solve_rows<4>(l, n, b, x.data());
+    default:
+      for (Eigen::Index c = 0; c < x.cols(); ++c) {
+        Eigen::VectorXd column = x.col(c);
+        solve_rows<1>(l, n, b, column.data());
+        x.col(c) = column;
+      }
+  }
+}
+
+}  // namespace argil

@@ -1,0 +1,267 @@
+// Meshes: the adaptive tessellation is within its chord tolerance, crack-free
+// and trimmed; STL, OBJ, PLY and glb files read back with assimp hold the same
+// triangles, on the surface, with the surface normals.
+#include <assimp/scene.h>
+#include <assimp/Importer.hpp>
+
+#include <catch2/catch.hpp>
+#include <map>
+
+#include "argil/core/geometry/evaluate.hpp"
+#include "argil/io.hpp"
+#include "support/random_surface.hpp"
+#include "surface_projection.hpp"
+#include "test_files.hpp"
+
+namespace argil::io {
+namespace {
+
+// The panel example plus the asymmetric rational surface, trimmed by an ellipse
+// with an elliptic hole, as a reversed face.
+Model panel_and_trimmed_face() {
+  Result<Model> model = read_model(test::source_file("examples/surfaces/panel.json"));
+  REQUIRE(model.ok());
+  FaceRecord face;
+  face.surface = test::asymmetric_surface(true);
+  const BSplineSurface& s = face.surface;
+  const Eigen::Vector2d lo(s.domain_start(Direction::u), s.domain_start(Direction::v));
+  const Eigen::Vector2d hi(s.domain_end(Direction::u), s.domain_end(Direction::v));
+  const auto ellipse = [&](double scale, bool outer) {
+    TrimLoop loop;
+    loop.outer = outer;
+    TrimCurve c;  // a full ellipse: 9-pole rational quadratic, counter-clockwise
+    c.degree = 2;
+    c.knots.resize(12);
+    c.knots << 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4;
+    c.poles.resize(9, 2);
+    c.weights.resize(9);
+    const Eigen::Vector2d centre = 0.5 * (lo + hi), radii = scale * 0.5 * (hi - lo);
+    const double corners[9][2] = {{1, 0},   {1, 1},  {0, 1},  {-1, 1}, {-1, 0},
+                                  {-1, -1}, {0, -1}, {1, -1}, {1, 0}};
+    for (int k = 0; k < 9; ++k) {
+      c.poles.row(k) = centre + radii.cwiseProduct(Eigen::Vector2d(corners[k][0], corners[k][1]));
+      c.weights[k] = k % 2 == 1 ? std::sqrt(0.5) : 1.0;
+    }
+    if (!outer) {
+      c.poles = c.poles.colwise().reverse().eval();
+      c.weights = c.weights.reverse().eval();
+    }
+    loop.curves.push_back(c);
+    return loop;
+  };
+  face.loops = {ellipse(0.9, true), ellipse(0.3, false)};
+  face.reversed = true;
+  model.value().faces.push_back(face);
+  return std::move(model).value();
+}
+
+Eigen::Vector3d finite_difference_normal(const BSplineSurface& s, Eigen::Vector2d uv) {
+  const double hu = 1e-6 * (s.domain_end(Direction::u) - s.domain_start(Direction::u));
+  const double hv = 1e-6 * (s.domain_end(Direction::v) - s.domain_start(Direction::v));
+  uv.x() = std::clamp(uv.x(), s.domain_start(Direction::u) + hu, s.domain_end(Direction::u) - hu);
+  uv.y() = std::clamp(uv.y(), s.domain_start(Direction::v) + hv, s.domain_end(Direction::v) - hv);
+  const Eigen::Vector3d su =
+      (evaluate(s, uv.x() + hu, uv.y()) - evaluate(s, uv.x() - hu, uv.y())) / (2 * hu);
+  const Eigen::Vector3d sv =
+      (evaluate(s, uv.x(), uv.y() + hv) - evaluate(s, uv.x(), uv.y() - hv)) / (2 * hv);
+  return su.cross(sv).normalized();
+}
+
+struct ChordReport {
+  double max_error_mm = 0.0;
+  std::size_t samples = 0;
+};
+
+// True chord error: centroids and edge midpoints of every triangle projected on
+// the surface by Newton from their interpolated (u, v).
+ChordReport chord_errors(const Model& model, const TriangleMesh& mesh) {
+  ChordReport report;
+  const double weights[4][3] = {
+      {1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}};
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+    const int face = mesh.vertex_face[static_cast<std::size_t>(mesh.triangles(t, 0))];
+    const BSplineSurface& s = model.faces[static_cast<std::size_t>(face)].surface;
+    for (const auto& w : weights) {
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      Eigen::Vector2d uv = Eigen::Vector2d::Zero();
+      for (int c = 0; c < 3; ++c) {
+        x += w[c] * mesh.positions.row(mesh.triangles(t, c)).transpose();
+        uv += w[c] * mesh.uv.row(mesh.triangles(t, c)).transpose();
+      }
+      report.max_error_mm = std::max(report.max_error_mm, test::project(s, x, uv).distance_mm);
+      ++report.samples;
+    }
+  }
+  return report;
+}
+
+}  // namespace
+
+TEST_CASE("the tessellation is within the chord tolerance", "[io][mesh]") {
+  const Model panel = panel_and_trimmed_face();
+  const Result<Model> bearing = read_model(test::shared_data("bearing.iges"));
+  REQUIRE(bearing.ok());
+  for (const Model* model : {&panel, &bearing.value()}) {
+    for (double relative : {1e-2, 1e-3, 1e-4}) {
+      TessellationOptions options;
+      options.chord_tolerance_mm = relative * model_box(*model).diagonal();
+      const Result<TriangleMesh> mesh = tessellate(*model, options);
+      REQUIRE(mesh.ok());
+      const ChordReport report = chord_errors(*model, mesh.value());
+      INFO(model->faces.size() << " faces, tolerance " << options.chord_tolerance_mm);
+      // Newton converges to ~1e-15 relative; the bound itself is exact.
+      CHECK(report.max_error_mm <= options.chord_tolerance_mm * (1 + 1e-9));
+      WARN(model->faces.size() << " faces at tolerance " << relative << " of the diagonal: "
+                               << mesh.value().triangles.rows() << " triangles, max chord error "
+                               << report.max_error_mm / options.chord_tolerance_mm
+                               << " of the tolerance over " << report.samples << " samples");
+    }
+  }
+}
+
+TEST_CASE("an untrimmed face's mesh has no cracks: inner edges are shared by two triangles",
+          "[io][mesh]") {
+  const Model panel = panel_and_trimmed_face();
+  TessellationOptions options;
+  options.chord_tolerance_mm = 0.2;
+  const TriangleMesh mesh = tessellate_face(panel.faces[0], options);
+  std::map<std::pair<int, int>, int> uses;
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+    for (int c = 0; c < 3; ++c) {
+      const int a = mesh.triangles(t, c), b = mesh.triangles(t, (c + 1) % 3);
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  const BSplineSurface& s = panel.faces[0].surface;
+  const auto on_boundary = [&](int v) {
+    const Eigen::Vector2d uv = mesh.uv.row(v);
+    return uv.x() == s.domain_start(Direction::u) || uv.x() == s.domain_end(Direction::u) ||
+           uv.y() == s.domain_start(Direction::v) || uv.y() == s.domain_end(Direction::v);
+  };
+  std::size_t boundary_edges = 0;
+  for (const auto& [edge, count] : uses) {
+    INFO("edge " << edge.first << "-" << edge.second);
+    if (count == 1) {
+      CHECK((on_boundary(edge.first) && on_boundary(edge.second)));
+      ++boundary_edges;
+    } else {
+      CHECK(count == 2);
+    }
+  }
+  CHECK(boundary_edges > 0);
+}
+
+TEST_CASE("trimmed faces keep only triangles inside the outer loop and outside holes",
+          "[io][mesh]") {
+  const Model model = panel_and_trimmed_face();
+  const FaceRecord& face = model.faces[1];
+  TessellationOptions options;
+  options.chord_tolerance_mm = 1e-3 * control_point_box(face.surface).diagonal();
+  const TriangleMesh mesh = tessellate_face(face, options);
+  REQUIRE(mesh.triangles.rows() > 0);
+  const BSplineSurface& s = face.surface;
+  const Eigen::Vector2d centre(0.5 * (s.domain_start(Direction::u) + s.domain_end(Direction::u)),
+                               0.5 * (s.domain_start(Direction::v) + s.domain_end(Direction::v)));
+  const Eigen::Vector2d half(0.5 * (s.domain_end(Direction::u) - s.domain_start(Direction::u)),
+                             0.5 * (s.domain_end(Direction::v) - s.domain_start(Direction::v)));
+  double area = 0.0;
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+    const Eigen::Vector2d a = mesh.uv.row(mesh.triangles(t, 0)),
+                          b = mesh.uv.row(mesh.triangles(t, 1)),
+                          c = mesh.uv.row(mesh.triangles(t, 2));
+    // Elliptic radius of the centroid: between the hole (0.3) and the outer loop (0.9).
+    const double r = ((a + b + c) / 3.0 - centre).cwiseQuotient(half).norm();
+    CHECK(r > 0.3);
+    CHECK(r < 0.9);
+    area += 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+  }
+  // Kept area in (u, v) approaches the ring's pi (0.9^2 - 0.3^2) of the half-axes
+  // product; the trim is approximated by whole triangles, so allow a few percent.
+  const double ring = M_PI * (0.81 - 0.09) * half.x() * half.y();
+  CHECK(std::abs(area - ring) < 0.05 * ring);
+}
+
+TEST_CASE("STL, OBJ, PLY and glb read back with the same triangles on the surface", "[io][mesh]") {
+  const Model model = panel_and_trimmed_face();
+  const double size = model_box(model).diagonal();
+  WriteOptions options;
+  options.tessellation.chord_tolerance_mm = 1e-3 * size;
+  const Result<TriangleMesh> mesh = tessellate(model, options.tessellation);
+  REQUIRE(mesh.ok());
+  const TriangleMesh& m = mesh.value();
+  const double coordinate_scale = m.positions.cwiseAbs().maxCoeff();
+  test::TempDir dir;
+  for (const char* name : {"mesh.stl", "mesh.obj", "mesh.ply", "mesh.glb"}) {
+    SECTION(name) {
+      REQUIRE(write_model(model, dir / name, options).message == "");
+      Assimp::Importer importer;
+      // No post-processing: vertices are neither joined nor reordered.
+      const aiScene* scene = importer.ReadFile((dir / name).string(), 0);
+      REQUIRE(scene != nullptr);
+      std::size_t triangles = 0;
+      for (unsigned k = 0; k < scene->mNumMeshes; ++k) triangles += scene->mMeshes[k]->mNumFaces;
+      REQUIRE(triangles == static_cast<std::size_t>(m.triangles.rows()));
+      const bool has_normals = std::string(name) != "mesh.stl";  // STL: facet normals only
+      double max_distance = 0.0, max_normal_error = 0.0;
+      Eigen::Index t = 0;
+      for (unsigned k = 0; k < scene->mNumMeshes; ++k) {
+        const aiMesh* in = scene->mMeshes[k];
+        for (unsigned f = 0; f < in->mNumFaces; ++f, ++t) {
+          REQUIRE(in->mFaces[f].mNumIndices == 3);
+          for (int c = 0; c < 3; ++c) {
+            const unsigned index = in->mFaces[f].mIndices[c];
+            const aiVector3D& p = in->mVertices[index];
+            const int ours = m.triangles(t, c);
+            const Eigen::Vector3d position(p.x, p.y, p.z);
+            // Same vertex, up to float32 storage.
+            REQUIRE((position - m.positions.row(ours).transpose()).norm() <=
+                    4e-7 * coordinate_scale);
+            const FaceRecord& face =
+                model
+                    .faces[static_cast<std::size_t>(m.vertex_face[static_cast<std::size_t>(ours)])];
+            const Eigen::Vector2d uv = m.uv.row(ours);
+            max_distance =
+                std::max(max_distance, test::project(face.surface, position, uv).distance_mm);
+            if (has_normals && in->mNormals != nullptr) {
+              const aiVector3D& n = in->mNormals[index];
+              Eigen::Vector3d expected = finite_difference_normal(face.surface, uv);
+              if (face.reversed) expected = -expected;
+              max_normal_error =
+                  std::max(max_normal_error, (Eigen::Vector3d(n.x, n.y, n.z) - expected).norm());
+            }
+          }
+        }
+      }
+      // float32 positions: 6e-8 of the largest coordinate, well below 1e-6 of the size.
+      CHECK(max_distance <= 1e-6 * size);
+      if (has_normals) {
+        REQUIRE(scene->mMeshes[0]->mNormals != nullptr);
+        // Central differences (step 1e-6 of the domain) and float32 storage: ~1e-7.
+        CHECK(max_normal_error <= 1e-5);
+      }
+    }
+  }
+}
+
+}  // namespace argil::io
+
+namespace argil::io {
+
+TEST_CASE("tessellation is deterministic and refuses tolerances finer than float32", "[io][mesh]") {
+  const Result<Model> panel = read_model(test::source_file("examples/surfaces/panel.json"));
+  REQUIRE(panel.ok());
+  TessellationOptions options;
+  options.chord_tolerance_mm = 0.5;
+  const Result<TriangleMesh> a = tessellate(panel.value(), options);
+  const Result<TriangleMesh> b = tessellate(panel.value(), options);
+  REQUIRE(a.ok());
+  REQUIRE(b.ok());
+  CHECK(a.value().triangles == b.value().triangles);
+  CHECK(a.value().positions == b.value().positions);
+  for (double tolerance : {0.0, -1.0, 1e-9}) {
+    options.chord_tolerance_mm = tolerance;
+    CHECK_FALSE(tessellate(panel.value(), options).ok());
+  }
+}
+
+}  // namespace argil::io

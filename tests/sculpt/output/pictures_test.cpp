@@ -1,0 +1,165 @@
+// Pictures: what cairo draws shows the surface (not blank, not uniform), a
+// local change of the surface changes the picture only around it, and the
+// force plot carries its curves. PNGs are decoded back with cairo.
+#include <cairo.h>
+
+#include <catch2/catch.hpp>
+#include <cstring>
+
+#include "argil/io/mesh/tessellate.hpp"
+#include "argil/sculpt/output/pictures.hpp"
+
+namespace argil::sculpt {
+namespace {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::uint32_t> pixels;  // 0xRRGGBB
+  std::uint32_t at(int x, int y) const { return pixels[static_cast<std::size_t>(y * width + x)]; }
+};
+
+struct Reader {
+  const std::string* bytes;
+  std::size_t offset = 0;
+};
+
+cairo_status_t read_bytes(void* closure, unsigned char* data, unsigned int length) {
+  auto* r = static_cast<Reader*>(closure);
+  if (r->offset + length > r->bytes->size()) return CAIRO_STATUS_READ_ERROR;
+  std::memcpy(data, r->bytes->data() + r->offset, length);
+  r->offset += length;
+  return CAIRO_STATUS_SUCCESS;
+}
+
+Image decode(const std::string& png) {
+  Reader reader{&png};
+  cairo_surface_t* s = cairo_image_surface_create_from_png_stream(read_bytes, &reader);
+  REQUIRE(cairo_surface_status(s) == CAIRO_STATUS_SUCCESS);
+  Image image;
+  image.width = cairo_image_surface_get_width(s);
+  image.height = cairo_image_surface_get_height(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  const unsigned char* data = cairo_image_surface_get_data(s);
+  for (int y = 0; y < image.height; ++y) {
+    const auto* row = reinterpret_cast<const std::uint32_t*>(data + y * stride);
+    for (int x = 0; x < image.width; ++x) image.pixels.push_back(row[x] & 0xffffffu);
+  }
+  cairo_surface_destroy(s);
+  return image;
+}
+
+/// A bicubic 8 x 8 sheet over [0, 100]^2 at z = 0, optionally with pole (3, 4) raised.
+io::Model sheet(double bump) {
+  BSplineSurface s;
+  s.degree = {3, 3};
+  Eigen::VectorXd knots(12);
+  knots << 0, 0, 0, 0, 1, 2, 3, 4, 5, 5, 5, 5;
+  s.knots = {knots, knots};
+  const Eigen::VectorXd g = greville_abscissae(3, knots);
+  s.control_points.resize(64, 3);
+  for (int i = 0; i < 8; ++i) {
+    for (int j = 0; j < 8; ++j) s.control_points.row(i * 8 + j) << 20 * g[i], 20 * g[j], 0.0;
+  }
+  s.control_points(3 * 8 + 4, 2) = bump;
+  io::Model m;
+  m.faces.push_back({s, {}, false, "", "sheet"});
+  return m;
+}
+
+io::TriangleMesh mesh_of(const io::Model& m) {
+  io::TessellationOptions options;
+  options.chord_tolerance_mm = 0.05;
+  const Result<io::TriangleMesh> mesh = io::tessellate(m, options);
+  REQUIRE(mesh.ok());
+  return mesh.value();
+}
+
+TEST_CASE("a surface picture shows the shaded surface and a local change only locally",
+          "[pictures]") {
+  const io::Model flat = sheet(0.0), bumped = sheet(15.0);
+  const Box3 box{Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(100, 100, 16)};
+  const Camera camera = fit_camera(box, 400, 300);
+  const Image before = decode(render_surface_png(mesh_of(flat), {}, camera).value());
+  const Image after = decode(render_surface_png(mesh_of(bumped), {}, camera).value());
+  REQUIRE(before.width == 400);
+  REQUIRE(before.height == 300);
+  long covered = 0;
+  std::vector<std::uint32_t> colours;
+  for (const std::uint32_t p : before.pixels) {
+    covered += p != 0xffffffu;
+    colours.push_back(p);
+  }
+  std::sort(colours.begin(), colours.end());
+  const auto distinct = std::unique(colours.begin(), colours.end()) - colours.begin();
+  // The sheet fills a good part of the fitted view, and it is not one flat colour
+  // (antialiased edges and text alone give a few dozen).
+  CHECK(covered > 400 * 300 / 5);
+  CHECK(distinct > 3);
+
+  // The raised pole moves the surface over its support, spans 1..5 in u and
+  // 2..6 in v at most, that is x in [0, 100] x y in [20, 100] at worst: pixels
+  // outside the projection of that region (plus the 15 mm bump height) match.
+  int changed = 0, changed_far = 0;
+  const Eigen::Vector3d support_min(0, 20, 0), support_max(100, 100, 15);
+  Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d p((corner & 1) ? support_max.x() : support_min.x(),
+                            (corner & 2) ? support_max.y() : support_min.y(),
+                            (corner & 4) ? support_max.z() : support_min.z());
+    lo = lo.cwiseMin(camera.project(p));
+    hi = hi.cwiseMax(camera.project(p));
+  }
+  for (int y = 0; y < before.height; ++y) {
+    for (int x = 0; x < before.width; ++x) {
+      if (before.at(x, y) == after.at(x, y)) continue;
+      ++changed;
+      // Two pixels of slack for antialiasing at the region's edge.
+      const bool inside = x >= lo.x() - 2 && x <= hi.x() + 2 && y >= lo.y() - 2 && y <= hi.y() + 2;
+      changed_far += inside ? 0 : 1;
+    }
+  }
+  CHECK(changed > 500);
+  CHECK(changed_far == 0);
+
+  // Where the pole was raised (projected), the two pictures differ.
+  const Eigen::Vector2d at = camera.project(Eigen::Vector3d(20 * 2.0, 20 * 2.5, 6.0));
+  int near = 0;
+  for (int dy = -10; dy <= 10; ++dy) {
+    for (int dx = -10; dx <= 10; ++dx) {
+      const int x = static_cast<int>(at.x()) + dx, y = static_cast<int>(at.y()) + dy;
+      near += before.at(x, y) != after.at(x, y);
+    }
+  }
+  CHECK(near > 0);
+}
+
+TEST_CASE("the force plot draws axes and curves", "[pictures]") {
+  std::vector<double> t;
+  std::vector<Eigen::Vector3d> f;
+  for (int k = 0; k <= 1000; ++k) {
+    t.push_back(k * 1e-3);
+    f.emplace_back(0.5 * std::sin(k * 0.01), 0.0, 3.0 * std::min(1.0, k * 0.002));
+  }
+  const Image plot = decode(plot_force_png(t, f, "test", 640, 360).value());
+  CHECK(plot.width == 640);
+  long dark = 0;
+  for (const std::uint32_t p : plot.pixels) {
+    const int r = (p >> 16) & 0xff, g = (p >> 8) & 0xff, b = p & 0xff;
+    dark += r + g + b < 150;
+  }
+  CHECK(dark > 1000);  // axes, labels and the |f| curve are dark
+  CHECK_FALSE(plot_force_png({0.0}, {}, "mismatch").ok());
+}
+
+TEST_CASE("axis ticks are round numbers covering the range", "[pictures]") {
+  const std::vector<double> ticks = nice_ticks(0.0, 2.3, 6);
+  REQUIRE(ticks.size() >= 3);
+  CHECK(ticks.front() <= 0.0);
+  CHECK(ticks.back() >= 2.3);
+  const double step = ticks[1] - ticks[0];
+  CHECK(step == Approx(0.5));                 // 2.3 / 6 = 0.38 rounds up to 0.5
+  CHECK(nice_ticks(-1.0, -1.0).size() >= 2);  // a flat range is widened
+}
+
+}  // namespace
+}  // namespace argil::sculpt
