@@ -18,6 +18,7 @@
 #include "argil/io/files/model_files.hpp"
 #include "argil/io/base/text_file.hpp"
 #include "argil/sculpt/session/journal.hpp"
+#include "argil/sculpt/detail/fnv_hash.hpp"
 #include "argil/sculpt/scene/scene.hpp"
 #include "argil/sculpt/script/script.hpp"
 #include "argil/sculpt/session/session.hpp"
