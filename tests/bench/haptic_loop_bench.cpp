@@ -1,4 +1,4 @@
-// The full haptic tick (issue 5): collide, contact and friction forces,
+// The full haptic tick (docs/benchmarks.md): collide, contact and friction forces,
 // implicit deformation, exact refit, device force, on 16x16, 32x32 and 64x64
 // bicubic panels with a sphere tool and with a B-spline tool, along a scripted
 // stroke that presses 2 mm into the panel and drags across it at 100 mm/s.

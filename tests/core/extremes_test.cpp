@@ -1,4 +1,4 @@
-// Numerical extremes (issue 7, docs/range.md): every case either stays finite
+// Numerical extremes (docs/range.md): every case either stays finite
 // and agrees with OpenCASCADE (and brute force) within its stated tolerance,
 // or is refused by validate() because it lies outside the documented range.
 // Each TEST_CASE is one row of the issue's list; each SECTION names the value.

@@ -12,7 +12,7 @@
 
 namespace argil::test {
 
-/// tests/data (copies of ../shared/data: bearing.iges, screw.step); set by CMake.
+/// tests/data (bearing.iges, screw.step and the other test inputs); set by CMake.
 inline std::filesystem::path shared_data(const std::string& name) {
   return std::filesystem::path(ARGIL_SHARED_DATA_DIR) / name;
 }

@@ -1,4 +1,4 @@
-// Soak (issue 7): a long run of scripted random strokes through the full
+// Soak (docs/robustness.md): a long run of scripted random strokes through the full
 // haptic tick. Fails on any NaN or Inf, on energy that keeps growing, or on
 // memory that keeps growing; prints the peak RSS.
 //

@@ -1,4 +1,4 @@
-// Deformation and haptic force (issue 5): material ranges, the exact node load
+// Deformation and haptic force (docs/deformation.md): material ranges, the exact node load
 // pattern, static equilibrium against a direct solve, momentum and energy of
 // the implicit step, elasticity, plasticity, boundary conditions, determinism
 // and a stability sweep.

@@ -1,4 +1,4 @@
-// The haptic tick (issue 5): Coulomb stick and slip, no tunnelling at 1 m/s
+// The haptic tick (docs/deformation.md): Coulomb stick and slip, no tunnelling at 1 m/s
 // and beyond, force clamp, elastic return and plastic dents under a tool,
 // determinism, and the B-spline tool.
 #include <catch2/catch.hpp>

@@ -119,7 +119,7 @@ TEST_CASE(
 }
 
 TEST_CASE("the collocation at Greville abscissae stays well conditioned") {
-  // ARCHITECTURE 2.2 reports below 40 up to degree 7 for long nets; in the
+  // docs/operators.md: below 40 up to degree 6 for long nets; in the
   // 1-norm we measure up to 43 at degree 7 (n >= 16) and 302 for the single
   // Bezier span n = 8. Uniform sampling reaches 1e5 (cubic) to 1e13 (quintic).
   for (int p = 1; p <= 7; ++p) {

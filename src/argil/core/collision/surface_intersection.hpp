@@ -1,5 +1,5 @@
 #pragma once
-// Surface against surface (ARCHITECTURE 3.4): simultaneous descent over node
+// Surface against surface (docs/collision.md): simultaneous descent over node
 // pairs of two conservative hierarchies, triangle-triangle tests at flat leaf
 // pairs, intersection curves with (u, v) on both surfaces, near-touching
 // contacts, and optional Newton refinement onto both exact surfaces.

@@ -1,5 +1,5 @@
 #pragma once
-// From collision contacts to forces (ARCHITECTURE 3.5): how a tool force is
+// From collision contacts to forces (docs/deformation.md): how a tool force is
 // shared among contacts, carried exactly onto the nodes, and split by Coulomb
 // friction into stick and slip.
 

@@ -1,5 +1,5 @@
 #pragma once
-// A deformable surface (ARCHITECTURE 3.5): nodes at the Greville abscissae,
+// A deformable surface (docs/deformation.md): nodes at the Greville abscissae,
 // springs and anchors (mass_spring.hpp), an implicit Euler step at the haptic
 // rate, plasticity, and the exact fit back to control points every step.
 

@@ -1,5 +1,5 @@
 #pragma once
-// The node layer of ARCHITECTURE 3.5: one node per control point at the
+// The node layer (docs/deformation.md): one node per control point at the
 // Greville abscissae, linear springs between them, anchors to the rest state.
 //
 // Springs are linear in the displacement u = x - x_rest: a spring between

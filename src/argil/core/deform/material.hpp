@@ -1,5 +1,5 @@
 #pragma once
-// Material of a deformable surface (ARCHITECTURE 3.5) and its documented range.
+// Material of a deformable surface (docs/deformation.md) and its documented range.
 //
 // Units (docs/conventions.md): lengths [mm], time [s], force [N], mass [kg].
 // Newton's law in these units reads F [N] = 1e-3 m [kg] a [mm/s^2]: the solver

@@ -1,5 +1,5 @@
 #pragma once
-// The haptic tick (ARCHITECTURE 3.5): one call per device sample that moves
+// The haptic tick (docs/deformation.md): one call per device sample that moves
 // the tool proxy, collides it with every body, applies contact and friction
 // forces to the deformable bodies, steps and refits them, and returns the
 // force to render on the device.

@@ -1,5 +1,5 @@
 #pragma once
-// The virtual coupling (ARCHITECTURE 3.5): a spring-damper between the haptic
+// The virtual coupling (docs/deformation.md): a spring-damper between the haptic
 // device and the tool proxy, and the one force per tick it renders.
 
 #include <Eigen/Core>

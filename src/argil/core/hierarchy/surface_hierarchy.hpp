@@ -1,5 +1,5 @@
 #pragma once
-// The conservative, lazy hierarchy of ARCHITECTURE 3.3: Bezier sub-patch nodes
+// The conservative, lazy hierarchy (docs/collision.md): Bezier sub-patch nodes
 // bounded from their control points, created only where queries reach and
 // refreshed only where queries reach after the control points change.
 
