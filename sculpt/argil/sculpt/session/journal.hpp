@@ -6,7 +6,7 @@
 // resuming replays the samples through a fresh Session, which is deterministic,
 // and checks the hashes. Every record is one line ending in its own checksum and
 // is fsync'd before the next tick, so a torn last line is detected and dropped.
-// Format: docs/sculpt.md.
+// Format: docs/formats.md.
 
 #include <cstdint>
 #include <cstdio>
