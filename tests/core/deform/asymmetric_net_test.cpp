@@ -248,8 +248,8 @@ TEST_CASE("the load pattern does virtual work only through the poles whose suppo
         CAPTURE(i, j);
         const Eigen::VectorXd& ku = s.knots[0];
         const Eigen::VectorXd& kv = s.knots[1];
-        const bool supports = ku[i] < uv.x() && uv.x() < ku[i + 4] && kv[j] < uv.y() &&
-                              uv.y() < kv[j + 3];
+        const bool supports =
+            ku[i] < uv.x() && uv.x() < ku[i + 4] && kv[j] < uv.y() && uv.y() < kv[j + 3];
         if (supports) {
           ++carrying;
           CHECK(basis > 0.0);
@@ -371,7 +371,7 @@ TEST_CASE("the step's compliance is the loaded point's motion per newton (finite
   argil::LoadPreview p0, p1;
   const Eigen::Vector3d free = loaded_point_after(Eigen::Vector3d::Zero(), p0);
   CHECK((free - p0.free_motion).norm() < 1e-12);  // [mm], rounding
-  const double df = 0.25;  // [N]; the step is linear in the force
+  const double df = 0.25;                         // [N]; the step is linear in the force
   for (int c = 0; c < 3; ++c) {
     const Eigen::Vector3d moved = loaded_point_after(df * Eigen::Vector3d::Unit(c), p1);
     const Eigen::Vector3d slope = (moved - free) / df;

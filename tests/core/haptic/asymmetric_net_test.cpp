@@ -173,9 +173,10 @@ TEST_CASE("a scripted sphere press on the asymmetric net replays bit-identically
   CHECK(same_bits(a.control_points, b.control_points));
 }
 
-TEST_CASE("a scripted B-spline tool press on the asymmetric net replays bit-identically and "
-          "pushes out",
-          "[haptic][asymmetric]") {
+TEST_CASE(
+    "a scripted B-spline tool press on the asymmetric net replays bit-identically and "
+    "pushes out",
+    "[haptic][asymmetric]") {
   const BSplineSurface s = argil::test::asymmetric_surface();
   const std::vector<argil::DevicePose> script = press_script(s, at_fraction(s, 0.45, 0.6));
   const Run a = run(s, argil::SurfaceToolShape{bowl_tool()}, script);
