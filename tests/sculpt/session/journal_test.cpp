@@ -74,20 +74,20 @@ TEST_CASE("journal records read back exactly and a torn last record is dropped",
     REQUIRE(w.value().append(undo).ok());
     REQUIRE(w.value().append(b).ok());
   }
-  Result<JournalContents> read = read_journal(path);
-  INFO(read.status().message);
+  const JournalRead read = read_journal(path);
+  INFO(read.status.message);
   REQUIRE(read.ok());
-  CHECK(read.value().header.scene_hash == 0x1234);
-  CHECK(read.value().header.script_hash == 0xabcdef);
-  CHECK(read.value().header.haptic_rate == 1000.0);
-  REQUIRE(read.value().records.size() == 3);
-  CHECK(same_samples(read.value().records[0].samples, a.samples));
-  CHECK(read.value().records[0].state_hash == 42);
-  CHECK(read.value().records[1].kind == JournalRecord::Kind::undo);
-  CHECK(same_samples(read.value().records[2].samples, b.samples));
-  CHECK(read.value().records[2].state_hash == b.state_hash);
-  CHECK_FALSE(read.value().finished);
-  CHECK_FALSE(read.value().dropped_torn_record);
+  CHECK(read.contents.header.scene_hash == 0x1234);
+  CHECK(read.contents.header.script_hash == 0xabcdef);
+  CHECK(read.contents.header.haptic_rate == 1000.0);
+  REQUIRE(read.contents.records.size() == 3);
+  CHECK(same_samples(read.contents.records[0].samples, a.samples));
+  CHECK(read.contents.records[0].state_hash == 42);
+  CHECK(read.contents.records[1].kind == JournalRecord::Kind::undo);
+  CHECK(same_samples(read.contents.records[2].samples, b.samples));
+  CHECK(read.contents.records[2].state_hash == b.state_hash);
+  CHECK_FALSE(read.contents.finished);
+  CHECK_FALSE(read.contents.dropped_torn_record);
 
   // A crash in the middle of writing the last record: every cut point of it.
   const std::string text = read_text(path);
@@ -95,30 +95,31 @@ TEST_CASE("journal records read back exactly and a torn last record is dropped",
   for (std::size_t cut = last_start + 1; cut < text.size(); cut += 97) {
     const std::filesystem::path torn = kWork / "torn.journal";
     std::ofstream(torn, std::ios::binary) << text.substr(0, cut);
-    const Result<JournalContents> r = read_journal(torn);
+    const JournalRead r = read_journal(torn);
     REQUIRE(r.ok());
-    CHECK(r.value().records.size() == 2);
-    CHECK(r.value().dropped_torn_record);
-    CHECK(r.value().valid_bytes == last_start);
+    CHECK(r.contents.records.size() == 2);
+    CHECK(r.contents.dropped_torn_record);
+    CHECK(r.contents.valid_bytes == last_start);
     // Appending after a torn tail cuts it off first.
     {
-      Result<JournalWriter> w = JournalWriter::append_to(torn, r.value());
+      Result<JournalWriter> w = JournalWriter::append_to(torn, r.contents);
       REQUIRE(w.ok());
       REQUIRE(w.value().finish().ok());
     }
-    const Result<JournalContents> again = read_journal(torn);
+    const JournalRead again = read_journal(torn);
     REQUIRE(again.ok());
-    CHECK(again.value().records.size() == 2);
-    CHECK(again.value().finished);
+    CHECK(again.contents.records.size() == 2);
+    CHECK(again.contents.finished);
   }
 
   // A flipped byte in an earlier record is corruption, not a torn tail.
   std::string damaged = text;
   damaged[last_start / 2] = damaged[last_start / 2] == '1' ? '2' : '1';
   std::ofstream(kWork / "damaged.journal", std::ios::binary) << damaged;
-  const Result<JournalContents> bad = read_journal(kWork / "damaged.journal");
+  const JournalRead bad = read_journal(kWork / "damaged.journal");
   REQUIRE_FALSE(bad.ok());
-  CHECK(bad.status().message.find("damaged record") != std::string::npos);
+  CHECK(bad.fault == JournalFault::damaged_record);
+  CHECK(bad.status.message.find("damaged record") != std::string::npos);
 }
 
 /// Runs argil with `args`; stdout and stderr go to `log`. Returns the pid.
