@@ -7,12 +7,15 @@
 
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <cinttypes>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
 #include "argil/io/files/model_files.hpp"
+#include "argil/sculpt/detail/fnv_hash.hpp"
 #include "argil/sculpt/session/journal.hpp"
 #include "argil/sculpt/script/script.hpp"
 
@@ -120,6 +123,49 @@ TEST_CASE("journal records read back exactly and a torn last record is dropped",
   REQUIRE_FALSE(bad.ok());
   CHECK(bad.fault == JournalFault::damaged_record);
   CHECK(bad.status.message.find("damaged record") != std::string::npos);
+}
+
+/// A journal line as the writer makes it: the body and its FNV-1a check.
+std::string checked_line(const std::string& body) {
+  char check[20];
+  std::snprintf(check, sizeof check, "%016" PRIx64, fnv1a64(body));
+  return body + " check=" + check + "\n";
+}
+
+TEST_CASE("each journal that cannot be read reports why with its fault code", "[journal]") {
+  std::filesystem::create_directories(kWork);
+  const std::filesystem::path path = kWork / "fault.journal";
+  const std::string header =
+      checked_line("argil.journal 1 scene=0000000000001234 script=0000000000abcdef rate=0x1.f4p+9");
+  const std::string record = checked_line("stroke 0 state=000000000000002a");
+  const struct {
+    std::string text;
+    JournalFault fault;
+  } cases[] = {
+      {"", JournalFault::torn_header},
+      {header.substr(0, header.size() / 2), JournalFault::torn_header},
+      {checked_line("argil.journal 2 scene=0 script=0 rate=1") + record,
+       JournalFault::not_a_journal},
+      {header + checked_line("stroke two state=000000000000002a") + record,
+       JournalFault::malformed_record},
+      {header + checked_line("end") + record, JournalFault::record_after_end},
+      {header + record.substr(0, 8) + "x" + record.substr(9) + record,
+       JournalFault::damaged_record},
+  };
+  // The well-formed journal the cases are cut from reads back.
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << header << record << record;
+  REQUIRE(read_journal(path).ok());
+  CHECK(read_journal(path).contents.records.size() == 2);
+  for (const auto& c : cases) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << c.text;
+    const JournalRead read = read_journal(path);
+    INFO(to_string(c.fault) << ": " << read.status.message);
+    CHECK(read.fault == c.fault);
+    CHECK(read.status.code == StatusCode::parse_error);
+  }
+  const JournalRead missing = read_journal(kWork / "no-such.journal");
+  CHECK(missing.fault == JournalFault::unreadable);
+  CHECK(missing.status.code == StatusCode::io_error);
 }
 
 /// Runs argil with `args`; stdout and stderr go to `log`. Returns the pid.
