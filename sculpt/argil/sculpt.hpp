@@ -14,9 +14,9 @@
 #include "argil/sculpt/session/journal.hpp"  // IWYU pragma: export
 #include "argil/sculpt/session/session.hpp"  // IWYU pragma: export
 // output
-#include "argil/sculpt/output/pictures.hpp"  // IWYU pragma: export
+#include "argil/sculpt/output/pictures.hpp"          // IWYU pragma: export
 #include "argil/sculpt/output/session_pictures.hpp"  // IWYU pragma: export
-#include "argil/sculpt/output/tick_log.hpp"  // IWYU pragma: export
+#include "argil/sculpt/output/tick_log.hpp"          // IWYU pragma: export
 // run
 #include "argil/sculpt/run/resume_plan.hpp"     // IWYU pragma: export
 #include "argil/sculpt/run/session_runner.hpp"  // IWYU pragma: export

@@ -90,7 +90,8 @@ class ProgressBar {
     last_ = now;
     drawn_ = true;
     const int width = 32;
-    const double fraction = total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
+    const double fraction =
+        total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
     const int filled = static_cast<int>(fraction * width);
     std::string bar(static_cast<std::size_t>(filled), '#');
     bar.resize(width, '.');
@@ -111,12 +112,12 @@ class ProgressBar {
 /// The run's summary on stdout: the counts, the tick-time percentiles and the files.
 void print_report(const Options& o, const RunReport& report) {
   if (report.start == RunStart::resumed) {
-    std::fprintf(stderr,
-                 "argil sculpt: resumed from %s: %zu records, %d strokes, ticks 0..%lld\n",
+    std::fprintf(stderr, "argil sculpt: resumed from %s: %zu records, %d strokes, ticks 0..%lld\n",
                  (report.out / "session.journal").c_str(), report.records_replayed,
                  report.strokes_resumed, report.ticks_replayed - 1);
   }
-  for (const std::string& w : report.warnings) std::fprintf(stderr, "argil sculpt: %s\n", w.c_str());
+  for (const std::string& w : report.warnings)
+    std::fprintf(stderr, "argil sculpt: %s\n", w.c_str());
   std::printf("argil sculpt: %s, %lld ticks at %g Hz, %d strokes, tool %s\n", o.scene.c_str(),
               report.ticks, report.haptic_rate, report.strokes, report.tool.c_str());
   const TimingSummary& wall = report.wall_timing;
@@ -125,8 +126,8 @@ void print_report(const Options& o, const RunReport& report) {
     std::printf(
         "tick time: p50 %.1f us, p99 %.1f us, p99.9 %.1f us, max %.1f us (%lld ticks timed)\n"
         "tick thread CPU time: p50 %.1f us, p99 %.1f us, p99.9 %.1f us, max %.1f us\n",
-        wall.p50 * 1e6, wall.p99 * 1e6, wall.p999 * 1e6, wall.max * 1e6, wall.ticks,
-        cpu.p50 * 1e6, cpu.p99 * 1e6, cpu.p999 * 1e6, cpu.max * 1e6);
+        wall.p50 * 1e6, wall.p99 * 1e6, wall.p999 * 1e6, wall.max * 1e6, wall.ticks, cpu.p50 * 1e6,
+        cpu.p99 * 1e6, cpu.p999 * 1e6, cpu.max * 1e6);
   }
   std::printf("files in %s:\n", report.out.c_str());
   for (const std::filesystem::path& f : report.files) std::printf("  %s\n", f.c_str());
@@ -138,8 +139,8 @@ int run_sculpt(const std::vector<std::string>& args) {
   Options o;
   if (const int status = parse(args, o); status >= 0) return status;
 
-  RunOptions options{.scene = o.scene, .script = o.script, .out = o.out,
-                     .fresh = o.fresh, .realtime = o.realtime};
+  RunOptions options{
+      .scene = o.scene, .script = o.script, .out = o.out, .fresh = o.fresh, .realtime = o.realtime};
   if (o.tolerance > 0.0) options.tolerance = o.tolerance;
   ProgressBar progress;
   options.on_progress = [&progress](const RunProgress& p) {

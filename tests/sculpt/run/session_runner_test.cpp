@@ -58,8 +58,13 @@ fs::path three_presses(const fs::path& out) {
 /// strokes are journalled (0: never).
 RunOptions options_for(const fs::path& out, bool fresh, int stop_after = 0) {
   RunOptions o{.scene = kScene, .script = three_presses(out), .out = out, .fresh = fresh};
-  o.outputs = OutputSpec{.step = false, .iges = false, .json = true, .forces = true,
-                         .contacts = false, .timing = false, .pictures = false};
+  o.outputs = OutputSpec{.step = false,
+                         .iges = false,
+                         .json = true,
+                         .forces = true,
+                         .contacts = false,
+                         .timing = false,
+                         .pictures = false};
   if (stop_after > 0) {
     o.on_progress = [stop_after](const RunProgress& p) {
       return p.strokes >= stop_after ? RunControl::stop : RunControl::proceed;
@@ -180,8 +185,7 @@ TEST_CASE("an unfinished journal of other inputs is refused with failed_precondi
   CHECK(plan.status().code == StatusCode::failed_precondition);
   CHECK(plan_resume(out / "session.journal", changed, true).value().start ==
         RunStart::fresh_requested);
-  CHECK(plan_resume(out / "no-such.journal", changed, false).value().start ==
-        RunStart::no_journal);
+  CHECK(plan_resume(out / "no-such.journal", changed, false).value().start == RunStart::no_journal);
 }
 
 TEST_CASE("a journal damaged before intact records is refused with failed_precondition", "[run]") {

@@ -16,8 +16,8 @@
 
 #include "argil/io/files/model_files.hpp"
 #include "argil/sculpt/detail/fnv_hash.hpp"
-#include "argil/sculpt/session/journal.hpp"
 #include "argil/sculpt/script/script.hpp"
+#include "argil/sculpt/session/journal.hpp"
 
 namespace argil::sculpt {
 namespace {

@@ -8,11 +8,16 @@ namespace argil::sculpt {
 
 const char* to_string(RunStart start) {
   switch (start) {
-    case RunStart::no_journal: return "no_journal";
-    case RunStart::fresh_requested: return "fresh_requested";
-    case RunStart::previous_finished: return "previous_finished";
-    case RunStart::torn_header: return "torn_header";
-    case RunStart::resumed: return "resumed";
+    case RunStart::no_journal:
+      return "no_journal";
+    case RunStart::fresh_requested:
+      return "fresh_requested";
+    case RunStart::previous_finished:
+      return "previous_finished";
+    case RunStart::torn_header:
+      return "torn_header";
+    case RunStart::resumed:
+      return "resumed";
   }
   return "unknown";
 }
@@ -51,9 +56,9 @@ Result<ResumePlan> plan_resume(const std::filesystem::path& journal_path,
   const JournalHeader& h = read.contents.header;
   if (h.scene_hash != inputs.scene_hash || h.script_hash != inputs.script_hash ||
       h.haptic_rate != inputs.haptic_rate) {
-    return Status::error(StatusCode::failed_precondition,
-                         journal_path.string() +
-                             ": an unfinished run of another scene, script or tolerance");
+    return Status::error(
+        StatusCode::failed_precondition,
+        journal_path.string() + ": an unfinished run of another scene, script or tolerance");
   }
   return ResumePlan{RunStart::resumed, std::move(read.contents)};
 }

@@ -25,8 +25,8 @@ struct OpenedJournal {
 
 Result<OpenedJournal> open_journal(const RunInputs& in, bool fresh) {
   const std::filesystem::path path = in.out / kJournalName;
-  const JournalHeader header = journal_header_for(in.scene_bytes, in.scene.tolerance,
-                                                  in.script_bytes, in.scene.haptic_rate);
+  const JournalHeader header =
+      journal_header_for(in.scene_bytes, in.scene.tolerance, in.script_bytes, in.scene.haptic_rate);
   Result<ResumePlan> plan = plan_resume(path, header, fresh);
   if (!plan.ok()) return plan.status();
   Result<JournalWriter> writer = plan.value().start == RunStart::resumed
@@ -48,8 +48,8 @@ std::vector<std::string> start_warnings(const ResumePlan& plan) {
 }
 
 /// Replays the journal when resuming; fills the report's resume fields.
-Status resume(Session& session, const OpenedJournal& journal, const RunInputs& in,
-              RunState& state, RunReport& report) {
+Status resume(Session& session, const OpenedJournal& journal, const RunInputs& in, RunState& state,
+              RunReport& report) {
   report.start = journal.plan.start;
   report.warnings = start_warnings(journal.plan);
   if (journal.plan.start != RunStart::resumed) return Status::success();
@@ -100,8 +100,11 @@ Result<RunReport> run_session(const RunOptions& options) {
   if (!journal.ok()) return journal.status();
 
   const ScriptSampler sampler(in.script, in.scene.haptic_rate);
-  RunReport report{.out = in.out, .scene_name = in.scene_name, .tool = session.tool().name,
-                   .haptic_rate = in.scene.haptic_rate, .ticks = sampler.tick_count()};
+  RunReport report{.out = in.out,
+                   .scene_name = in.scene_name,
+                   .tool = session.tool().name,
+                   .haptic_rate = in.scene.haptic_rate,
+                   .ticks = sampler.tick_count()};
   RunState state;
   const Status resumed = resume(session, journal.value(), in, state, report);
   if (!resumed.ok()) return resumed;

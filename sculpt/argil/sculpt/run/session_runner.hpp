@@ -28,11 +28,11 @@ struct RunProgress {
 enum class RunControl { proceed, stop };
 
 struct RunOptions {
-  std::filesystem::path scene{};    // an argil.scene file
-  std::filesystem::path script{};   // .json or .csv; empty: the scene's "script"
-  std::filesystem::path out{};      // output folder; empty: out/<scene name>
+  std::filesystem::path scene{};      // an argil.scene file
+  std::filesystem::path script{};     // .json or .csv; empty: the scene's "script"
+  std::filesystem::path out{};        // output folder; empty: out/<scene name>
   std::optional<double> tolerance{};  // eps [mm], > 0, in place of the scene's
-  bool fresh = false;     // start afresh even if `out` holds an unfinished journal
+  bool fresh = false;                 // start afresh even if `out` holds an unfinished journal
   bool realtime = false;  // pace live ticks at the haptic rate, as a device delivers them
   std::optional<OutputSpec> outputs{};  // files to write; empty: the scene's choice
   /// Called after every `progress_every`-th live tick and after the last one.
@@ -45,21 +45,21 @@ struct RunOptions {
 /// What a run did.
 struct RunReport {
   std::filesystem::path out{};  // the output folder
-  std::string scene_name{};   // the scene file's stem, or its folder's name for scene.json
-  std::string tool{};         // the tool the script holds
-  double haptic_rate = 0.0;   // [Hz]
+  std::string scene_name{};     // the scene file's stem, or its folder's name for scene.json
+  std::string tool{};           // the tool the script holds
+  double haptic_rate = 0.0;     // [Hz]
   RunStart start = RunStart::no_journal;
-  long long ticks = 0;           // ticks of the script
-  long long ticks_replayed = 0;  // replayed from the journal: logged, not timed
-  long long ticks_run = 0;       // stepped live and timed
+  long long ticks = 0;               // ticks of the script
+  long long ticks_replayed = 0;      // replayed from the journal: logged, not timed
+  long long ticks_run = 0;           // stepped live and timed
   std::size_t records_replayed = 0;  // journal records (strokes, undo, redo) replayed
   int strokes = 0;                   // journalled strokes, resumed ones included
   int strokes_resumed = 0;           // of them, replayed from the journal
-  bool stopped = false;  // on_progress asked to stop: the journal is left unfinished
+  bool stopped = false;              // on_progress asked to stop: the journal is left unfinished
   std::vector<std::filesystem::path> files{};  // written, in order; the journal last
-  TimingSummary wall_timing{};  // wall time of each live Session::step [s]
-  TimingSummary cpu_timing{};   // the ticking thread's CPU time of each [s]
-  std::vector<std::string> warnings{};  // what the run recovered from
+  TimingSummary wall_timing{};                 // wall time of each live Session::step [s]
+  TimingSummary cpu_timing{};                  // the ticking thread's CPU time of each [s]
+  std::vector<std::string> warnings{};         // what the run recovered from
 };
 
 /// Runs `options.scene` with its script to the end (or until on_progress asks

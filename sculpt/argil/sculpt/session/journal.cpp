@@ -151,13 +151,20 @@ bool checked_body(const std::string& line, std::string& body) {
 
 const char* to_string(JournalFault fault) {
   switch (fault) {
-    case JournalFault::none: return "none";
-    case JournalFault::unreadable: return "unreadable";
-    case JournalFault::torn_header: return "torn_header";
-    case JournalFault::not_a_journal: return "not_a_journal";
-    case JournalFault::damaged_record: return "damaged_record";
-    case JournalFault::malformed_record: return "malformed_record";
-    case JournalFault::record_after_end: return "record_after_end";
+    case JournalFault::none:
+      return "none";
+    case JournalFault::unreadable:
+      return "unreadable";
+    case JournalFault::torn_header:
+      return "torn_header";
+    case JournalFault::not_a_journal:
+      return "not_a_journal";
+    case JournalFault::damaged_record:
+      return "damaged_record";
+    case JournalFault::malformed_record:
+      return "malformed_record";
+    case JournalFault::record_after_end:
+      return "record_after_end";
   }
   return "unknown";
 }
@@ -172,9 +179,9 @@ JournalRead read_journal(const std::filesystem::path& path) {
   int line_number = 0;
   auto fail = [&](JournalFault fault, const std::string& what) {
     out.fault = fault;
-    out.status = Status::error(StatusCode::parse_error, path.string() + ": line " +
-                                                            std::to_string(line_number) + ": " +
-                                                            what);
+    out.status =
+        Status::error(StatusCode::parse_error,
+                      path.string() + ": line " + std::to_string(line_number) + ": " + what);
     return out;
   };
   while (pos < text.size()) {
@@ -196,16 +203,18 @@ JournalRead read_journal(const std::filesystem::path& path) {
     }
     if (line_number == 1) {
       if (!parse_header(body, contents.header)) {
-        return fail(JournalFault::not_a_journal,
-                    "not an argil journal (expected the header '" + std::string(kMagic) +
-                        " scene=... script=... rate=...')");
+        return fail(JournalFault::not_a_journal, "not an argil journal (expected the header '" +
+                                                     std::string(kMagic) +
+                                                     " scene=... script=... rate=...')");
       }
     } else if (body == "end") {
       contents.finished = true;
     } else {
-      if (contents.finished) return fail(JournalFault::record_after_end, "record after the end record");
+      if (contents.finished)
+        return fail(JournalFault::record_after_end, "record after the end record");
       JournalRecord record;
-      if (!parse_record(body, record)) return fail(JournalFault::malformed_record, "malformed record");
+      if (!parse_record(body, record))
+        return fail(JournalFault::malformed_record, "malformed record");
       contents.records.push_back(std::move(record));
     }
     pos = newline + 1;

@@ -69,8 +69,7 @@ void write_all(int fd, std::string_view bytes) {
     }
   } catch (const std::bad_alloc&) {
     report = std::string(1, static_cast<char>(StatusCode::external_failure)) +
-             "out of memory (limit " +
-             std::to_string(limits.memory_limit_mb) + " MB)";
+             "out of memory (limit " + std::to_string(limits.memory_limit_mb) + " MB)";
   } catch (...) {
     report = std::string(1, static_cast<char>(StatusCode::external_failure)) +
              "the reader threw an unknown exception";

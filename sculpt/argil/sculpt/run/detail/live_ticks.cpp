@@ -52,8 +52,7 @@ bool progress_due(const RunOptions& options, long long done, long long total) {
 }  // namespace
 
 Result<LoopEnd> run_live_ticks(Session& session, const ScriptSampler& sampler,
-                               JournalWriter& journal, const RunOptions& options,
-                               RunState& state) {
+                               JournalWriter& journal, const RunOptions& options, RunState& state) {
   const long long first = state.next_tick;
   const long long total = sampler.tick_count();
   const double rate = session.scene().haptic_rate;

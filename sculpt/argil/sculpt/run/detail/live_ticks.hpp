@@ -19,7 +19,6 @@ enum class LoopEnd { finished, stopped };
 /// options.realtime; reports progress through options.on_progress, which may
 /// stop the run.
 Result<LoopEnd> run_live_ticks(Session& session, const ScriptSampler& sampler,
-                               JournalWriter& journal, const RunOptions& options,
-                               RunState& state);
+                               JournalWriter& journal, const RunOptions& options, RunState& state);
 
 }  // namespace argil::sculpt::detail

@@ -13,9 +13,9 @@ constexpr double kMaxTicks = 1e7;
 
 Status check_script_fits(const RunInputs& in) {
   if (in.scene.tool_index(in.script.tool) < 0) {
-    return Status::error(StatusCode::invalid_argument,
-                         in.script_path.string() + ": tool: \"" + in.script.tool +
-                             "\" is not a tool of " + in.scene_path.string());
+    return Status::error(StatusCode::invalid_argument, in.script_path.string() + ": tool: \"" +
+                                                           in.script.tool + "\" is not a tool of " +
+                                                           in.scene_path.string());
   }
   const double ticks = in.script.keyframes.back().time * in.scene.haptic_rate;
   if (ticks > kMaxTicks) {
@@ -56,9 +56,9 @@ Result<RunInputs> load_run_inputs(const RunOptions& options) {
   }
   in.script_path = options.script.empty() ? in.scene.script : options.script;
   if (in.script_path.empty()) {
-    return Status::error(StatusCode::invalid_argument,
-                         options.scene.string() +
-                             ": no script: none given and the scene sets no \"script\"");
+    return Status::error(
+        StatusCode::invalid_argument,
+        options.scene.string() + ": no script: none given and the scene sets no \"script\"");
   }
   Result<Script> script = read_script(in.script_path);
   if (!script.ok()) return script.status();

@@ -17,7 +17,7 @@ struct RunInputs {
   Scene scene;  // with the tolerance override applied
   Script script;
   std::string scene_bytes, script_bytes;  // hashed into the journal header
-  std::string scene_name;  // the scene file's stem, or its folder's name for scene.json
+  std::string scene_name;     // the scene file's stem, or its folder's name for scene.json
   std::filesystem::path out;  // the output folder
   OutputSpec outputs;         // what to write
 };

@@ -79,8 +79,7 @@ Status write_pictures(const RunInputs& in, const std::vector<io::Model>& before,
 
 }  // namespace
 
-Result<std::vector<std::filesystem::path>> write_run_outputs(const RunInputs& in,
-                                                             Session& session,
+Result<std::vector<std::filesystem::path>> write_run_outputs(const RunInputs& in, Session& session,
                                                              const std::vector<io::Model>& before,
                                                              const RunState& state,
                                                              const TimingSummary& wall,

@@ -20,8 +20,7 @@ inline constexpr const char* kRecordedScriptName = "recorded.csv";
 /// faces (STEP, IGES, JSON), forces.csv, contacts.csv, timing.json, always
 /// recorded.csv, and the pictures (`before` holds each model as loaded).
 /// Returns the files written, in that order.
-Result<std::vector<std::filesystem::path>> write_run_outputs(const RunInputs& in,
-                                                             Session& session,
+Result<std::vector<std::filesystem::path>> write_run_outputs(const RunInputs& in, Session& session,
                                                              const std::vector<io::Model>& before,
                                                              const RunState& state,
                                                              const TimingSummary& wall,
