@@ -51,11 +51,9 @@ inline int read_cad_bytes(const std::uint8_t* data, std::size_t size, const char
   if (!format) fail("not a CAD extension", 0);
   const Result<io::Model> model =
       io::read_cad(path, *format, {.time_limit_s = 5.0, .memory_limit_mb = 2048});
-  const std::string& message = model.status().message;
-  if (message.find("OpenCASCADE crashed") != std::string::npos ||
-      message.find("did not finish") != std::string::npos ||
-      message.find("without a result") != std::string::npos) {
-    std::fprintf(stderr, "argil-fuzz: OCCT %s\n", message.c_str());
+  // A crash, hang or lost report that the reader process contained.
+  if (model.status().code == StatusCode::external_failure) {
+    std::fprintf(stderr, "argil-fuzz: OCCT %s\n", model.status().message.c_str());
     keep_contained_input(data, size, extension);
   }
   if (model.ok()) {

@@ -60,7 +60,7 @@ TEST_CASE("a crash in the reader process is an error naming the signal", "[io][i
       },
       {}, "crash.step");
   REQUIRE_FALSE(model.ok());
-  CHECK(model.status().code == StatusCode::parse_error);
+  CHECK(model.status().code == StatusCode::external_failure);
   CHECK_THAT(model.status().message, Catch::StartsWith("crash.step: "));
   CHECK_THAT(model.status().message, Catch::Contains("signal " + std::to_string(SIGSEGV)));
 }
@@ -73,6 +73,7 @@ TEST_CASE("a reader process over its time limit is stopped with an error", "[io]
       },
       {.time_limit_s = 0.2}, "slow.iges");
   REQUIRE_FALSE(model.ok());
+  CHECK(model.status().code == StatusCode::external_failure);
   CHECK_THAT(model.status().message, Catch::Contains("did not finish"));
 }
 

@@ -7,14 +7,17 @@
 
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <cinttypes>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
 #include "argil/io/files/model_files.hpp"
-#include "argil/sculpt/session/journal.hpp"
+#include "argil/sculpt/detail/fnv_hash.hpp"
 #include "argil/sculpt/script/script.hpp"
+#include "argil/sculpt/session/journal.hpp"
 
 namespace argil::sculpt {
 namespace {
@@ -74,20 +77,20 @@ TEST_CASE("journal records read back exactly and a torn last record is dropped",
     REQUIRE(w.value().append(undo).ok());
     REQUIRE(w.value().append(b).ok());
   }
-  Result<JournalContents> read = read_journal(path);
-  INFO(read.status().message);
+  const JournalRead read = read_journal(path);
+  INFO(read.status.message);
   REQUIRE(read.ok());
-  CHECK(read.value().header.scene_hash == 0x1234);
-  CHECK(read.value().header.script_hash == 0xabcdef);
-  CHECK(read.value().header.haptic_rate == 1000.0);
-  REQUIRE(read.value().records.size() == 3);
-  CHECK(same_samples(read.value().records[0].samples, a.samples));
-  CHECK(read.value().records[0].state_hash == 42);
-  CHECK(read.value().records[1].kind == JournalRecord::Kind::undo);
-  CHECK(same_samples(read.value().records[2].samples, b.samples));
-  CHECK(read.value().records[2].state_hash == b.state_hash);
-  CHECK_FALSE(read.value().finished);
-  CHECK_FALSE(read.value().dropped_torn_record);
+  CHECK(read.contents.header.scene_hash == 0x1234);
+  CHECK(read.contents.header.script_hash == 0xabcdef);
+  CHECK(read.contents.header.haptic_rate == 1000.0);
+  REQUIRE(read.contents.records.size() == 3);
+  CHECK(same_samples(read.contents.records[0].samples, a.samples));
+  CHECK(read.contents.records[0].state_hash == 42);
+  CHECK(read.contents.records[1].kind == JournalRecord::Kind::undo);
+  CHECK(same_samples(read.contents.records[2].samples, b.samples));
+  CHECK(read.contents.records[2].state_hash == b.state_hash);
+  CHECK_FALSE(read.contents.finished);
+  CHECK_FALSE(read.contents.dropped_torn_record);
 
   // A crash in the middle of writing the last record: every cut point of it.
   const std::string text = read_text(path);
@@ -95,30 +98,74 @@ TEST_CASE("journal records read back exactly and a torn last record is dropped",
   for (std::size_t cut = last_start + 1; cut < text.size(); cut += 97) {
     const std::filesystem::path torn = kWork / "torn.journal";
     std::ofstream(torn, std::ios::binary) << text.substr(0, cut);
-    const Result<JournalContents> r = read_journal(torn);
+    const JournalRead r = read_journal(torn);
     REQUIRE(r.ok());
-    CHECK(r.value().records.size() == 2);
-    CHECK(r.value().dropped_torn_record);
-    CHECK(r.value().valid_bytes == last_start);
+    CHECK(r.contents.records.size() == 2);
+    CHECK(r.contents.dropped_torn_record);
+    CHECK(r.contents.valid_bytes == last_start);
     // Appending after a torn tail cuts it off first.
     {
-      Result<JournalWriter> w = JournalWriter::append_to(torn, r.value());
+      Result<JournalWriter> w = JournalWriter::append_to(torn, r.contents);
       REQUIRE(w.ok());
       REQUIRE(w.value().finish().ok());
     }
-    const Result<JournalContents> again = read_journal(torn);
+    const JournalRead again = read_journal(torn);
     REQUIRE(again.ok());
-    CHECK(again.value().records.size() == 2);
-    CHECK(again.value().finished);
+    CHECK(again.contents.records.size() == 2);
+    CHECK(again.contents.finished);
   }
 
   // A flipped byte in an earlier record is corruption, not a torn tail.
   std::string damaged = text;
   damaged[last_start / 2] = damaged[last_start / 2] == '1' ? '2' : '1';
   std::ofstream(kWork / "damaged.journal", std::ios::binary) << damaged;
-  const Result<JournalContents> bad = read_journal(kWork / "damaged.journal");
+  const JournalRead bad = read_journal(kWork / "damaged.journal");
   REQUIRE_FALSE(bad.ok());
-  CHECK(bad.status().message.find("damaged record") != std::string::npos);
+  CHECK(bad.fault == JournalFault::damaged_record);
+  CHECK(bad.status.message.find("damaged record") != std::string::npos);
+}
+
+/// A journal line as the writer makes it: the body and its FNV-1a check.
+std::string checked_line(const std::string& body) {
+  char check[20];
+  std::snprintf(check, sizeof check, "%016" PRIx64, fnv1a64(body));
+  return body + " check=" + check + "\n";
+}
+
+TEST_CASE("each journal that cannot be read reports why with its fault code", "[journal]") {
+  std::filesystem::create_directories(kWork);
+  const std::filesystem::path path = kWork / "fault.journal";
+  const std::string header =
+      checked_line("argil.journal 1 scene=0000000000001234 script=0000000000abcdef rate=0x1.f4p+9");
+  const std::string record = checked_line("stroke 0 state=000000000000002a");
+  const struct {
+    std::string text;
+    JournalFault fault;
+  } cases[] = {
+      {"", JournalFault::torn_header},
+      {header.substr(0, header.size() / 2), JournalFault::torn_header},
+      {checked_line("argil.journal 2 scene=0 script=0 rate=1") + record,
+       JournalFault::not_a_journal},
+      {header + checked_line("stroke two state=000000000000002a") + record,
+       JournalFault::malformed_record},
+      {header + checked_line("end") + record, JournalFault::record_after_end},
+      {header + record.substr(0, 8) + "x" + record.substr(9) + record,
+       JournalFault::damaged_record},
+  };
+  // The well-formed journal the cases are cut from reads back.
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << header << record << record;
+  REQUIRE(read_journal(path).ok());
+  CHECK(read_journal(path).contents.records.size() == 2);
+  for (const auto& c : cases) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << c.text;
+    const JournalRead read = read_journal(path);
+    INFO(to_string(c.fault) << ": " << read.status.message);
+    CHECK(read.fault == c.fault);
+    CHECK(read.status.code == StatusCode::parse_error);
+  }
+  const JournalRead missing = read_journal(kWork / "no-such.journal");
+  CHECK(missing.fault == JournalFault::unreadable);
+  CHECK(missing.status.code == StatusCode::io_error);
 }
 
 /// Runs argil with `args`; stdout and stderr go to `log`. Returns the pid.

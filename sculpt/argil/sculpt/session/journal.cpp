@@ -126,6 +126,17 @@ std::string header_body(const JournalHeader& h) {
   return body;
 }
 
+bool parse_header(const std::string& body, JournalHeader& out) {
+  std::istringstream words(body);
+  std::string magic, version, scene, script, rate;
+  words >> magic >> version >> scene >> script >> rate;
+  return magic + " " + version == kMagic && scene.rfind("scene=", 0) == 0 &&
+         script.rfind("script=", 0) == 0 && rate.rfind("rate=", 0) == 0 &&
+         parse_hex64(scene.substr(6), out.scene_hash) &&
+         parse_hex64(script.substr(7), out.script_hash) &&
+         parse_double(rate.substr(5), out.haptic_rate);
+}
+
 /// Splits "body check=XXXXXXXXXXXXXXXX" and verifies the checksum.
 bool checked_body(const std::string& line, std::string& body) {
   const std::size_t at = line.rfind(kCheckTag);
@@ -138,16 +149,40 @@ bool checked_body(const std::string& line, std::string& body) {
 
 }  // namespace
 
-Result<JournalContents> read_journal(const std::filesystem::path& path) {
+const char* to_string(JournalFault fault) {
+  switch (fault) {
+    case JournalFault::none:
+      return "none";
+    case JournalFault::unreadable:
+      return "unreadable";
+    case JournalFault::torn_header:
+      return "torn_header";
+    case JournalFault::not_a_journal:
+      return "not_a_journal";
+    case JournalFault::damaged_record:
+      return "damaged_record";
+    case JournalFault::malformed_record:
+      return "malformed_record";
+    case JournalFault::record_after_end:
+      return "record_after_end";
+  }
+  return "unknown";
+}
+
+JournalRead read_journal(const std::filesystem::path& path) {
   const Result<std::string> content = io::read_text_file(path);
-  if (!content.ok()) return content.status();
+  if (!content.ok()) return {JournalFault::unreadable, content.status(), {}};
   const std::string& text = content.value();
-  JournalContents out;
+  JournalRead out;
+  JournalContents& contents = out.contents;
   std::size_t pos = 0;
   int line_number = 0;
-  auto error = [&](const std::string& what) {
-    return Status::error(StatusCode::parse_error,
-                         path.string() + ": line " + std::to_string(line_number) + ": " + what);
+  auto fail = [&](JournalFault fault, const std::string& what) {
+    out.fault = fault;
+    out.status =
+        Status::error(StatusCode::parse_error,
+                      path.string() + ": line " + std::to_string(line_number) + ": " + what);
+    return out;
   };
   while (pos < text.size()) {
     const std::size_t newline = text.find('\n', pos);
@@ -159,35 +194,35 @@ Result<JournalContents> read_journal(const std::filesystem::path& path) {
     const bool last = !complete || newline + 1 == text.size();
     if (!intact) {
       // Only the last line can be torn by a crash; damage before it is corruption.
-      if (!last) return error("damaged record (checksum mismatch) before intact ones");
-      out.dropped_torn_record = true;
+      if (!last) {
+        return fail(JournalFault::damaged_record,
+                    "damaged record (checksum mismatch) before intact ones");
+      }
+      contents.dropped_torn_record = true;
       break;
     }
     if (line_number == 1) {
-      std::istringstream words(body);
-      std::string magic, version, scene, script, rate;
-      words >> magic >> version >> scene >> script >> rate;
-      if (magic + " " + version != kMagic || scene.rfind("scene=", 0) != 0 ||
-          script.rfind("script=", 0) != 0 || rate.rfind("rate=", 0) != 0 ||
-          !parse_hex64(scene.substr(6), out.header.scene_hash) ||
-          !parse_hex64(script.substr(7), out.header.script_hash) ||
-          !parse_double(rate.substr(5), out.header.haptic_rate)) {
-        return error("not an argil journal (expected the header '" + std::string(kMagic) +
-                     " scene=... script=... rate=...')");
+      if (!parse_header(body, contents.header)) {
+        return fail(JournalFault::not_a_journal, "not an argil journal (expected the header '" +
+                                                     std::string(kMagic) +
+                                                     " scene=... script=... rate=...')");
       }
     } else if (body == "end") {
-      out.finished = true;
+      contents.finished = true;
     } else {
-      if (out.finished) return error("record after the end record");
+      if (contents.finished)
+        return fail(JournalFault::record_after_end, "record after the end record");
       JournalRecord record;
-      if (!parse_record(body, record)) return error("malformed record");
-      out.records.push_back(std::move(record));
+      if (!parse_record(body, record))
+        return fail(JournalFault::malformed_record, "malformed record");
+      contents.records.push_back(std::move(record));
     }
     pos = newline + 1;
-    out.valid_bytes = pos;
+    contents.valid_bytes = pos;
   }
-  if (line_number == 0 || out.valid_bytes == 0) {
-    return Status::error(StatusCode::parse_error, path.string() + ": empty or torn header");
+  if (contents.valid_bytes == 0) {
+    out.fault = JournalFault::torn_header;
+    out.status = Status::error(StatusCode::parse_error, path.string() + ": empty or torn header");
   }
   return out;
 }

@@ -45,9 +45,32 @@ struct JournalContents {
   bool dropped_torn_record = false;  // a partial last line was ignored
 };
 
+/// Why a journal file could not be read; callers decide on this, never on the
+/// message text.
+enum class JournalFault {
+  none,              // read: `contents` holds the intact prefix
+  unreadable,        // the file cannot be opened or read
+  torn_header,       // empty, or its header line is torn: killed before the first record
+  not_a_journal,     // an intact first line that is not a journal header
+  damaged_record,    // a checksum-failing line before intact ones: corruption, not a crash
+  malformed_record,  // an intact line that is not a record
+  record_after_end,  // a record after the "end" record
+};
+
+/// Name of a fault, for messages and test output ("torn_header").
+const char* to_string(JournalFault fault);
+
+/// A journal as read back, or why it could not be.
+struct JournalRead {
+  JournalFault fault = JournalFault::none;
+  Status status;             // the error naming the file and line; ok iff fault is none
+  JournalContents contents;  // meaningful iff ok()
+  bool ok() const { return fault == JournalFault::none; }
+};
+
 /// Reads a journal. A torn (partial or checksum-failing) last line is dropped;
 /// a damaged line before intact ones is an error naming the line.
-Result<JournalContents> read_journal(const std::filesystem::path& path);
+JournalRead read_journal(const std::filesystem::path& path);
 
 /// Appends records durably (write, flush, fsync). Not copyable; closes on destruction.
 class JournalWriter {

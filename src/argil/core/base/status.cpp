@@ -18,6 +18,10 @@ const char* to_string(StatusCode code) {
       return "unsupported";
     case StatusCode::numerical_failure:
       return "numerical_failure";
+    case StatusCode::failed_precondition:
+      return "failed_precondition";
+    case StatusCode::external_failure:
+      return "external_failure";
   }
   return "unknown";
 }

@@ -17,6 +17,11 @@ enum class StatusCode {
   parse_error,        // a file was read but its content is malformed
   unsupported,        // well-formed input that argil does not handle
   numerical_failure,  // a computation lost its guarantees (singular system, ...)
+  // State found in place prevents the operation, and starting afresh would not
+  // (an output folder holding another run's unfinished journal).
+  failed_precondition,
+  // A contained third-party component crashed, hung or ended without a result.
+  external_failure,  // keep last: the CAD reader process checks codes against it
 };
 
 /// Name of a status code, for messages ("invalid_surface").

@@ -68,10 +68,10 @@ void write_all(int fd, std::string_view bytes) {
       report = std::string(1, static_cast<char>(model.status().code)) + model.status().message;
     }
   } catch (const std::bad_alloc&) {
-    report = std::string(1, static_cast<char>(StatusCode::parse_error)) + "out of memory (limit " +
-             std::to_string(limits.memory_limit_mb) + " MB)";
+    report = std::string(1, static_cast<char>(StatusCode::external_failure)) +
+             "out of memory (limit " + std::to_string(limits.memory_limit_mb) + " MB)";
   } catch (...) {
-    report = std::string(1, static_cast<char>(StatusCode::parse_error)) +
+    report = std::string(1, static_cast<char>(StatusCode::external_failure)) +
              "the reader threw an unknown exception";
   }
   write_all(fd, report);
@@ -79,8 +79,10 @@ void write_all(int fd, std::string_view bytes) {
   ::_exit(0);  // no atexit handlers or destructors of the parent's state
 }
 
+/// The reader process failed (crashed, hung, died or garbled its report): the
+/// code lets callers tell a contained OpenCASCADE failure from a bad file.
 Status child_error(const std::string& what, const std::string& text) {
-  return Status::error(StatusCode::parse_error, what + ": " + text);
+  return Status::error(StatusCode::external_failure, what + ": " + text);
 }
 
 }  // namespace
@@ -148,7 +150,7 @@ Result<Model> read_in_child_process(const std::function<Result<Model>()>& read,
                                  std::to_string(WEXITSTATUS(status)) + ")");
   }
   const auto code = static_cast<StatusCode>(static_cast<unsigned char>(report[0]));
-  if (code > StatusCode::numerical_failure) {
+  if (code > StatusCode::external_failure) {
     return child_error(what, "the reader process sent an unreadable report");
   }
   const std::string_view body = std::string_view(report).substr(1);

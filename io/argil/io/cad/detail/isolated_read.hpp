@@ -21,7 +21,7 @@ struct IsolationLimits {
 /// a pipe as argil JSON (bit-exact doubles; invalid UTF-8 in names and metadata
 /// is replaced, as to_json() does). `what` names the input in messages ("file.step").
 /// A child killed by a signal, over the time limit or unable to report gives
-/// StatusCode::parse_error naming the signal or the limit.
+/// StatusCode::external_failure naming the signal or the limit.
 Result<Model> read_in_child_process(const std::function<Result<Model>()>& read,
                                     const IsolationLimits& limits, const std::string& what);
 

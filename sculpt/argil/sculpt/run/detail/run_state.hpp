@@ -1,0 +1,21 @@
+#pragma once
+// Internal to the runner: what a run accumulates tick by tick, for the journal
+// and the outputs written at the end.
+
+#include <vector>
+
+#include "argil/sculpt/output/tick_log.hpp"
+#include "argil/sculpt/script/script.hpp"
+
+namespace argil::sculpt::detail {
+
+struct RunState {
+  TickLog log;                             // every tick, replayed ones included
+  std::vector<double> wall_s, cpu_s;       // per live tick [s]
+  std::vector<DeviceSample> received;      // every sample, for recorded.csv and the path
+  std::vector<DeviceSample> unjournalled;  // since the last journal record
+  int strokes = 0;                         // journalled
+  long long next_tick = 0;
+};
+
+}  // namespace argil::sculpt::detail
