@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/io/json/json_literals.hpp"
 
 namespace argil::sculpt::internal {
@@ -94,7 +95,7 @@ bool JsonReader::positive(const Json& value, const std::string& path, double& ou
   if (!number(value, path, out)) return false;
   if (allow_zero ? out < 0.0 : out <= 0.0) {
     return fail(path, std::string("must be ") + (allow_zero ? ">= 0" : "> 0") + ", got " +
-                          format_double(out));
+                          number_text(out));
   }
   return true;
 }

@@ -6,13 +6,13 @@
 #include <set>
 #include <sstream>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/io/base/text_file.hpp"
 #include "argil/sculpt/detail/json_reader.hpp"
 
 namespace argil::sculpt {
 namespace {
 
-using internal::format_double;
 using internal::Json;
 using internal::JsonReader;
 
@@ -41,8 +41,8 @@ class SceneReader {
     if (const Json* rate = r_.member(root, "", "haptic_rate", false)) {
       if (!r_.positive(*rate, "haptic_rate", out.haptic_rate)) return false;
       if (out.haptic_rate > kMaxHapticRate) {
-        return r_.fail("haptic_rate", "must be at most " + format_double(kMaxHapticRate) +
-                                          " Hz, got " + format_double(out.haptic_rate));
+        return r_.fail("haptic_rate", "must be at most " + number_text(kMaxHapticRate) +
+                                          " Hz, got " + number_text(out.haptic_rate));
       }
     }
     if (const Json* coupling = r_.member(root, "", "coupling", false)) {

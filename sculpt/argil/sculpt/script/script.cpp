@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/io/base/atomic_write.hpp"
 #include "argil/io/base/text_file.hpp"
 #include "argil/sculpt/detail/json_reader.hpp"
@@ -41,7 +42,7 @@ bool parse_event(std::string_view text, ScriptEvent& out) {
 std::string normalise_quaternion(Eigen::Quaterniond& q) {
   const double norm = q.norm();
   if (!std::isfinite(norm) || std::abs(norm - 1.0) > kQuaternionNormTolerance) {
-    return "not a unit quaternion (w, x, y, z): norm " + format_double(norm);
+    return "not a unit quaternion (w, x, y, z): norm " + number_text(norm);
   }
   if (std::abs(norm - 1.0) > kUnitNormRounding) q.coeffs() /= norm;
   return "";
@@ -94,17 +95,17 @@ Status check_keyframes(const std::vector<Keyframe>& keyframes, const std::string
   for (std::size_t k = 0; k < keyframes.size(); ++k) {
     const Keyframe& f = keyframes[k];
     if (!std::isfinite(f.time)) return error(k, "t", "time must be finite");
-    if (f.time < 0.0) return error(k, "t", "time must be >= 0, got " + format_double(f.time));
+    if (f.time < 0.0) return error(k, "t", "time must be >= 0, got " + number_text(f.time));
     if (k > 0 && !(f.time > keyframes[k - 1].time)) {
       return error(k, "t",
-                   "time " + format_double(f.time) + " s is not after the previous keyframe's " +
-                       format_double(keyframes[k - 1].time) + " s (times must increase)");
+                   "time " + number_text(f.time) + " s is not after the previous keyframe's " +
+                       number_text(keyframes[k - 1].time) + " s (times must increase)");
     }
     if (!f.position.allFinite()) return error(k, "position", "must be finite");
     const double norm = f.orientation.norm();
     if (!std::isfinite(norm) || std::abs(norm - 1.0) > kQuaternionNormTolerance) {
       return error(k, "orientation",
-                   "not a unit quaternion (w, x, y, z): norm " + format_double(norm));
+                   "not a unit quaternion (w, x, y, z): norm " + number_text(norm));
     }
     if (f.event == ScriptEvent::engage) {
       if (engaged) return error(k, "event", "engage while already engaged");

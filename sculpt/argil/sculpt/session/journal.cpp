@@ -14,6 +14,8 @@
 #include "argil/sculpt/detail/fnv_hash.hpp"
 
 namespace argil::sculpt {
+
+std::uint64_t journal_input_hash(std::string_view bytes) { return fnv1a64(bytes); }
 namespace {
 
 constexpr std::string_view kMagic = "argil.journal 1";

@@ -27,6 +27,11 @@ struct JournalHeader {
   double haptic_rate = 0.0;       // [Hz]
 };
 
+/// The hash a JournalHeader names an input by (FNV-1a 64 of the file's bytes,
+/// not cryptographic): equal hashes mean, with overwhelming probability, the
+/// same scene or script.
+std::uint64_t journal_input_hash(std::string_view bytes);
+
 /// One journal entry: the samples of ticks first_tick .. first_tick + n - 1
 /// (consecutive), then, if `command` is undo or redo, that session command.
 struct JournalRecord {
