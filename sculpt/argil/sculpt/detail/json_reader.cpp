@@ -91,11 +91,12 @@ bool JsonReader::number(const Json& value, const std::string& path, double& out)
 }
 
 bool JsonReader::positive(const Json& value, const std::string& path, double& out,
-                          bool allow_zero) {
+                          const Quantity& q) {
   if (!number(value, path, out)) return false;
-  if (allow_zero ? out < 0.0 : out <= 0.0) {
-    return fail(path, std::string("must be ") + (allow_zero ? ">= 0" : "> 0") + ", got " +
-                          number_text(out));
+  if (q.allow_zero ? out < 0.0 : out <= 0.0) {
+    const std::string unit = q.unit.empty() ? "" : " " + std::string(q.unit);
+    return fail(path, std::string("must be ") + (q.allow_zero ? ">= 0" : "> 0") + unit + ", got " +
+                          number_text(out) + unit);
   }
   return true;
 }
