@@ -44,7 +44,7 @@ class SceneReader {
       if (!r_.positive(*rate, "haptic_rate", out.haptic_rate, {.unit = "Hz"})) return false;
       if (out.haptic_rate > kMaxHapticRate) {
         return r_.fail("haptic_rate", "must be at most " + number_text(kMaxHapticRate) +
-                                          " Hz, got " + number_text(out.haptic_rate));
+                                          " Hz, got " + number_text(out.haptic_rate) + " Hz");
       }
     }
     if (const Json* coupling = r_.member(root, "", "coupling", false)) {
