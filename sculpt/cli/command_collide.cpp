@@ -1,14 +1,14 @@
 // argil collide A B [--face-a I] [--face-b J] [--tolerance E] [--refine] [--json]:
 // intersection curves and contact regions between one face of each model.
-#include <cmath>
+#include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
+#include "argil/core/base/number_text.hpp"
+#include "argil/core/collision/surface_intersection.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
-#include "argil/core/collision/surface_intersection.hpp"
 #include "argil/core/operators/surface_operators.hpp"
 #include "argil/io/files/model_files.hpp"
 #include "commands.hpp"
@@ -20,14 +20,6 @@ namespace {
 // coarse enough to stay interactive; scales with the two faces.
 constexpr double kDefaultRelativeTolerance = 1e-4;
 
-int usage() {
-  std::fprintf(
-      stderr,
-      "usage: argil collide A B [--face-a I] [--face-b J] [--tolerance E] [--refine] [--json]\n"
-      "  I, J: face indices (default 0); E: eps in mm (> 0), default 1e-4 of the faces' size\n");
-  return kExitUsage;
-}
-
 struct Options {
   std::string path_a, path_b;
   long face_a = 0, face_b = 0;
@@ -36,54 +28,14 @@ struct Options {
   bool json = false;
 };
 
-bool parse_index(const std::string& text, long& out) {
-  char* end = nullptr;
-  out = std::strtol(text.c_str(), &end, 10);
-  return end != text.c_str() && *end == '\0';
-}
-
-/// Parses the arguments; returns -1 on success, else the exit status.
-int parse(const std::vector<std::string>& args, Options& o) {
-  std::vector<std::string> paths;
-  for (std::size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    const bool has_value = k + 1 < args.size();
-    if (a == "--face-a" || a == "--face-b") {
-      if (!has_value) return usage();
-      long& face = a == "--face-a" ? o.face_a : o.face_b;
-      if (!parse_index(args[k + 1], face) || face < 0) {
-        std::fprintf(stderr, "argil collide: %s needs a face index >= 0, got '%s'\n", a.c_str(),
-                     args[k + 1].c_str());
-        return kExitUsage;
-      }
-      ++k;
-    } else if (a == "--tolerance") {
-      if (!has_value) return usage();
-      char* end = nullptr;
-      o.tolerance_mm = std::strtod(args[k + 1].c_str(), &end);
-      if (end == args[k + 1].c_str() || *end != '\0' || !std::isfinite(o.tolerance_mm) ||
-          o.tolerance_mm <= 0.0) {
-        std::fprintf(stderr,
-                     "argil collide: --tolerance needs a positive finite number [mm], got '%s'\n",
-                     args[k + 1].c_str());
-        return kExitUsage;
-      }
-      ++k;
-    } else if (a == "--refine") {
-      o.refine = true;
-    } else if (a == "--json") {
-      o.json = true;
-    } else if (a.size() > 1 && a[0] == '-') {
-      std::fprintf(stderr, "argil collide: unknown option '%s'\n", a.c_str());
-      return usage();
-    } else {
-      paths.push_back(a);
-    }
-  }
-  if (paths.size() != 2) return usage();
-  o.path_a = paths[0];
-  o.path_b = paths[1];
-  return -1;
+Options options_from(const Arguments& a) {
+  return {.path_a = a.operands[0],
+          .path_b = a.operands[1],
+          .face_a = a.index("--face-a").value_or(0),
+          .face_b = a.index("--face-b").value_or(0),
+          .tolerance_mm = a.number("--tolerance").value_or(0.0),
+          .refine = a.flag("--refine"),
+          .json = a.flag("--json")};
 }
 
 /// Reads `path` and copies face `index` out of it; prints the error.
@@ -138,7 +90,7 @@ bool closed(const IntersectionCurve& c) {
 void print_text(const Options& o, double eps, const CollisionResult& r) {
   std::printf("a: %s face %ld\nb: %s face %ld\n", o.path_a.c_str(), o.face_a, o.path_b.c_str(),
               o.face_b);
-  std::printf("tolerance: %.6g mm, refine: %s\n", eps, o.refine ? "yes" : "no");
+  std::printf("tolerance: %s mm, refine: %s\n", number_text(eps).c_str(), o.refine ? "yes" : "no");
   const std::vector<RegionSummary> regions = summarize_regions(r);
   std::printf("\ncontact regions: %zu (%zu contacts)\n", regions.size(), r.contacts.size());
   for (std::size_t k = 0; k < regions.size(); ++k) {
@@ -189,12 +141,8 @@ std::string json_string(const std::string& s) {
   return out + "\"";
 }
 
-/// 17 significant digits: reads back to the same double.
-std::string json_number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
+/// Reads back to the same double.
+std::string json_number(double x) { return number_text(x); }
 
 template <class V>
 std::string json_vector(const V& v) {
@@ -253,9 +201,45 @@ void print_json(const Options& o, double eps, const CollisionResult& r) {
 
 }  // namespace
 
+const CommandSpec& collide_command() {
+  static const CommandSpec spec{
+      .name = "collide",
+      .operands = {"A", "B"},
+      .summary = "intersection curves and contact regions between a face of A and one of B",
+      .description =
+          "A and B are model files (see argil help info). Prints each contact region\n"
+          "and each intersection curve with its end points, in mm.",
+      .options = {{.name = "--face-a",
+                   .argument = "I",
+                   .kind = ValueKind::index,
+                   .description = "the face of A",
+                   .default_text = "0"},
+                  {.name = "--face-b",
+                   .argument = "J",
+                   .kind = ValueKind::index,
+                   .description = "the face of B",
+                   .default_text = "0"},
+                  {.name = "--tolerance",
+                   .argument = "E",
+                   .kind = ValueKind::number,
+                   .description = "eps, the distance within which the faces touch",
+                   .range = kPositiveFinite,
+                   .unit = "mm",
+                   .default_text = "1e-4 of the larger face's size"},
+                  {.name = "--refine",
+                   .description = "Newton-refine contact points on the exact surfaces",
+                   .default_text = "off"},
+                  {.name = "--json",
+                   .description = "print JSON instead of text",
+                   .default_text = "off"}},
+  };
+  return spec;
+}
+
 int run_collide(const std::vector<std::string>& args) {
-  Options o;
-  if (const int status = parse(args, o); status >= 0) return status;
+  const ParseResult parsed = parse_arguments(collide_command(), args);
+  if (!parsed.arguments) return parsed.exit_status;
+  const Options o = options_from(*parsed.arguments);
   BSplineSurface a, b;
   if (!load_face(o.path_a, o.face_a, "a", a) || !load_face(o.path_b, o.face_b, "b", b))
     return kExitFailure;

@@ -1,7 +1,5 @@
 // argil convert IN OUT [--tolerance T]: formats chosen by extension.
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -15,33 +13,33 @@ namespace {
 // enough to keep meshes of whole models to a few hundred thousand triangles.
 constexpr double kDefaultRelativeChordTolerance = 1e-3;
 
-int usage() {
-  std::fprintf(stderr, "usage: argil convert IN OUT [--tolerance T]   (T in mm, > 0)\n");
-  return kExitUsage;
-}
-
 }  // namespace
 
+const CommandSpec& convert_command() {
+  static const CommandSpec spec{
+      .name = "convert",
+      .operands = {"IN", "OUT"},
+      .summary = "convert a model between STEP, IGES, JSON and meshes",
+      .description =
+          "Formats follow the extensions: STEP (.step .stp), IGES (.iges .igs) and argil\n"
+          "JSON (.json) in and out; meshes (.stl .obj .ply .glb) out only.",
+      .options = {{.name = "--tolerance",
+                   .argument = "T",
+                   .kind = ValueKind::number,
+                   .description = "mesh chord tolerance, the largest distance from a triangle to "
+                                  "the surface (meshes only)",
+                   .range = kPositiveFinite,
+                   .unit = "mm",
+                   .default_text = "1e-3 of the model's size"}},
+  };
+  return spec;
+}
+
 int run_convert(const std::vector<std::string>& args) {
-  std::vector<std::string> paths;
-  double tolerance_mm = 0.0;
-  for (std::size_t k = 0; k < args.size(); ++k) {
-    if (args[k] == "--tolerance") {
-      if (k + 1 >= args.size()) return usage();
-      char* end = nullptr;
-      tolerance_mm = std::strtod(args[k + 1].c_str(), &end);
-      if (end == args[k + 1].c_str() || *end != '\0' || !std::isfinite(tolerance_mm) ||
-          tolerance_mm <= 0.0) {
-        std::fprintf(stderr, "argil convert: --tolerance needs a positive number [mm], got '%s'\n",
-                     args[k + 1].c_str());
-        return kExitUsage;
-      }
-      ++k;
-    } else {
-      paths.push_back(args[k]);
-    }
-  }
-  if (paths.size() != 2) return usage();
+  const ParseResult parsed = parse_arguments(convert_command(), args);
+  if (!parsed.arguments) return parsed.exit_status;
+  const std::vector<std::string>& paths = parsed.arguments->operands;
+  const double tolerance_mm = parsed.arguments->number("--tolerance").value_or(0.0);
   const Result<io::Model> read = io::read_model(paths[0]);
   if (!read.ok()) {
     std::fprintf(stderr, "argil convert: %s\n", read.status().message.c_str());

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/io/files/model_files.hpp"
 #include "commands.hpp"
@@ -17,12 +18,24 @@ void print_vector(const char* label, const Eigen::Vector3d& p) {
 
 }  // namespace
 
+const CommandSpec& info_command() {
+  static const CommandSpec spec{
+      .name = "info",
+      .operands = {"FILE"},
+      .summary = "faces, degrees, control nets, trims, units and bounding box of a model",
+      .description =
+          "FILE is STEP (.step .stp), IGES (.iges .igs) or argil JSON (.json). Lengths\n"
+          "print in mm; each surface is also evaluated at the centre of its domain.",
+      .options = {},
+  };
+  return spec;
+}
+
 int run_info(const std::vector<std::string>& args) {
-  if (args.size() != 1) {
-    std::fprintf(stderr, "usage: argil info FILE\n");
-    return kExitUsage;
-  }
-  const Result<io::Model> read = io::read_model(args[0]);
+  const ParseResult parsed = parse_arguments(info_command(), args);
+  if (!parsed.arguments) return parsed.exit_status;
+  const std::string& path = parsed.arguments->operands[0];
+  const Result<io::Model> read = io::read_model(path);
   if (!read.ok()) {
     std::fprintf(stderr, "argil info: %s\n", read.status().message.c_str());
     return kExitFailure;
@@ -33,9 +46,9 @@ int run_info(const std::vector<std::string>& args) {
     trimmed += face.trimmed() ? 1u : 0u;
     rational += face.surface.is_rational() ? 1u : 0u;
   }
-  std::printf("file: %s\n", args[0].c_str());
-  std::printf("units: mm (source unit: %s, 1 source unit = %.17g mm)\n",
-              model.source_unit.name.c_str(), model.source_unit.to_mm);
+  std::printf("file: %s\n", path.c_str());
+  std::printf("units: mm (source unit: %s, 1 source unit = %s mm)\n",
+              model.source_unit.name.c_str(), number_text(model.source_unit.to_mm).c_str());
   std::printf("faces: %zu (%zu trimmed, %zu rational)\n", model.faces.size(), trimmed, rational);
   const Box3 box = io::model_box(model);
   std::printf("bounding box of the control points [mm]: ");

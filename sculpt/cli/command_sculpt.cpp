@@ -19,18 +19,6 @@ namespace {
 using namespace argil::sculpt;
 using Clock = std::chrono::steady_clock;
 
-int usage() {
-  std::fprintf(stderr,
-               "usage: argil sculpt SCENE [--script S] [--out DIR] [--tolerance E] [--fresh] "
-               "[--realtime]\n"
-               "  S: script (.json or .csv), default the scene's \"script\"\n"
-               "  DIR: output folder, default out/<scene name>\n"
-               "  E: eps in mm (> 0), overrides the scene's tolerance\n"
-               "  --fresh: ignore an unfinished journal in DIR instead of resuming from it\n"
-               "  --realtime: pace ticks at the haptic rate like a live device\n");
-  return kExitUsage;
-}
-
 struct Options {
   std::filesystem::path scene, script, out;
   double tolerance = 0.0;  // 0: the scene's
@@ -38,39 +26,18 @@ struct Options {
   bool realtime = false;
 };
 
+/// Checks the command line; returns -1 when the run should go ahead with `o`
+/// filled in, else the exit status.
 int parse(const std::vector<std::string>& args, Options& o) {
-  std::vector<std::string> positional;
-  for (std::size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    const bool has_value = k + 1 < args.size();
-    if (a == "--script" || a == "--out") {
-      if (!has_value || args[k + 1].empty()) return usage();
-      (a == "--script" ? o.script : o.out) = args[++k];
-    } else if (a == "--tolerance") {
-      if (!has_value) return usage();
-      char* end = nullptr;
-      o.tolerance = std::strtod(args[k + 1].c_str(), &end);
-      if (end == args[k + 1].c_str() || *end != '\0' || !std::isfinite(o.tolerance) ||
-          o.tolerance <= 0.0) {
-        std::fprintf(stderr,
-                     "argil sculpt: --tolerance needs a positive finite number [mm], got '%s'\n",
-                     args[k + 1].c_str());
-        return kExitUsage;
-      }
-      ++k;
-    } else if (a == "--fresh") {
-      o.fresh = true;
-    } else if (a == "--realtime") {
-      o.realtime = true;
-    } else if (a.size() > 1 && a[0] == '-') {
-      std::fprintf(stderr, "argil sculpt: unknown option '%s'\n", a.c_str());
-      return usage();
-    } else {
-      positional.push_back(a);
-    }
-  }
-  if (positional.size() != 1) return usage();
-  o.scene = positional[0];
+  const ParseResult parsed = parse_arguments(sculpt_command(), args);
+  if (!parsed.arguments) return parsed.exit_status;
+  const Arguments& a = *parsed.arguments;
+  o.scene = a.operands[0];
+  o.script = a.text("--script").value_or("");
+  o.out = a.text("--out").value_or("");
+  o.tolerance = a.number("--tolerance").value_or(0.0);
+  o.fresh = a.flag("--fresh");
+  o.realtime = a.flag("--realtime");
   return -1;
 }
 
@@ -134,6 +101,42 @@ void print_report(const Options& o, const RunReport& report) {
 }
 
 }  // namespace
+
+const CommandSpec& sculpt_command() {
+  static const CommandSpec spec{
+      .name = "sculpt",
+      .operands = {"SCENE"},
+      .summary = "run a sculpting session: a scene's tool driven by a script",
+      .description =
+          "Writes the sculpted surfaces (STEP, IGES, JSON), forces.csv, contacts.csv,\n"
+          "timing.json, recorded.csv and pictures to DIR. An interrupted run resumes\n"
+          "from DIR/session.journal.",
+      .options = {{.name = "--script",
+                   .argument = "S",
+                   .kind = ValueKind::text,
+                   .description = "the device script (.json or .csv)",
+                   .default_text = "the scene's \"script\""},
+                  {.name = "--out",
+                   .argument = "DIR",
+                   .kind = ValueKind::text,
+                   .description = "the output folder",
+                   .default_text = "out/<scene name>"},
+                  {.name = "--tolerance",
+                   .argument = "E",
+                   .kind = ValueKind::number,
+                   .description = "eps, the contact distance; overrides the scene's",
+                   .range = kPositiveFinite,
+                   .unit = "mm",
+                   .default_text = "the scene's \"tolerance\""},
+                  {.name = "--fresh",
+                   .description = "ignore an unfinished journal in DIR instead of resuming from it",
+                   .default_text = "off"},
+                  {.name = "--realtime",
+                   .description = "pace ticks at the haptic rate like a live device",
+                   .default_text = "off"}},
+  };
+  return spec;
+}
 
 int run_sculpt(const std::vector<std::string>& args) {
   Options o;

@@ -1,23 +1,49 @@
 #pragma once
-// The argil program's sub-commands. Each takes the arguments after its name,
-// prints results to stdout and errors to stderr, and returns the exit status.
+// The argil program's sub-commands. Each declares its command line once (a
+// CommandSpec), takes the arguments after its name, prints results to stdout
+// and errors to stderr, and returns the exit status.
 
 #include <string>
 #include <vector>
 
+#include "options.hpp"
+
 namespace argil::cli {
 
 /// argil info FILE
+const CommandSpec& info_command();
 int run_info(const std::vector<std::string>& args);
 
 /// argil convert IN OUT [--tolerance T]
+const CommandSpec& convert_command();
 int run_convert(const std::vector<std::string>& args);
 
 /// argil collide A B [--face-a I] [--face-b J] [--tolerance E] [--refine] [--json]
+const CommandSpec& collide_command();
 int run_collide(const std::vector<std::string>& args);
 
 /// argil sculpt SCENE [--script S] [--out DIR] [--tolerance E] [--fresh] [--realtime]
+const CommandSpec& sculpt_command();
 int run_sculpt(const std::vector<std::string>& args);
+
+/// argil help [COMMAND]
+const CommandSpec& help_command();
+int run_help(const std::vector<std::string>& args);
+
+/// A command the program dispatches to.
+struct Command {
+  const CommandSpec& (*spec)();
+  int (*run)(const std::vector<std::string>& args);
+};
+
+/// Every command, in the order the program's usage lists them.
+const std::vector<Command>& all_commands();
+
+/// The command called `name`, or nullptr.
+const Command* find_command(const std::string& name);
+
+/// The program's usage: synopsis and each command with its one-line summary.
+std::string program_usage();
 
 /// Exit statuses shared by the commands.
 inline constexpr int kExitOk = 0;

@@ -1,12 +1,13 @@
 #pragma once
 // argil::core, the entry header. Modules from the bottom up (each includes only
-// those above it in this list): base (status, results), linalg (banded solvers),
+// those above it in this list): base (status, results, number text), linalg (banded solvers),
 // geometry (B-spline surfaces, evaluation, Bezier patches, tool shapes),
 // operators (precomputed fitting and evaluation matrices), hierarchy (the
 // conservative lazy bound tree), collision (queries and contacts), deform
 // (materials and the deformable body), haptic (proxies, coupling, the tick).
 
 // base
+#include "argil/core/base/number_text.hpp"  // IWYU pragma: export
 #include "argil/core/base/status.hpp"  // IWYU pragma: export
 // linalg
 #include "argil/core/linalg/banded_cholesky.hpp"  // IWYU pragma: export

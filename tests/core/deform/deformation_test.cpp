@@ -90,6 +90,19 @@ TEST_CASE("validate(Material) names the field outside its range", "[deformation]
   CHECK(argil::validate(m).ok());
 }
 
+TEST_CASE("validate(Material) states the range and the value in the field's unit",
+          "[deformation]") {
+  argil::Material m;
+  m.stiffness = 2e9;
+  CHECK(argil::validate(m).message ==
+        "material.stiffness must be in [0, 1e+09] N/mm, got 2e+09 N/mm");
+  m = {};
+  m.damping = -0.1;
+  CHECK(argil::validate(m).message == "material.damping must be in [0, " +
+                                          argil::number_text(argil::kMaterialRange.damping_max) +
+                                          "] s, got -0.1 s");
+}
+
 TEST_CASE("node masses outside the documented range are rejected naming density", "[deformation]") {
   const auto s = panel(6);
   argil::Material m;

@@ -2,8 +2,9 @@
 #   same_faces: convert IN to OUT, then `info` on both must list the same faces
 #               (degrees, pole counts, rational, trimmed); stdout carries no
 #               OpenCASCADE chatter.
-#   fails:      ARGS must exit non-zero with EXPECT in stderr.
-# Variables: ARGIL, MODE, IN, OUT, ARGS (;-list), EXPECT.
+#   fails:      ARGS must exit non-zero with EXPECT in stderr (and, when
+#               NOT_EXPECT is given, no match of it).
+# Variables: ARGIL, MODE, IN, OUT, ARGS (;-list), EXPECT, NOT_EXPECT.
 cmake_minimum_required(VERSION 3.20)
 
 function(run_argil out_var err_var rc_var)
@@ -49,6 +50,9 @@ elseif(MODE STREQUAL "fails")
   endif()
   if(NOT err MATCHES "${EXPECT}")
     message(FATAL_ERROR "stderr does not mention '${EXPECT}':\n${err}")
+  endif()
+  if(DEFINED NOT_EXPECT AND err MATCHES "${NOT_EXPECT}")
+    message(FATAL_ERROR "stderr matches '${NOT_EXPECT}' ('${CMAKE_MATCH_0}'):\n${err}")
   endif()
   message(STATUS "failed as expected (${rc}): ${err}")
 else()

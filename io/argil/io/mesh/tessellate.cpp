@@ -5,6 +5,7 @@
 #include <map>
 #include <utility>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/io/model/trim_curve.hpp"
 
@@ -253,8 +254,9 @@ TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& 
 
 Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& options) {
   if (!(options.chord_tolerance_mm > 0.0) || !std::isfinite(options.chord_tolerance_mm)) {
-    return Status::error(StatusCode::invalid_argument,
-                         "chord tolerance must be positive and finite [mm]");
+    return Status::error(StatusCode::invalid_argument, "chord tolerance " +
+                                                           number_text(options.chord_tolerance_mm) +
+                                                           " mm must be positive and finite");
   }
   // Mesh files store float32 coordinates (about 6e-8 relative); a finer chord
   // tolerance buys nothing and would subdivide without bound.
@@ -262,9 +264,12 @@ Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& o
   const double size = model_box(model).diagonal();
   if (options.chord_tolerance_mm < kFinestRelativeTolerance * size) {
     return Status::error(StatusCode::invalid_argument,
-                         "chord tolerance " + std::to_string(options.chord_tolerance_mm) +
-                             " mm is below 1e-7 of the model size (" + std::to_string(size) +
-                             " mm): finer than float32 mesh files can store");
+                         "chord tolerance " + number_text(options.chord_tolerance_mm) +
+                             " mm is below the smallest this model allows, " +
+                             number_text(kFinestRelativeTolerance * size) + " mm (" +
+                             number_text(kFinestRelativeTolerance) + " of its " +
+                             number_text(size) +
+                             " mm size): finer than float32 mesh files can store");
   }
   TriangleMesh all;
   std::vector<TriangleMesh> parts;

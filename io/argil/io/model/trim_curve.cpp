@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <string>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/core/geometry/basis.hpp"
 
 namespace argil::io {
@@ -14,10 +15,7 @@ Status curve_error(const std::string& what) {
 }
 
 std::string at(const char* field, Eigen::Index index, double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << field << "[" << index << "] = " << value;
-  return out.str();
+  return std::string(field) + "[" + std::to_string(index) + "] = " + number_text(value);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/io/json/json_literals.hpp"
 
 namespace argil::sculpt::internal {
@@ -90,11 +91,12 @@ bool JsonReader::number(const Json& value, const std::string& path, double& out)
 }
 
 bool JsonReader::positive(const Json& value, const std::string& path, double& out,
-                          bool allow_zero) {
+                          const Quantity& q) {
   if (!number(value, path, out)) return false;
-  if (allow_zero ? out < 0.0 : out <= 0.0) {
-    return fail(path, std::string("must be ") + (allow_zero ? ">= 0" : "> 0") + ", got " +
-                          format_double(out));
+  if (q.allow_zero ? out < 0.0 : out <= 0.0) {
+    const std::string unit = q.unit.empty() ? "" : " " + std::string(q.unit);
+    return fail(path, std::string("must be ") + (q.allow_zero ? ">= 0" : "> 0") + unit + ", got " +
+                          number_text(out) + unit);
   }
   return true;
 }
@@ -139,17 +141,6 @@ std::string JsonReader::join(const std::string& path, std::string_view key) {
 
 std::string JsonReader::index(const std::string& path, std::size_t k) {
   return path + "[" + std::to_string(k) + "]";
-}
-
-std::string format_double(double x) {
-  // The fewest significant digits (15 to 17) that read back to the same double.
-  char buffer[32];
-  for (int digits = 15; digits < 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-    if (std::strtod(buffer, nullptr) == x) return buffer;
-  }
-  std::snprintf(buffer, sizeof buffer, "%.17g", x);
-  return buffer;
 }
 
 bool JsonReader::format_header(const Json& root, std::string_view format, long long version) {

@@ -37,8 +37,13 @@ class JsonReader {
                   const std::vector<std::string_view>& known);
 
   bool number(const Json& value, const std::string& path, double& out);
-  /// A number > 0 (or >= 0 when `allow_zero`).
-  bool positive(const Json& value, const std::string& path, double& out, bool allow_zero = false);
+  /// A number > 0 (or >= 0 when `allow_zero`); a rejection states the bound
+  /// and the value in `unit`, the unit the file gives the field in.
+  struct Quantity {
+    std::string_view unit{};  // "mm", "N/mm"; empty for pure numbers
+    bool allow_zero = false;
+  };
+  bool positive(const Json& value, const std::string& path, double& out, const Quantity& q);
   bool integer(const Json& value, const std::string& path, long long& out);
   bool boolean(const Json& value, const std::string& path, bool& out);
   bool string(const Json& value, const std::string& path, std::string& out);
@@ -56,8 +61,5 @@ class JsonReader {
   std::string source_;
   Status error_;
 };
-
-/// Text with the fewest digits (15 to 17) that reads back to the same double.
-std::string format_double(double x);
 
 }  // namespace argil::sculpt::internal

@@ -5,14 +5,12 @@
 #include <cstdio>
 #include <numeric>
 
+#include "argil/core/base/number_text.hpp"
+
 namespace argil::sculpt {
 namespace {
 
-void append(std::string& out, double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", x);
-  out += buffer;
-}
+void append(std::string& out, double x) { out += number_text(x); }
 
 void append_row(std::string& out, std::initializer_list<double> values) {
   bool first = true;

@@ -6,13 +6,13 @@
 #include <set>
 #include <sstream>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/io/base/text_file.hpp"
 #include "argil/sculpt/detail/json_reader.hpp"
 
 namespace argil::sculpt {
 namespace {
 
-using internal::format_double;
 using internal::Json;
 using internal::JsonReader;
 
@@ -37,12 +37,14 @@ class SceneReader {
       if (!this->units(*units)) return false;
     }
     const Json* tolerance = r_.member(root, "", "tolerance");
-    if (tolerance == nullptr || !r_.positive(*tolerance, "tolerance", out.tolerance)) return false;
+    if (tolerance == nullptr ||
+        !r_.positive(*tolerance, "tolerance", out.tolerance, {.unit = "mm"}))
+      return false;
     if (const Json* rate = r_.member(root, "", "haptic_rate", false)) {
-      if (!r_.positive(*rate, "haptic_rate", out.haptic_rate)) return false;
+      if (!r_.positive(*rate, "haptic_rate", out.haptic_rate, {.unit = "Hz"})) return false;
       if (out.haptic_rate > kMaxHapticRate) {
-        return r_.fail("haptic_rate", "must be at most " + format_double(kMaxHapticRate) +
-                                          " Hz, got " + format_double(out.haptic_rate));
+        return r_.fail("haptic_rate", "must be at most " + number_text(kMaxHapticRate) +
+                                          " Hz, got " + number_text(out.haptic_rate) + " Hz");
       }
     }
     if (const Json* coupling = r_.member(root, "", "coupling", false)) {
@@ -116,13 +118,14 @@ class SceneReader {
   bool coupling(const Json& value, CouplingSpec& out) {
     if (!r_.only_known(value, "coupling", {"stiffness", "damping", "max_force"})) return false;
     if (const Json* k = r_.member(value, "coupling", "stiffness", false)) {
-      if (!r_.positive(*k, "coupling.stiffness", out.stiffness)) return false;
+      if (!r_.positive(*k, "coupling.stiffness", out.stiffness, {.unit = "N/mm"})) return false;
     }
     if (const Json* c = r_.member(value, "coupling", "damping", false)) {
-      if (!r_.positive(*c, "coupling.damping", out.damping, /*allow_zero=*/true)) return false;
+      if (!r_.positive(*c, "coupling.damping", out.damping, {.unit = "N s/mm", .allow_zero = true}))
+        return false;
     }
     if (const Json* f = r_.member(value, "coupling", "max_force", false)) {
-      if (!r_.positive(*f, "coupling.max_force", out.max_force)) return false;
+      if (!r_.positive(*f, "coupling.max_force", out.max_force, {.unit = "N"})) return false;
     }
     return true;
   }
@@ -197,7 +200,7 @@ class SceneReader {
         return r_.fail(path + ".friction",
                        "only rigid models take a friction here (deformable: material.friction)");
       }
-      if (!r_.positive(*friction, path + ".friction", out.rigid_friction, /*allow_zero=*/true)) {
+      if (!r_.positive(*friction, path + ".friction", out.rigid_friction, {.allow_zero = true})) {
         return false;
       }
     }
@@ -223,18 +226,26 @@ class SceneReader {
             {"density", "stiffness", "damping", "anchor_stiffness", "yield", "friction"})) {
       return false;
     }
-    const std::pair<const char*, double*> required[] = {{"density", &out.density},
-                                                        {"stiffness", &out.stiffness}};
-    for (const auto& [key, field] : required) {
+    struct Field {
+      const char* key;
+      double* value;
+      const char* unit;
+    };
+    const Field required[] = {{"density", &out.density, "kg/mm^2"},
+                              {"stiffness", &out.stiffness, "N/mm"}};
+    for (const auto& [key, field, unit] : required) {
       const Json* v = r_.member(value, path, key);
-      if (v == nullptr || !r_.positive(*v, JsonReader::join(path, key), *field)) return false;
+      if (v == nullptr || !r_.positive(*v, JsonReader::join(path, key), *field, {.unit = unit})) {
+        return false;
+      }
     }
-    const std::pair<const char*, double*> optional[] = {{"damping", &out.damping},
-                                                        {"anchor_stiffness", &out.anchor_stiffness},
-                                                        {"friction", &out.friction}};
-    for (const auto& [key, field] : optional) {
+    const Field optional[] = {{"damping", &out.damping, "s"},
+                              {"anchor_stiffness", &out.anchor_stiffness, "N/mm"},
+                              {"friction", &out.friction, ""}};
+    for (const auto& [key, field, unit] : optional) {
       if (const Json* v = r_.member(value, path, key, false)) {
-        if (!r_.positive(*v, JsonReader::join(path, key), *field, /*allow_zero=*/true)) {
+        if (!r_.positive(*v, JsonReader::join(path, key), *field,
+                         {.unit = unit, .allow_zero = true})) {
           return false;
         }
       }
@@ -243,7 +254,7 @@ class SceneReader {
       // JSON has no infinity: "none" (or absence) means purely elastic.
       if (v->is_string() && v->get<std::string>() == "none") {
         out.yield = std::numeric_limits<double>::infinity();
-      } else if (!r_.positive(*v, path + ".yield", out.yield, /*allow_zero=*/true)) {
+      } else if (!r_.positive(*v, path + ".yield", out.yield, {.unit = "mm", .allow_zero = true})) {
         return false;
       }
     }
@@ -284,7 +295,7 @@ class SceneReader {
 
   bool length(const Json& object, const std::string& path, const char* key, double& out) {
     const Json* v = r_.member(object, path, key);
-    return v != nullptr && r_.positive(*v, JsonReader::join(path, key), out);
+    return v != nullptr && r_.positive(*v, JsonReader::join(path, key), out, {.unit = "mm"});
   }
 
   bool tool(const Json& value, const std::string& path, ToolSpec& out) {

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/io/base/atomic_write.hpp"
 #include "argil/io/base/text_file.hpp"
 #include "argil/sculpt/detail/json_reader.hpp"
@@ -15,7 +16,6 @@
 namespace argil::sculpt {
 namespace {
 
-using internal::format_double;
 using internal::Json;
 using internal::JsonReader;
 
@@ -41,7 +41,7 @@ bool parse_event(std::string_view text, ScriptEvent& out) {
 std::string normalise_quaternion(Eigen::Quaterniond& q) {
   const double norm = q.norm();
   if (!std::isfinite(norm) || std::abs(norm - 1.0) > kQuaternionNormTolerance) {
-    return "not a unit quaternion (w, x, y, z): norm " + format_double(norm);
+    return "not a unit quaternion (w, x, y, z): norm " + number_text(norm);
   }
   if (std::abs(norm - 1.0) > kUnitNormRounding) q.coeffs() /= norm;
   return "";
@@ -94,17 +94,17 @@ Status check_keyframes(const std::vector<Keyframe>& keyframes, const std::string
   for (std::size_t k = 0; k < keyframes.size(); ++k) {
     const Keyframe& f = keyframes[k];
     if (!std::isfinite(f.time)) return error(k, "t", "time must be finite");
-    if (f.time < 0.0) return error(k, "t", "time must be >= 0, got " + format_double(f.time));
+    if (f.time < 0.0) return error(k, "t", "time must be >= 0, got " + number_text(f.time));
     if (k > 0 && !(f.time > keyframes[k - 1].time)) {
       return error(k, "t",
-                   "time " + format_double(f.time) + " s is not after the previous keyframe's " +
-                       format_double(keyframes[k - 1].time) + " s (times must increase)");
+                   "time " + number_text(f.time) + " s is not after the previous keyframe's " +
+                       number_text(keyframes[k - 1].time) + " s (times must increase)");
     }
     if (!f.position.allFinite()) return error(k, "position", "must be finite");
     const double norm = f.orientation.norm();
     if (!std::isfinite(norm) || std::abs(norm - 1.0) > kQuaternionNormTolerance) {
       return error(k, "orientation",
-                   "not a unit quaternion (w, x, y, z): norm " + format_double(norm));
+                   "not a unit quaternion (w, x, y, z): norm " + number_text(norm));
     }
     if (f.event == ScriptEvent::engage) {
       if (engaged) return error(k, "event", "engage while already engaged");
@@ -371,11 +371,11 @@ std::string script_to_json(const Script& script) {
   for (std::size_t k = 0; k < script.keyframes.size(); ++k) {
     const Keyframe& f = script.keyframes[k];
     out += k == 0 ? "\n" : ",\n";
-    out += "    {\"t\": " + format_double(f.time) + ", \"position\": [" +
-           format_double(f.position.x()) + ", " + format_double(f.position.y()) + ", " +
-           format_double(f.position.z()) + "], \"orientation\": [" +
-           format_double(f.orientation.w()) + ", " + format_double(f.orientation.x()) + ", " +
-           format_double(f.orientation.y()) + ", " + format_double(f.orientation.z()) + "]";
+    out += "    {\"t\": " + number_text(f.time) + ", \"position\": [" +
+           number_text(f.position.x()) + ", " + number_text(f.position.y()) + ", " +
+           number_text(f.position.z()) + "], \"orientation\": [" + number_text(f.orientation.w()) +
+           ", " + number_text(f.orientation.x()) + ", " + number_text(f.orientation.y()) + ", " +
+           number_text(f.orientation.z()) + "]";
     if (f.event != ScriptEvent::none)
       out += ", \"event\": \"" + std::string(to_string(f.event)) + "\"";
     out += "}";
@@ -398,7 +398,7 @@ std::string script_to_csv(const Script& script) {
                               f.orientation.x(),
                               f.orientation.y(),
                               f.orientation.z()};
-    for (const double v : values) out += format_double(v) + ",";
+    for (const double v : values) out += number_text(v) + ",";
     if (f.event != ScriptEvent::none) out += to_string(f.event);
     out += "\n";
   }

@@ -14,6 +14,7 @@
 #include "argil/sculpt/detail/fnv_hash.hpp"
 
 namespace argil::sculpt {
+
 namespace {
 
 constexpr std::string_view kMagic = "argil.journal 1";

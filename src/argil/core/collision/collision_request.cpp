@@ -1,7 +1,7 @@
 // The documented range of collision requests (docs/range.md).
 #include <cmath>
-#include <sstream>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/core/collision/contact.hpp"
 
 namespace argil {
@@ -12,12 +12,8 @@ Status out_of_range(const std::string& what) {
   return Status::error(StatusCode::invalid_argument, "collision request: " + what);
 }
 
-std::string number(double x) {
-  std::ostringstream out;
-  out.precision(17);
-  out << x;
-  return out.str();
-}
+/// "1e-20 mm": a length as the caller gave it, in mm.
+std::string mm(double x) { return number_text(x) + " mm"; }
 
 }  // namespace
 
@@ -30,27 +26,30 @@ Status check_request(const CollisionRequest& request, SurfaceHierarchy& surface)
     return out_of_range("max_level " + std::to_string(request.max_level) + " is outside [0, " +
                         std::to_string(SurfaceHierarchy::kMaxLevel) + "]");
   }
+  // Every bound is stated in mm, the unit the caller gave eps in, then as the
+  // fraction of the surface it derives from.
   const double eps = request.tolerance;
   if (!std::isfinite(eps) || !(eps > 0.0)) {
-    return out_of_range("tolerance " + number(eps) + " mm must be positive and finite");
+    return out_of_range("tolerance " + mm(eps) + " must be positive and finite");
   }
   const Box3& box = surface.block(0).bound.box;
   const double size = box.diagonal();
   const double magnitude = box.min.cwiseAbs().cwiseMax(box.max.cwiseAbs()).maxCoeff();
   if (eps > size) {
-    return out_of_range("tolerance " + number(eps) + " mm exceeds the surface's size " +
-                        number(size) + " mm");
+    return out_of_range("tolerance " + mm(eps) +
+                        " is above the largest this surface allows, its size " + mm(size));
   }
   if (eps < kMinRelativeTolerance * size) {
-    return out_of_range("tolerance " + number(eps) + " mm is below " +
-                        number(kMinRelativeTolerance) + " of the surface's size " + number(size) +
-                        " mm");
+    return out_of_range("tolerance " + mm(eps) + " is below the smallest this surface allows, " +
+                        mm(kMinRelativeTolerance * size) + " (" +
+                        number_text(kMinRelativeTolerance) + " of its " + mm(size) + " size)");
   }
   if (eps < kMinRelativeTolerance * magnitude) {
-    return out_of_range("tolerance " + number(eps) + " mm is below " +
-                        number(kMinRelativeTolerance) + " of the coordinates' magnitude " +
-                        number(magnitude) +
-                        " mm, which rounding alone exceeds (move the model nearer the origin)");
+    return out_of_range(
+        "tolerance " + mm(eps) + " is below the smallest this surface's position allows, " +
+        mm(kMinRelativeTolerance * magnitude) + " (" + number_text(kMinRelativeTolerance) +
+        " of its coordinates' magnitude " + mm(magnitude) +
+        ", which rounding alone exceeds; move the model nearer the origin)");
   }
   return Status::success();
 }

@@ -1,7 +1,9 @@
 #include "argil/core/deform/deformable_body.hpp"
 
 #include <cmath>
-#include <sstream>
+#include <string>
+
+#include "argil/core/base/number_text.hpp"
 
 namespace argil {
 
@@ -25,12 +27,11 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   for (Eigen::Index i = 0; i < body.masses_.size(); ++i) {
     const double m = body.masses_[i];
     if (!(m >= r.node_mass_min && m <= r.node_mass_max)) {
-      std::ostringstream msg;
-      msg.precision(17);
-      msg << "material.density = " << material.density << " kg/mm^2 gives node " << i
-          << " a mass of " << m << " kg, outside the supported [" << r.node_mass_min << ", "
-          << r.node_mass_max << "] kg";
-      return Status::error(StatusCode::invalid_argument, msg.str());
+      return Status::error(StatusCode::invalid_argument,
+                           "material.density " + number_text(material.density) +
+                               " kg/mm^2 gives node " + std::to_string(i) + " a mass of " +
+                               number_text(m) + " kg; node masses " +
+                               out_of_interval_text(m, {r.node_mass_min, r.node_mass_max}, "kg"));
     }
   }
   body.rest_ = evaluate_nodes(surface, body.operators());
@@ -70,11 +71,9 @@ Status DeformableBody::step(double dt, const ControlNet& node_forces) {
 
 Result<LoadPreview> DeformableBody::begin_step(double dt, const ControlNet& node_forces,
                                                const Eigen::VectorXd& pattern) {
-  if (!(dt > 0.0 && dt <= kMaxTimeStep)) {
-    std::ostringstream m;
-    m.precision(17);
-    m << "time step dt = " << dt << " s is outside (0, " << kMaxTimeStep << "] s";
-    return Status::error(StatusCode::invalid_argument, m.str());
+  if (const Interval range{0.0, kMaxTimeStep, IntervalEnds::open_low}; !range.contains(dt)) {
+    return Status::error(StatusCode::invalid_argument,
+                         "time step dt " + out_of_interval_text(dt, range, "s"));
   }
   if (Status s = factorize(dt); !s.ok()) return s;
   const Eigen::Index n = nodes_.rows();

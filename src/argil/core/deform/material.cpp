@@ -1,19 +1,19 @@
 #include "argil/core/deform/material.hpp"
 
 #include <cmath>
-#include <sstream>
+
+#include "argil/core/base/number_text.hpp"
 
 namespace argil {
 
 namespace {
 
-/// Error naming `field`, its value and the range [low, high] with its unit.
+/// Error naming `field`, the range [low, high] and the value, both in `unit`
+/// (the unit scene files give the field in).
 Status out_of_range(const char* field, double value, double low, double high, const char* unit) {
-  std::ostringstream m;
-  m.precision(17);
-  m << "material." << field << " = " << value << " is outside [" << low << ", " << high << "] "
-    << unit;
-  return Status::error(StatusCode::invalid_argument, m.str());
+  return Status::error(
+      StatusCode::invalid_argument,
+      std::string("material.") + field + " " + out_of_interval_text(value, {low, high}, unit));
 }
 
 bool within(double value, double low, double high) { return value >= low && value <= high; }
@@ -35,7 +35,7 @@ Status validate(const Material& m) {
     return out_of_range("yield", m.yield, r.yield_min, std::numeric_limits<double>::infinity(),
                         "mm");
   if (!within(m.friction, 0.0, r.friction_max))
-    return out_of_range("friction", m.friction, 0.0, r.friction_max, "(coefficient)");
+    return out_of_range("friction", m.friction, 0.0, r.friction_max, "");
   return Status::success();
 }
 

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
+
+#include "argil/core/base/number_text.hpp"
 
 namespace argil {
 
@@ -50,11 +53,20 @@ const char* to_string(SurfaceDefect defect) {
 
 namespace {
 
+/// A part of a defect's text; numbers print as number_text, exact and short.
+template <class Part>
+void append_part(std::ostringstream& text, const Part& part) {
+  if constexpr (std::is_floating_point_v<Part>) {
+    text << number_text(static_cast<double>(part));
+  } else {
+    text << part;
+  }
+}
+
 template <class... Parts>
 SurfaceValidation defect(SurfaceDefect d, const Parts&... parts) {
   std::ostringstream text;
-  text.precision(17);
-  (text << ... << parts);
+  (append_part(text, parts), ...);
   return {d, text.str()};
 }
 

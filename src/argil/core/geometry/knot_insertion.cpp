@@ -1,8 +1,9 @@
 #include "argil/core/geometry/knot_insertion.hpp"
 
 #include <cassert>
-#include <sstream>
+#include <string>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/core/geometry/basis.hpp"
 
 namespace argil {
@@ -50,19 +51,19 @@ Result<BSplineSurface> insert_knot(const BSplineSurface& s, Direction d, double 
   const int p = s.degree_in(d);
   const Eigen::VectorXd& U = s.knots_in(d);
   if (!(t > s.domain_start(d) && t < s.domain_end(d))) {
-    std::ostringstream m;
-    m.precision(17);
-    m << "insert_knot: " << t << " is outside the open " << to_string(d) << " domain ("
-      << s.domain_start(d) << ", " << s.domain_end(d) << ")";
-    return Status::error(StatusCode::invalid_argument, m.str());
+    return Status::error(
+        StatusCode::invalid_argument,
+        "insert_knot: knot " + number_text(t) + " is outside the open " + to_string(d) +
+            " domain " +
+            interval_text({s.domain_start(d), s.domain_end(d), IntervalEnds::open}, ""));
   }
   const int existing = knot_multiplicity(U, t);
   if (times < 0 || existing + times > p) {
-    std::ostringstream m;
-    m.precision(17);
-    m << "insert_knot: inserting " << t << " " << times << " times in " << to_string(d)
-      << " gives multiplicity " << existing + times << ", degree " << p << " allows " << p;
-    return Status::error(StatusCode::invalid_argument, m.str());
+    return Status::error(StatusCode::invalid_argument,
+                         "insert_knot: inserting " + number_text(t) + " " + std::to_string(times) +
+                             " times in " + to_string(d) + " gives multiplicity " +
+                             std::to_string(existing + times) + ", degree " + std::to_string(p) +
+                             " allows " + std::to_string(p));
   }
   const Eigen::MatrixX4d pw = homogeneous_control_points(s);
   const int n_d = s.count(d);

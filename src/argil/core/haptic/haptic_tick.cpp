@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <string>
 
-#include "argil/core/deform/contact_response.hpp"
+#include "argil/core/base/number_text.hpp"
+
 #include "argil/core/collision/implicit_contact.hpp"
+#include "argil/core/deform/contact_response.hpp"
 #include "argil/core/geometry/implicit_tool.hpp"
 
 namespace argil {
@@ -15,10 +16,9 @@ namespace argil {
 Result<HapticWorld> HapticWorld::create(const ToolShape& tool, const WorldOptions& options) {
   if (Status s = validate(options.coupling); !s.ok()) return s;
   if (!(options.tolerance > 0.0 && std::isfinite(options.tolerance))) {
-    std::ostringstream m;
-    m.precision(17);
-    m << "world.tolerance = " << options.tolerance << " mm must be positive and finite";
-    return Status::error(StatusCode::invalid_argument, m.str());
+    return Status::error(
+        StatusCode::invalid_argument,
+        "world.tolerance " + number_text(options.tolerance) + " mm must be positive and finite");
   }
   if (options.max_contacts < 1)
     return Status::error(StatusCode::invalid_argument, "world.max_contacts must be at least 1");
@@ -27,10 +27,9 @@ Result<HapticWorld> HapticWorld::create(const ToolShape& tool, const WorldOption
   world.cache_ = std::make_unique<OperatorCache>();
   if (const auto* sphere = std::get_if<SphereToolShape>(&tool)) {
     if (!(sphere->radius >= 0.0 && std::isfinite(sphere->radius))) {
-      std::ostringstream m;
-      m.precision(17);
-      m << "tool.radius = " << sphere->radius << " mm must be finite and at least 0";
-      return Status::error(StatusCode::invalid_argument, m.str());
+      return Status::error(
+          StatusCode::invalid_argument,
+          "tool.radius " + number_text(sphere->radius) + " mm must be finite and at least 0 mm");
     }
     world.sphere_.emplace(sphere->radius, options.tolerance);
   } else {
@@ -71,12 +70,9 @@ Status HapticWorld::check_tolerance(SurfaceHierarchy& surface) const {
 }
 
 Result<int> HapticWorld::add_rigid(const BSplineSurface& surface, double friction) {
-  if (!(friction >= 0.0 && friction <= kMaterialRange.friction_max)) {
-    std::ostringstream m;
-    m.precision(17);
-    m << "rigid body friction = " << friction << " is outside [0, " << kMaterialRange.friction_max
-      << "]";
-    return Status::error(StatusCode::invalid_argument, m.str());
+  if (const Interval range{0.0, kMaterialRange.friction_max}; !range.contains(friction)) {
+    return Status::error(StatusCode::invalid_argument,
+                         "rigid body friction " + out_of_interval_text(friction, range, ""));
   }
   Result<SurfaceHierarchy> h = SurfaceHierarchy::build(surface, *cache_);
   if (!h.ok()) return h.status();
@@ -116,11 +112,9 @@ Status HapticWorld::relax(double dt) {
 TickResult HapticWorld::step(const DevicePose& device, double dt) {
   TickResult r;
   r.body_contacts.resize(bodies_.size());
-  if (!(dt > 0.0 && dt <= kMaxTimeStep)) {
-    std::ostringstream m;
-    m.precision(17);
-    m << "time step dt = " << dt << " s is outside (0, " << kMaxTimeStep << "] s";
-    r.status = Status::error(StatusCode::invalid_argument, m.str());
+  if (const Interval range{0.0, kMaxTimeStep, IntervalEnds::open_low}; !range.contains(dt)) {
+    r.status = Status::error(StatusCode::invalid_argument,
+                             "time step dt " + out_of_interval_text(dt, range, "s"));
     r.proxy = proxy_;
     return r;
   }

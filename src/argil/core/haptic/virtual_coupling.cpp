@@ -1,28 +1,32 @@
 #include "argil/core/haptic/virtual_coupling.hpp"
 
 #include <algorithm>
-#include <sstream>
+
+#include "argil/core/base/number_text.hpp"
 
 namespace argil {
 
 namespace {
 
-Status coupling_error(const char* field, double value, const char* range) {
-  std::ostringstream m;
-  m.precision(17);
-  m << "coupling." << field << " = " << value << " is outside " << range;
-  return Status::error(StatusCode::invalid_argument, m.str());
+// Bounds of the coupling parameters; the force clamp caps what a device feels.
+constexpr Interval kStiffnessRange{0.0, 1e6, IntervalEnds::open_low};  // [N/mm]
+constexpr Interval kDampingRange{0.0, 1e3};                            // [N s/mm]
+constexpr Interval kMaxForceRange{0.0, 1e4, IntervalEnds::open_low};   // [N]
+
+Status coupling_error(const char* field, double value, const Interval& range, const char* unit) {
+  return Status::error(StatusCode::invalid_argument, std::string("coupling.") + field + " " +
+                                                         out_of_interval_text(value, range, unit));
 }
 
 }  // namespace
 
 Status validate(const CouplingParams& c) {
-  if (!(c.stiffness > 0.0 && c.stiffness <= 1e6))
-    return coupling_error("stiffness", c.stiffness, "(0, 1e6] N/mm");
-  if (!(c.damping >= 0.0 && c.damping <= 1e3))
-    return coupling_error("damping", c.damping, "[0, 1e3] N s/mm");
-  if (!(c.max_force > 0.0 && c.max_force <= 1e4))
-    return coupling_error("max_force", c.max_force, "(0, 1e4] N");
+  if (!kStiffnessRange.contains(c.stiffness))
+    return coupling_error("stiffness", c.stiffness, kStiffnessRange, "N/mm");
+  if (!kDampingRange.contains(c.damping))
+    return coupling_error("damping", c.damping, kDampingRange, "N s/mm");
+  if (!kMaxForceRange.contains(c.max_force))
+    return coupling_error("max_force", c.max_force, kMaxForceRange, "N");
   return Status::success();
 }
 

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
+#include <string>
+
+#include "argil/core/base/number_text.hpp"
 
 namespace argil {
 
@@ -23,11 +25,11 @@ Result<BandedCholesky> BandedCholesky::factorize(SymmetricBandMatrix a) {
       }
       const double diagonal = a.at(i, i);  // before elimination: the scale of the pivot
       if (!(sum > diagonal * 64 * std::numeric_limits<double>::epsilon())) {
-        std::ostringstream m;
-        m.precision(17);
-        m << "banded Cholesky: pivot " << i << " of " << n << " is " << sum << " against diagonal "
-          << diagonal << ": the matrix is not positive definite to working precision";
-        return Status::error(StatusCode::numerical_failure, m.str());
+        return Status::error(StatusCode::numerical_failure,
+                             "banded Cholesky: pivot " + std::to_string(i) + " of " +
+                                 std::to_string(n) + " is " + number_text(sum) +
+                                 " against diagonal " + number_text(diagonal) +
+                                 ": the matrix is not positive definite to working precision");
       }
       a.at(i, i) = std::sqrt(sum);
     }

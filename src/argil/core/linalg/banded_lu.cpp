@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
+#include <string>
+
+#include "argil/core/base/number_text.hpp"
 
 namespace argil {
 
@@ -14,11 +16,11 @@ Result<BandedLU> BandedLU::factorize(BandedMatrix a) {
   for (int k = 0; k < n; ++k) {
     const double pivot = a.at(k, k);
     if (!(std::abs(pivot) > tiny)) {
-      std::ostringstream m;
-      m.precision(17);
-      m << "banded LU: pivot " << k << " of " << n << " is " << pivot << " (matrix 1-norm " << norm
-        << "): the matrix is singular to working precision";
-      return Status::error(StatusCode::numerical_failure, m.str());
+      return Status::error(StatusCode::numerical_failure,
+                           "banded LU: pivot " + std::to_string(k) + " of " + std::to_string(n) +
+                               " is " + number_text(pivot) + " (matrix 1-norm " +
+                               number_text(norm) +
+                               "): the matrix is singular to working precision");
     }
     const int last_row = std::min(n - 1, k + a.lower);
     const int last_col = std::min(n - 1, k + a.upper);

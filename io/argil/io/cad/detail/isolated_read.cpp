@@ -13,6 +13,7 @@
 #include <cstring>
 #include <string_view>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/io/json/json_format.hpp"
 
 // Under AddressSanitizer the process reserves terabytes of shadow address space,
@@ -137,7 +138,7 @@ Result<Model> read_in_child_process(const std::function<Result<Model>()>& read,
 
   if (timed_out) {
     return child_error(what, "OpenCASCADE did not finish reading within " +
-                                 std::to_string(limits.time_limit_s) + " s (stopped)");
+                                 number_text(limits.time_limit_s) + " s (stopped)");
   }
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);

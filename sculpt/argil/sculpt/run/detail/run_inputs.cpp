@@ -1,5 +1,7 @@
 #include "argil/sculpt/run/detail/run_inputs.hpp"
 
+#include "argil/core/base/number_text.hpp"
+
 #include <cmath>
 #include <cstdio>
 
@@ -19,13 +21,12 @@ Status check_script_fits(const RunInputs& in) {
   }
   const double ticks = in.script.keyframes.back().time * in.scene.haptic_rate;
   if (ticks > kMaxTicks) {
-    char message[160];
-    std::snprintf(
-        message, sizeof message,
-        ": keyframes[%zu].t: the script lasts %.17g s, %.3g ticks at %g Hz (at most %.0f)",
-        in.script.keyframes.size() - 1, in.script.keyframes.back().time, ticks,
-        in.scene.haptic_rate, kMaxTicks);
-    return Status::error(StatusCode::invalid_argument, in.script_path.string() + message);
+    return Status::error(
+        StatusCode::invalid_argument,
+        in.script_path.string() + ": keyframes[" + std::to_string(in.script.keyframes.size() - 1) +
+            "].t: the script lasts " + number_text(in.script.keyframes.back().time) + " s, " +
+            number_text(ticks) + " ticks at " + number_text(in.scene.haptic_rate) +
+            " Hz (at most " + number_text(kMaxTicks) + " ticks)");
   }
   return Status::success();
 }

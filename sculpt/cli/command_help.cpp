@@ -1,0 +1,71 @@
+// argil help [COMMAND]: the program's usage, or one command's; and the table
+// of commands the program dispatches to.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+
+namespace argil::cli {
+
+const CommandSpec& help_command() {
+  static const CommandSpec spec{
+      .name = "help",
+      .operands = {"COMMAND"},
+      .last_operand_optional = true,
+      .summary = "print the usage of COMMAND, or of the program without one",
+      .description = "",
+      .options = {},
+  };
+  return spec;
+}
+
+const std::vector<Command>& all_commands() {
+  static const std::vector<Command> commands = {
+      {info_command, run_info},     {convert_command, run_convert}, {collide_command, run_collide},
+      {sculpt_command, run_sculpt}, {help_command, run_help},
+  };
+  return commands;
+}
+
+const Command* find_command(const std::string& name) {
+  for (const Command& c : all_commands())
+    if (c.spec().name == name) return &c;
+  return nullptr;
+}
+
+std::string program_usage() {
+  std::string out =
+      "usage: argil COMMAND [ARGS]\n"
+      "       argil help COMMAND, or argil COMMAND --help, for a command's options\n"
+      "\ncommands:\n";
+  for (const Command& c : all_commands()) {
+    const CommandSpec& spec = c.spec();
+    out += "  " + spec.name + std::string(10 - spec.name.size(), ' ') + spec.summary + "\n";
+  }
+  out +=
+      "\noptions:\n"
+      "  -h, --help  print this usage and exit\n"
+      "  --version   print the version and exit\n";
+  return out;
+}
+
+int run_help(const std::vector<std::string>& args) {
+  const ParseResult parsed = parse_arguments(help_command(), args);
+  if (!parsed.arguments) return parsed.exit_status;
+  const std::vector<std::string>& operands = parsed.arguments->operands;
+  if (operands.empty()) {
+    std::fputs(program_usage().c_str(), stdout);
+    return kExitOk;
+  }
+  const Command* command = find_command(operands[0]);
+  if (command == nullptr) {
+    std::fprintf(stderr, "argil help: unknown command '%s'\n\n%s", operands[0].c_str(),
+                 program_usage().c_str());
+    return kExitUsage;
+  }
+  std::fputs(usage_text(command->spec()).c_str(), stdout);
+  return kExitOk;
+}
+
+}  // namespace argil::cli
