@@ -257,12 +257,11 @@ TriangleDistance triangle_distance(const Triangle& a, const Triangle& b) {
     const int i1 = (i + 1) % 3;
     for (int j = 0; j < 3; ++j) {
       const int j1 = (j + 1) % 3;
-      double s = 0, t = 0;
       const auto& p0 = a[static_cast<std::size_t>(i)];
       const auto& p1 = a[static_cast<std::size_t>(i1)];
       const auto& q0 = b[static_cast<std::size_t>(j)];
       const auto& q1 = b[static_cast<std::size_t>(j1)];
-      closest_on_segments(p0, p1, q0, q1, s, t);
+      const auto [s, t] = closest_on_segments(p0, p1, q0, q1);
       Eigen::Vector3d wa = Eigen::Vector3d::Zero(), wb = Eigen::Vector3d::Zero();
       wa[i] = 1.0 - s;
       wa[i1] = s;

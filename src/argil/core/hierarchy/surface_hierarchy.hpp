@@ -8,15 +8,16 @@
 #include <cstdint>
 #include <vector>
 
+#include "argil/core/base/status.hpp"
 #include "argil/core/geometry/bezier.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
+#include "argil/core/geometry/param_rect.hpp"
 #include "argil/core/hierarchy/patch_bound.hpp"
-#include "argil/core/base/status.hpp"
 #include "argil/core/operators/surface_operators.hpp"
 
 namespace argil {
 
-/// One node: the Bezier sub-patch over [u0, u1] x [v0, v1] of element
+/// One node: the Bezier sub-patch over `rect` of element
 /// (element_u, element_v) at `level` (each level halves both directions).
 struct HierarchyNode {
   int element_u = 0;
@@ -25,7 +26,7 @@ struct HierarchyNode {
   int parent = -1;
   int half_u = 0;  // which half of the parent, in u and v
   int half_v = 0;
-  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  ParamRect rect;
   std::array<int, 4> children{-1, -1, -1, -1};  // index half_u * 2 + half_v
   BezierPatch patch;
   PatchBound bound;

@@ -1,6 +1,7 @@
 #include "argil/core/operators/surface_operators.hpp"
 
 #include <cassert>
+#include <utility>
 
 #include "argil/core/geometry/detail/homogeneous_derivatives.hpp"
 
@@ -131,7 +132,8 @@ BezierPatch bezier_patch(const BSplineSurface& s, const SurfaceOperators& ops, i
           w * s.control_points(k, 2), w;
     }
   }
-  return {p, q, transform_net(&eu, &ev, local, p, q)};
+  return map_along(map_along(BezierPatch{p, q, std::move(local)}, Direction::u, eu), Direction::v,
+                   ev);
 }
 
 ControlNet evaluate_nodes(const BSplineSurface& s, const SurfaceOperators& ops) {
