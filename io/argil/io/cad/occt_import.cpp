@@ -50,6 +50,7 @@
 #include <memory>
 #include <string>
 
+#include "argil/core/geometry/param_rect.hpp"
 #include "argil/io/cad/cad_exchange.hpp"
 #include "argil/io/cad/detail/isolated_read.hpp"
 #include "argil/io/cad/detail/occt_session.hpp"
@@ -311,21 +312,21 @@ void reverse_loop(TrimLoop& loop) {
 // True when the loops are exactly the four sides of the surface domain.
 bool is_natural_boundary(const std::vector<TrimLoop>& loops, const BSplineSurface& s) {
   if (loops.size() != 1) return false;
-  const double u0 = s.domain_start(Direction::u), u1 = s.domain_end(Direction::u);
-  const double v0 = s.domain_start(Direction::v), v1 = s.domain_end(Direction::v);
+  const ParamRect d = domain_of(s);
   // Pcurves are computed to about 1e-9 of the domain; no real trim is that close.
-  const double tol_u = 1e-9 * (u1 - u0), tol_v = 1e-9 * (v1 - v0);
+  const double tol_u = 1e-9 * d.width(), tol_v = 1e-9 * d.height();
   for (const TrimCurve& c : loops[0].curves) {
     // All poles on one side line: the curve lies on it (convex hull property).
     const auto on = [&](int col, double value, double tol) {
       return ((c.points.col(col).array() - value).abs() <= tol).all();
     };
-    if (!on(0, u0, tol_u) && !on(0, u1, tol_u) && !on(1, v0, tol_v) && !on(1, v1, tol_v)) {
+    if (!on(0, d.u0, tol_u) && !on(0, d.u1, tol_u) && !on(1, d.v0, tol_v) && !on(1, d.v1, tol_v)) {
       return false;
     }
   }
   const double area = std::abs(signed_area(coarse_polygon(loops[0])));
-  return std::abs(area - (u1 - u0) * (v1 - v0)) <= 1e-9 * (u1 - u0) * (v1 - v0);
+  const double domain_area = d.width() * d.height();
+  return std::abs(area - domain_area) <= 1e-9 * domain_area;
 }
 
 Result<std::vector<TrimLoop>> face_loops(const TopoDS_Face& face) {

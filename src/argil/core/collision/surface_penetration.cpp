@@ -20,8 +20,8 @@ ParamRect grown_box(const BSplineSurface& s, std::span<const Contact> region, bo
     lo = lo.cwiseMin(uv);
     hi = hi.cwiseMax(uv);
   }
-  const Eigen::Vector2d start(s.domain_start(Direction::u), s.domain_start(Direction::v));
-  const Eigen::Vector2d end(s.domain_end(Direction::u), s.domain_end(Direction::v));
+  const ParamRect domain = domain_of(s);
+  const Eigen::Vector2d start = domain.lower(), end = domain.upper();
   const Eigen::Vector2d grow = (0.5 * (hi - lo)).cwiseMax(0.01 * (end - start));
   lo = (lo - grow).cwiseMax(start);
   hi = (hi + grow).cwiseMin(end);

@@ -24,20 +24,7 @@ SurfaceValidation validate(const BSplineCurve& c) {
       return defect(SurfaceDefect::non_finite_control_point, "points[", i, "] is not finite");
     }
   }
-  if (c.weights.size() != 0 && c.weights.size() != n) {
-    return defect(SurfaceDefect::weight_count, "weights has ", c.weights.size(),
-                  " values, expected 0 or ", n);
-  }
-  for (Eigen::Index i = 0; i < c.weights.size(); ++i) {
-    if (!std::isfinite(c.weights[i])) {
-      return defect(SurfaceDefect::non_finite_weight, "weights[", i, "] is ", c.weights[i]);
-    }
-    if (!(c.weights[i] > 0.0)) {
-      return defect(SurfaceDefect::non_positive_weight, "weights[", i, "] is ", c.weights[i],
-                    ", weights must be positive");
-    }
-  }
-  return {};
+  return detail::validate_weights(c.weights, n);
 }
 
 Eigen::VectorXd evaluate(const BSplineCurve& c, double t) {

@@ -33,7 +33,7 @@ struct BSplineCurve {
 
 /// Checks the knots (validate_knots(), fields "degree" and "knots"), then
 /// points (count() rows, finite) and weights (empty or count(), finite and
-/// positive). Point coordinates have no magnitude limit: curves carry
+/// positive, in the range surfaces allow). Point coordinates have no magnitude limit: curves carry
 /// parameters, whose range the knots of the surface bound. The message names
 /// the first problem's field, index and value.
 SurfaceValidation validate(const BSplineCurve& curve);

@@ -79,28 +79,7 @@ SurfaceValidation validate(const BSplineSurface& s) {
                     ") has a coordinate beyond the supported ", kMaxCoordinate, " mm");
     }
   }
-  if (s.weights.size() != 0 && s.weights.size() != n) {
-    return defect(SurfaceDefect::weight_count, "weights has ", s.weights.size(),
-                  " values, expected 0 or ", n);
-  }
-  for (Eigen::Index r = 0; r < s.weights.size(); ++r) {
-    if (!std::isfinite(s.weights[r])) {
-      return defect(SurfaceDefect::non_finite_weight, "weights[", r, "] is ", s.weights[r]);
-    }
-    if (!(s.weights[r] > 0.0)) {
-      return defect(SurfaceDefect::non_positive_weight, "weights[", r, "] is ", s.weights[r],
-                    ", weights must be positive");
-    }
-    if (s.weights[r] > kMaxWeight || s.weights[r] < 1.0 / kMaxWeight) {
-      return defect(SurfaceDefect::weight_out_of_range, "weights[", r, "] is ", s.weights[r],
-                    ", outside the supported [", 1.0 / kMaxWeight, ", ", kMaxWeight, "]");
-    }
-  }
-  if (s.weights.size() > 0 && s.weights.maxCoeff() > kMaxWeightRatio * s.weights.minCoeff()) {
-    return defect(SurfaceDefect::weight_out_of_range, "weights range from ", s.weights.minCoeff(),
-                  " to ", s.weights.maxCoeff(), ", a ratio above the supported ", kMaxWeightRatio);
-  }
-  return {};
+  return detail::validate_weights(s.weights, n);
 }
 
 Eigen::VectorXd greville_abscissae(int degree, const Eigen::VectorXd& knots) {
