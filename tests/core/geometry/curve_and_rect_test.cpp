@@ -59,7 +59,7 @@ TEST_CASE("hierarchy node rectangles are quarters of their parent, corners in bo
   argil::OperatorCache cache;
   auto built = argil::SurfaceHierarchy::build(s, cache);
   REQUIRE(built.ok());
-  argil::SurfaceHierarchy& h = built.value();
+  const argil::SurfaceHierarchy& h = built.value();  // nodes grow through const access
   const argil::ParamRect domain = argil::domain_of(s);
   for (const int root : h.roots()) {
     const argil::ParamRect parent = h.node(root).rect;

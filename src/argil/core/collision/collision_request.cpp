@@ -21,7 +21,7 @@ std::string number(double x) {
 
 }  // namespace
 
-Status check_request(const CollisionRequest& request, SurfaceHierarchy& surface) {
+Status check_request(const CollisionRequest& request, const SurfaceHierarchy& surface) {
   if (request.max_contacts < 1) {
     return out_of_range("max_contacts " + std::to_string(request.max_contacts) +
                         " must be at least 1");

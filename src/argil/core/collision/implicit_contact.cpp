@@ -31,7 +31,7 @@ constexpr int kExtraLevels = 4;
 /// Replaces each region's first contact by its deepest point:
 /// Newton on the region's leaves in order of how deep they could be (their
 /// lower bounds), stopping when no leaf can be deeper than the best found.
-void refine_region_heads(SurfaceHierarchy& h, const PointFunction& f,
+void refine_region_heads(const SurfaceHierarchy& h, const PointFunction& f,
                          const std::vector<LeafContact>& leaves, CollisionResult& result) {
   std::size_t begin = 0;
   while (begin < leaves.size()) {
@@ -77,7 +77,8 @@ std::vector<Contact> unique_by_uv(const std::vector<Contact>& contacts) {
 /// elements the tool may reach, collecting one LeafContact per leaf in contact.
 class ToolDescent {
  public:
-  ToolDescent(SurfaceHierarchy& h, const ImplicitTool& tool, double eps, QueryCounters& counters)
+  ToolDescent(const SurfaceHierarchy& h, const ImplicitTool& tool, double eps,
+              QueryCounters& counters)
       : h_(h),
         tool_(tool),
         f_([&tool](const Eigen::Vector3d& x) { return tool.distance(x); }),
@@ -186,7 +187,7 @@ class ToolDescent {
            node.level >= p.flat_level + kExtraLevels;
   }
 
-  SurfaceHierarchy& h_;
+  const SurfaceHierarchy& h_;
   const ImplicitTool& tool_;
   PointFunction f_;
   double eps_;
@@ -211,7 +212,8 @@ PointFunction half_squared_distance_to(const Eigen::Vector3d& p) {
 /// hierarchy nodes as id >= 0.
 class ClosestSearch {
  public:
-  ClosestSearch(SurfaceHierarchy& h, const Eigen::Vector3d& p, double eps, QueryCounters& counters)
+  ClosestSearch(const SurfaceHierarchy& h, const Eigen::Vector3d& p, double eps,
+                QueryCounters& counters)
       : h_(h),
         p_(p),
         f_(half_squared_distance_to(p)),
@@ -317,7 +319,7 @@ class ClosestSearch {
     }
   }
 
-  SurfaceHierarchy& h_;
+  const SurfaceHierarchy& h_;
   Eigen::Vector3d p_;
   PointFunction f_;
   double eps_;
@@ -329,7 +331,7 @@ class ClosestSearch {
 
 }  // namespace
 
-CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
+CollisionResult collide(const SurfaceHierarchy& h, const ImplicitTool& tool,
                         const CollisionRequest& request) {
   CollisionResult result;
   result.status = check_request(request, h);
@@ -342,7 +344,7 @@ CollisionResult collide(SurfaceHierarchy& h, const ImplicitTool& tool,
   return result;
 }
 
-ClosestPoint closest_point(SurfaceHierarchy& h, const Eigen::Vector3d& p,
+ClosestPoint closest_point(const SurfaceHierarchy& h, const Eigen::Vector3d& p,
                            const CollisionRequest& request) {
   ClosestPoint best;
   best.status = check_request(request, h);

@@ -52,7 +52,7 @@ double gap_to_flat_patch(const View& node, const View& sphere) {
 /// Entries of one side: blocks as -(id + 1), hierarchy nodes as id >= 0.
 class Side {
  public:
-  Side(SurfaceHierarchy& h, double flat_tolerance, int max_level, QueryCounters& counters)
+  Side(const SurfaceHierarchy& h, double flat_tolerance, int max_level, QueryCounters& counters)
       : h_(h), flat_tolerance_(flat_tolerance), max_level_(max_level), counters_(counters) {}
 
   View view(int entry) {
@@ -88,10 +88,8 @@ class Side {
     return out;
   }
 
-  SurfaceHierarchy& hierarchy() { return h_; }
-
  private:
-  SurfaceHierarchy& h_;
+  const SurfaceHierarchy& h_;
   double flat_tolerance_;
   int max_level_;
   QueryCounters& counters_;
@@ -423,8 +421,8 @@ std::optional<PendingContact> leaf_near_touch(const LeafTriangles& la, const Lea
 /// The simultaneous descent of collide(a, b) over node pairs (see the header).
 class PairDescent {
  public:
-  PairDescent(SurfaceHierarchy& ha, SurfaceHierarchy& hb, const CollisionRequest& request,
-              QueryCounters& counters)
+  PairDescent(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
+              const CollisionRequest& request, QueryCounters& counters)
       : ha_(ha),
         hb_(hb),
         request_(request),
@@ -476,8 +474,8 @@ class PairDescent {
     return true;
   }
 
-  SurfaceHierarchy& ha_;
-  SurfaceHierarchy& hb_;
+  const SurfaceHierarchy& ha_;
+  const SurfaceHierarchy& hb_;
   const CollisionRequest& request_;
   QueryCounters& counters_;
   Side sa_;
@@ -486,7 +484,7 @@ class PairDescent {
 
 }  // namespace
 
-CollisionResult collide(SurfaceHierarchy& ha, SurfaceHierarchy& hb,
+CollisionResult collide(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
                         const CollisionRequest& request) {
   CollisionResult result;
   // The tolerance must suit both surfaces.

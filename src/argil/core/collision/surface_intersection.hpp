@@ -47,7 +47,7 @@ namespace argil {
 /// the model size; near-touch contacts move to a local closest pair, with
 /// depth = -gap (0 when the surfaces turn out to cross there). A point whose
 /// iteration does not converge near its leaf keeps its unrefined value.
-CollisionResult collide(SurfaceHierarchy& a, SurfaceHierarchy& b,
+CollisionResult collide(const SurfaceHierarchy& a, const SurfaceHierarchy& b,
                         const CollisionRequest& request = {});
 
 }  // namespace argil

@@ -63,7 +63,7 @@ int SurfaceHierarchy::build_block(int eu0, int eu1, int ev0, int ev1) {
   return id;
 }
 
-const ElementBlock& SurfaceHierarchy::block(int id, QueryCounters* counters) {
+const ElementBlock& SurfaceHierarchy::block(int id, QueryCounters* counters) const {
   ElementBlock& b = blocks_[static_cast<std::size_t>(id)];
   if (counters) ++counters->nodes_visited;
   if (b.version == version_) return b;
@@ -109,7 +109,7 @@ void SurfaceHierarchy::release_nodes() {
   for (HierarchyNode& root : nodes_) root.children = {-1, -1, -1, -1};
 }
 
-void SurfaceHierarchy::refresh(int id, QueryCounters* counters) {
+void SurfaceHierarchy::refresh(int id, QueryCounters* counters) const {
   HierarchyNode& self = nodes_[static_cast<std::size_t>(id)];
   if (self.version == version_) return;
   if (self.parent < 0) {
@@ -125,13 +125,13 @@ void SurfaceHierarchy::refresh(int id, QueryCounters* counters) {
   if (counters) ++counters->nodes_refreshed;
 }
 
-const HierarchyNode& SurfaceHierarchy::node(int id, QueryCounters* counters) {
+const HierarchyNode& SurfaceHierarchy::node(int id, QueryCounters* counters) const {
   refresh(id, counters);
   if (counters) ++counters->nodes_visited;
   return nodes_[static_cast<std::size_t>(id)];
 }
 
-int SurfaceHierarchy::child(int id, int half_u, int half_v) {
+int SurfaceHierarchy::child(int id, int half_u, int half_v) const {
   const int slot = half_u * 2 + half_v;
   const int existing =
       nodes_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(slot)];
