@@ -203,8 +203,8 @@ double worst_bound_violation(SurfaceHierarchy& h, int max_elements, int levels) 
     REQUIRE(std::isfinite(bound.flatness));
     for (int a = 0; a <= 4; ++a) {
       for (int b = 0; b <= 4; ++b) {
-        const double u = node.u0 + (node.u1 - node.u0) * a / 4.0;
-        const double v = node.v0 + (node.v1 - node.v0) * b / 4.0;
+        const double u = node.rect.u0 + (node.rect.u1 - node.rect.u0) * a / 4.0;
+        const double v = node.rect.v0 + (node.rect.v1 - node.rect.v0) * b / 4.0;
         const Eigen::Vector3d p = evaluate(s, u, v);
         worst = std::max(worst, ((p - bound.center).norm() - bound.radius) / pole_size);
         const Eigen::Vector3d out = (p - bound.box.max).cwiseMax(bound.box.min - p).cwiseMax(0.0);

@@ -69,8 +69,8 @@ TEST_CASE(
       const auto& c = n.bound.corners;
       for (int k = 0; k < 12; ++k) {
         const double a = unit(rng), b = unit(rng);
-        const Eigen::Vector3d p =
-            argil::evaluate(s, n.u0 + a * (n.u1 - n.u0), n.v0 + b * (n.v1 - n.v0));
+        const Eigen::Vector3d p = argil::evaluate(s, n.rect.u0 + a * (n.rect.u1 - n.rect.u0),
+                                                  n.rect.v0 + b * (n.rect.v1 - n.rect.v0));
         const Eigen::Vector3d t = a >= b
                                       ? Eigen::Vector3d((1 - a) * c[0] + (a - b) * c[1] + b * c[3])
                                       : Eigen::Vector3d((1 - b) * c[0] + (b - a) * c[2] + a * c[3]);

@@ -156,8 +156,8 @@ TEST_CASE("subdivision matrices split a Bezier patch into halves of the same sur
   const double tol = 1e-13 * model_size(s);  // de Casteljau: convex combinations
   for (int hu = 0; hu < 2; ++hu) {
     for (int hv = 0; hv < 2; ++hv) {
-      const argil::BezierPatch child = argil::subdivide(parent, su, sv, true, hu, true, hv);
-      const argil::BezierPatch strip = argil::subdivide(parent, su, sv, false, 0, true, hv);
+      const argil::BezierPatch child = argil::subdivide(parent, su, sv, {hu, hv});
+      const argil::BezierPatch strip = argil::subdivide(parent, su, sv, {std::nullopt, hv});
       for (double a : {0.0, 0.2, 0.7, 1.0}) {
         for (double b : {0.0, 0.45, 1.0}) {
           CHECK((argil::evaluate(child, a, b) -

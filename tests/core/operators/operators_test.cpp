@@ -230,13 +230,13 @@ TEST_CASE("hierarchy patches evaluate points and derivatives as the B-spline doe
       id = h.child(id, static_cast<int>(rng() % 2), static_cast<int>(rng() % 2));
     }
     const argil::HierarchyNode& n = h.node(id);
-    const double wu = n.u1 - n.u0, wv = n.v1 - n.v0;
+    const double wu = n.rect.u1 - n.rect.u0, wv = n.rect.v1 - n.rect.v0;
     const double size = model_size(s);
     for (int k = 0; k < 20; ++k) {
       const double a = k < 4 ? static_cast<double>(k % 2) : unit(rng);
       const double b = k < 4 ? static_cast<double>(k / 2) : unit(rng);
       const auto local = argil::evaluate_derivatives(n.patch, a, b, 2);
-      const auto exact = argil::evaluate_derivatives(s, n.u0 + a * wu, n.v0 + b * wv, 2);
+      const auto exact = argil::evaluate_derivatives(s, n.rect.u0 + a * wu, n.rect.v0 + b * wv, 2);
       // Derivatives relative to the size over the element width (their scale).
       const double e0 = (local.point - exact.point).norm() / size;
       const double e1 =

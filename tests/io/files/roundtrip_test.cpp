@@ -51,9 +51,10 @@ std::string surface_difference(const BSplineSurface& a, const BSplineSurface& b)
 
 std::string curve_difference(const TrimCurve& a, const TrimCurve& b) {
   if (a.degree != b.degree) return "trim degrees differ";
-  for (const std::string& d : {bit_difference("trim knots", a.knots, b.knots),
-                               bit_difference("trim poles", a.poles.reshaped(), b.poles.reshaped()),
-                               bit_difference("trim weights", a.weights, b.weights)}) {
+  for (const std::string& d :
+       {bit_difference("trim knots", a.knots, b.knots),
+        bit_difference("trim poles", a.points.reshaped(), b.points.reshaped()),
+        bit_difference("trim weights", a.weights, b.weights)}) {
     if (!d.empty()) return d;
   }
   return "";
@@ -82,9 +83,9 @@ TrimCurve line(Eigen::Vector2d a, Eigen::Vector2d b) {
   TrimCurve c;
   c.degree = 1;
   c.knots = Eigen::Vector4d(0.0, 0.0, 1.0, 1.0);
-  c.poles.resize(2, 2);
-  c.poles.row(0) = a;
-  c.poles.row(1) = b;
+  c.points.resize(2, 2);
+  c.points.row(0) = a;
+  c.points.row(1) = b;
   return c;
 }
 
@@ -103,16 +104,16 @@ TrimLoop circle(Eigen::Vector2d centre, Eigen::Vector2d radii, bool clockwise) {
     c.degree = 2;
     c.knots.resize(6);
     c.knots << 0, 0, 0, 1, 1, 1;
-    c.poles.resize(3, 2);
-    c.poles.row(0) = at(a0, 1.0);
-    c.poles.row(1) = at(0.5 * (a0 + a1), 1.0 / w);
-    c.poles.row(2) = at(a1, 1.0);
+    c.points.resize(3, 2);
+    c.points.row(0) = at(a0, 1.0);
+    c.points.row(1) = at(0.5 * (a0 + a1), 1.0 / w);
+    c.points.row(2) = at(a1, 1.0);
     c.weights = Eigen::Vector3d(1.0, w, 1.0);
     loop.curves.push_back(c);
   }
   if (clockwise) {
     std::reverse(loop.curves.begin(), loop.curves.end());
-    for (TrimCurve& c : loop.curves) c.poles = c.poles.colwise().reverse().eval();
+    for (TrimCurve& c : loop.curves) c.points = c.points.colwise().reverse().eval();
   }
   return loop;
 }
@@ -212,11 +213,11 @@ TEST_CASE("JSON keeps every double bit for bit, subnormals and extremes included
     }
     TrimCurve curve;
     curve.degree = 1;
-    curve.poles.resize(1500, 2);
+    curve.points.resize(1500, 2);
     curve.knots.resize(1502);
     curve.knots << 0.0, Eigen::VectorXd::LinSpaced(1500, 0.0, 1.0), 1.0;
     for (Eigen::Index k = 0; k < 3000; ++k) {
-      curve.poles.data()[k] = values[(start + static_cast<std::size_t>(k)) % values.size()];
+      curve.points.data()[k] = values[(start + static_cast<std::size_t>(k)) % values.size()];
     }
     face.loops.push_back({true, {curve}});
     model.faces.push_back(face);
@@ -229,9 +230,9 @@ TEST_CASE("JSON keeps every double bit for bit, subnormals and extremes included
   for (std::size_t f = 0; f < model.faces.size(); ++f) {
     const TrimCurve& a = model.faces[f].loops[0].curves[0];
     const TrimCurve& b = back.value().faces[f].loops[0].curves[0];
-    REQUIRE(b.poles.size() == a.poles.size());
+    REQUIRE(b.points.size() == a.points.size());
     // Bit for bit, signed zeros included.
-    CHECK(std::memcmp(a.poles.data(), b.poles.data(), sizeof(double) * 3000) == 0);
+    CHECK(std::memcmp(a.points.data(), b.points.data(), sizeof(double) * 3000) == 0);
   }
 }
 

@@ -33,17 +33,17 @@ Model panel_and_trimmed_face() {
     c.degree = 2;
     c.knots.resize(12);
     c.knots << 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4;
-    c.poles.resize(9, 2);
+    c.points.resize(9, 2);
     c.weights.resize(9);
     const Eigen::Vector2d centre = 0.5 * (lo + hi), radii = scale * 0.5 * (hi - lo);
     const double corners[9][2] = {{1, 0},   {1, 1},  {0, 1},  {-1, 1}, {-1, 0},
                                   {-1, -1}, {0, -1}, {1, -1}, {1, 0}};
     for (int k = 0; k < 9; ++k) {
-      c.poles.row(k) = centre + radii.cwiseProduct(Eigen::Vector2d(corners[k][0], corners[k][1]));
+      c.points.row(k) = centre + radii.cwiseProduct(Eigen::Vector2d(corners[k][0], corners[k][1]));
       c.weights[k] = k % 2 == 1 ? std::sqrt(0.5) : 1.0;
     }
     if (!outer) {
-      c.poles = c.poles.colwise().reverse().eval();
+      c.points = c.points.colwise().reverse().eval();
       c.weights = c.weights.reverse().eval();
     }
     loop.curves.push_back(c);

@@ -108,7 +108,7 @@ Handle(Geom2d_BSplineCurve) to_occt(const TrimCurve& c) {
   TColgp_Array1OfPnt2d poles(1, n);
   TColStd_Array1OfReal weights(1, n);
   for (int i = 0; i < n; ++i) {
-    poles(i + 1) = gp_Pnt2d(writable(c.poles(i, 0)), writable(c.poles(i, 1)));
+    poles(i + 1) = gp_Pnt2d(writable(c.points(i, 0)), writable(c.points(i, 1)));
     weights(i + 1) = c.is_rational() ? c.weights[i] : 1.0;
   }
   const OcctKnots k = occt_knots(c.knots);

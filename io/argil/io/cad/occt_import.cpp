@@ -39,6 +39,7 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Wire.hxx>
 #include <Transfer_TransientProcess.hxx>
+#include <XSControl_Reader.hxx>
 #include <XSControl_TransferReader.hxx>
 #include <XSControl_WorkSession.hxx>
 
@@ -46,8 +47,10 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <string>
 
+#include "argil/core/geometry/param_rect.hpp"
 #include "argil/io/cad/cad_exchange.hpp"
 #include "argil/io/cad/detail/isolated_read.hpp"
 #include "argil/io/cad/detail/occt_session.hpp"
@@ -225,9 +228,9 @@ TrimCurve to_argil(const Handle(Geom2d_BSplineCurve) & c) {
   TColStd_Array1OfReal knots(1, c->NbPoles() + c->Degree() + 1);
   c->KnotSequence(knots);
   out.knots = flat_knots(knots);
-  out.poles.resize(c->NbPoles(), 2);
+  out.points.resize(c->NbPoles(), 2);
   for (int i = 1; i <= c->NbPoles(); ++i) {
-    out.poles.row(i - 1) << c->Pole(i).X(), c->Pole(i).Y();
+    out.points.row(i - 1) << c->Pole(i).X(), c->Pole(i).Y();
   }
   if (c->IsRational()) {
     out.weights.resize(c->NbPoles());
@@ -291,7 +294,7 @@ double signed_area(const std::vector<Eigen::Vector2d>& polygon) {
 std::vector<Eigen::Vector2d> coarse_polygon(const TrimLoop& loop) {
   std::vector<Eigen::Vector2d> points;
   for (const TrimCurve& c : loop.curves) {
-    for (Eigen::Index i = 0; i + 1 < c.poles.rows(); ++i) points.push_back(c.poles.row(i));
+    for (Eigen::Index i = 0; i + 1 < c.points.rows(); ++i) points.push_back(c.points.row(i));
   }
   return points;
 }
@@ -301,7 +304,7 @@ void reverse_loop(TrimLoop& loop) {
   for (TrimCurve& c : loop.curves) {
     const double a = c.knots[0], b = c.knots[c.knots.size() - 1];
     c.knots = (a + b - c.knots.reverse().array()).matrix();
-    c.poles = c.poles.colwise().reverse().eval();
+    c.points = c.points.colwise().reverse().eval();
     if (c.is_rational()) c.weights = c.weights.reverse().eval();
   }
 }
@@ -309,21 +312,21 @@ void reverse_loop(TrimLoop& loop) {
 // True when the loops are exactly the four sides of the surface domain.
 bool is_natural_boundary(const std::vector<TrimLoop>& loops, const BSplineSurface& s) {
   if (loops.size() != 1) return false;
-  const double u0 = s.domain_start(Direction::u), u1 = s.domain_end(Direction::u);
-  const double v0 = s.domain_start(Direction::v), v1 = s.domain_end(Direction::v);
+  const ParamRect d = domain_of(s);
   // Pcurves are computed to about 1e-9 of the domain; no real trim is that close.
-  const double tol_u = 1e-9 * (u1 - u0), tol_v = 1e-9 * (v1 - v0);
+  const double tol_u = 1e-9 * d.width(), tol_v = 1e-9 * d.height();
   for (const TrimCurve& c : loops[0].curves) {
     // All poles on one side line: the curve lies on it (convex hull property).
     const auto on = [&](int col, double value, double tol) {
-      return ((c.poles.col(col).array() - value).abs() <= tol).all();
+      return ((c.points.col(col).array() - value).abs() <= tol).all();
     };
-    if (!on(0, u0, tol_u) && !on(0, u1, tol_u) && !on(1, v0, tol_v) && !on(1, v1, tol_v)) {
+    if (!on(0, d.u0, tol_u) && !on(0, d.u1, tol_u) && !on(1, d.v0, tol_v) && !on(1, d.v1, tol_v)) {
       return false;
     }
   }
   const double area = std::abs(signed_area(coarse_polygon(loops[0])));
-  return std::abs(area - (u1 - u0) * (v1 - v0)) <= 1e-9 * (u1 - u0) * (v1 - v0);
+  const double domain_area = d.width() * d.height();
+  return std::abs(area - domain_area) <= 1e-9 * domain_area;
 }
 
 Result<std::vector<TrimLoop>> face_loops(const TopoDS_Face& face) {
@@ -477,88 +480,116 @@ std::string first_unsupported_entity(const Handle(Interface_InterfaceModel) & mo
   return "";
 }
 
-Result<Model> read_with_occt(const std::filesystem::path& path, CadFormat format) {
-  const char* kind = format == CadFormat::step ? "STEP" : "IGES";
-  Model model;
-  TopoDS_Shape shape;
-  Handle(XSControl_WorkSession) session;
+const char* format_name(CadFormat format) { return format == CadFormat::step ? "STEP" : "IGES"; }
+
+// The reader for the format, with the import settings made first (the IGES
+// controller must be initialised before its settings exist).
+std::unique_ptr<XSControl_Reader> make_reader(CadFormat format) {
   if (format == CadFormat::step) {
     Interface_Static::SetCVal("xstep.cascade.unit", "MM");
-    STEPControl_Reader reader;
-    session = reader.WS();
-    if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) {
-      return file_error(path, StatusCode::parse_error, "malformed STEP file");
-    }
-    if (const std::string bad = first_unsupported_entity(session->Model(), format); !bad.empty()) {
-      return file_error(path, StatusCode::unsupported, "unsupported STEP entity " + bad);
-    }
-    if (const std::string fail = first_load_failure(session, format); !fail.empty()) {
-      return file_error(path, StatusCode::parse_error, "malformed STEP data" + fail);
-    }
-    TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
-    reader.FileUnits(lengths, angles, solid_angles);
-    if (lengths.Length() > 0) model.source_unit.name = lower(lengths(1).ToCString());
-    if (reader.NbRootsForTransfer() == 0) {
-      return file_error(path, StatusCode::unsupported, "no shapes to transfer (no faces)");
-    }
-    reader.TransferRoots();
-    shape = reader.OneShape();
-  } else {
-    IGESControl_Controller::Init();
-    Interface_Static::SetCVal("xstep.cascade.unit", "MM");
-    // 0: keep B-splines as written; the default 1 may remove knots to raise continuity.
-    Interface_Static::SetIVal("read.iges.bspline.continuity", 0);
-    IGESControl_Reader reader;
-    session = reader.WS();
-    if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) {
-      return file_error(path, StatusCode::parse_error, "malformed IGES file");
-    }
-    if (const std::string bad = first_unsupported_entity(session->Model(), format); !bad.empty()) {
-      return file_error(path, StatusCode::unsupported, "unsupported IGES entity " + bad);
-    }
-    if (const std::string fail = first_load_failure(session, format); !fail.empty()) {
-      return file_error(path, StatusCode::parse_error, "malformed IGES data" + fail);
-    }
-    const auto iges = Handle(IGESData_IGESModel)::DownCast(session->Model());
-    if (!iges.IsNull()) {
-      const IGESData_GlobalSection& global = iges->GlobalSection();
-      if (!global.UnitName().IsNull())
-        model.source_unit.name = lower(global.UnitName()->ToCString());
-      model.source_unit.to_mm = iges_unit_to_mm(global.UnitFlag(), model.source_unit.name);
-    }
-    if (reader.NbRootsForTransfer() == 0) {
-      return file_error(path, StatusCode::unsupported, "no shapes to transfer (no faces)");
-    }
-    reader.TransferRoots();
-    shape = reader.OneShape();
+    return std::make_unique<STEPControl_Reader>();
   }
-  if (format == CadFormat::step) model.source_unit.to_mm = unit_to_mm(model.source_unit.name);
+  IGESControl_Controller::Init();
+  Interface_Static::SetCVal("xstep.cascade.unit", "MM");
+  // 0: keep B-splines as written; the default 1 may remove knots to raise continuity.
+  Interface_Static::SetIVal("read.iges.bspline.continuity", 0);
+  return std::make_unique<IGESControl_Reader>();
+}
+
+// The unit the file declares: STEP's first length unit, IGES's global section.
+SourceUnit declared_unit(XSControl_Reader& reader, CadFormat format) {
+  SourceUnit unit;
+  if (format == CadFormat::step) {
+    TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
+    static_cast<STEPControl_Reader&>(reader).FileUnits(lengths, angles, solid_angles);
+    if (lengths.Length() > 0) unit.name = lower(lengths(1).ToCString());
+    unit.to_mm = unit_to_mm(unit.name);
+    return unit;
+  }
+  const auto iges = Handle(IGESData_IGESModel)::DownCast(reader.WS()->Model());
+  if (!iges.IsNull()) {
+    const IGESData_GlobalSection& global = iges->GlobalSection();
+    if (!global.UnitName().IsNull()) unit.name = lower(global.UnitName()->ToCString());
+    unit.to_mm = iges_unit_to_mm(global.UnitFlag(), unit.name);
+  }
+  return unit;
+}
+
+// A file read and transferred, with the session that knows its entities.
+struct LoadedShape {
+  TopoDS_Shape shape;
+  Handle(XSControl_WorkSession) session;
+  SourceUnit unit;
+};
+
+// Reads and transfers the file; STEP and IGES differ only in the reader.
+Result<LoadedShape> load_shape(const std::filesystem::path& path, CadFormat format) {
+  const std::string kind = format_name(format);
+  const std::unique_ptr<XSControl_Reader> reader = make_reader(format);
+  LoadedShape out;
+  out.session = reader->WS();
+  if (reader->ReadFile(path.c_str()) != IFSelect_RetDone) {
+    return file_error(path, StatusCode::parse_error, "malformed " + kind + " file");
+  }
+  if (const std::string bad = first_unsupported_entity(out.session->Model(), format);
+      !bad.empty()) {
+    return file_error(path, StatusCode::unsupported, "unsupported " + kind + " entity " + bad);
+  }
+  if (const std::string fail = first_load_failure(out.session, format); !fail.empty()) {
+    return file_error(path, StatusCode::parse_error, "malformed " + kind + " data" + fail);
+  }
+  out.unit = declared_unit(*reader, format);
+  if (reader->NbRootsForTransfer() == 0) {
+    return file_error(path, StatusCode::unsupported, "no shapes to transfer (no faces)");
+  }
+  reader->TransferRoots();
+  out.shape = reader->OneShape();
+  return out;
+}
+
+// Every face of the shape as a record, or the first face's failure naming
+// its index and source entity.
+Result<std::vector<FaceRecord>> face_records(const std::filesystem::path& path,
+                                             const LoadedShape& loaded, CadFormat format) {
+  std::vector<FaceRecord> faces;
+  int index = 0;
+  for (TopExp_Explorer e(loaded.shape, TopAbs_FACE); e.More(); e.Next(), ++index) {
+    Result<FaceRecord> record = face_record(TopoDS::Face(e.Current()));
+    if (!record.ok()) {
+      FaceRecord source;  // only for the entity id in the message
+      describe_source(loaded.session, e.Current(), format, source);
+      return file_error(path, record.status().code,
+                        "face " + std::to_string(index) +
+                            (source.source_id.empty() ? "" : " (" + source.source_id + ")") + ": " +
+                            record.status().message);
+    }
+    describe_source(loaded.session, e.Current(), format, record.value());
+    faces.push_back(std::move(record).value());
+  }
+  return faces;
+}
+
+Result<Model> read_with_occt(const std::filesystem::path& path, CadFormat format) {
+  Result<LoadedShape> loaded = load_shape(path, format);
+  if (!loaded.ok()) return loaded.status();
+  Model model;
+  model.source_unit = loaded.value().unit;
   if (!(model.source_unit.to_mm > 0.0)) {
     // The reader still converted to mm; only the record of the factor is missing.
     model.source_unit.to_mm = 1.0;
     model.metadata["source_unit_note"] = "unit name not recognised, factor unknown";
   }
   model.metadata["source_file"] = path.filename().string();
-  model.metadata["source_format"] = kind;
-  if (shape.IsNull()) {
+  model.metadata["source_format"] = format_name(format);
+  if (loaded.value().shape.IsNull()) {
     return file_error(path, StatusCode::unsupported, "no shape could be read (no faces)");
   }
-  int index = 0;
-  for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next(), ++index) {
-    Result<FaceRecord> record = face_record(TopoDS::Face(e.Current()));
-    if (!record.ok()) {
-      FaceRecord source;  // only for the entity id in the message
-      describe_source(session, e.Current(), format, source);
-      return file_error(path, record.status().code,
-                        "face " + std::to_string(index) +
-                            (source.source_id.empty() ? "" : " (" + source.source_id + ")") + ": " +
-                            record.status().message);
-    }
-    describe_source(session, e.Current(), format, record.value());
-    model.faces.push_back(std::move(record).value());
-  }
+  Result<std::vector<FaceRecord>> faces = face_records(path, loaded.value(), format);
+  if (!faces.ok()) return faces.status();
+  model.faces = std::move(faces).value();
   if (model.faces.empty()) {
-    return file_error(path, StatusCode::unsupported, std::string(kind) + " file has no faces");
+    return file_error(path, StatusCode::unsupported,
+                      std::string(format_name(format)) + " file has no faces");
   }
   return model;
 }

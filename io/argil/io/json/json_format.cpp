@@ -81,9 +81,8 @@ class Reader {
     return true;
   }
 
-  template <int Columns>
-  bool points(const Json& value, const std::string& path,
-              Eigen::Matrix<double, Eigen::Dynamic, Columns, Eigen::RowMajor>& out) {
+  template <int Columns, class Matrix>
+  bool points(const Json& value, const std::string& path, Matrix& out) {
     if (!value.is_array()) return fail(path, "expected an array of points");
     out.resize(static_cast<Eigen::Index>(value.size()), Columns);
     for (std::size_t k = 0; k < value.size(); ++k) {
@@ -155,7 +154,7 @@ class Reader {
     if (degree == nullptr || knots == nullptr || poles == nullptr) return false;
     if (!integer(*degree, path + ".degree", out.degree) ||
         !vector(*knots, path + ".knots", out.knots) ||
-        !points<2>(*poles, path + ".poles", out.poles)) {
+        !points<2>(*poles, path + ".poles", out.points)) {
       return false;
     }
     out.weights.resize(0);
@@ -340,7 +339,7 @@ Result<std::string> to_json(const Model& model) {
         Json c;
         c["degree"] = curve.degree;
         c["knots"] = vector_json(curve.knots);
-        c["poles"] = points_json(curve.poles);
+        c["poles"] = points_json(curve.points);
         if (curve.is_rational()) c["weights"] = vector_json(curve.weights);
         curves.push_back(std::move(c));
       }

@@ -7,13 +7,14 @@
 
 #include "argil/core/base/number_text.hpp"
 #include "argil/core/geometry/evaluate.hpp"
+#include "argil/core/geometry/param_rect.hpp"
 #include "argil/io/model/trim_curve.hpp"
 
 namespace argil::io {
 namespace {
 
 struct Cell {
-  double u0, u1, v0, v1;
+  ParamRect rect;
   int depth;
 };
 
@@ -68,11 +69,9 @@ bool fan_within(VertexCache& cache, int centre, const std::vector<int>& boundary
 }
 
 std::array<Cell, 4> split(const Cell& c) {
-  const double um = 0.5 * (c.u0 + c.u1);
-  const double vm = 0.5 * (c.v0 + c.v1);
+  const std::array<ParamRect, 4> quarters = c.rect.split();
   const int d = c.depth + 1;
-  return {Cell{c.u0, um, c.v0, vm, d}, Cell{um, c.u1, c.v0, vm, d}, Cell{c.u0, um, vm, c.v1, d},
-          Cell{um, c.u1, vm, c.v1, d}};
+  return {Cell{quarters[0], d}, Cell{quarters[1], d}, Cell{quarters[2], d}, Cell{quarters[3], d}};
 }
 
 // Corner parameters of all leaves along every constant-u and constant-v line,
@@ -82,7 +81,8 @@ struct CornerIndex {
   std::map<double, std::vector<double>> u_on_v_line;
 
   explicit CornerIndex(const std::vector<Cell>& leaves) {
-    for (const Cell& c : leaves) {
+    for (const Cell& cell : leaves) {
+      const ParamRect& c = cell.rect;
       for (double u : {c.u0, c.u1}) {
         v_on_u_line[u].push_back(c.v0);
         v_on_u_line[u].push_back(c.v1);
@@ -109,7 +109,8 @@ struct CornerIndex {
   }
 
   // Boundary vertices of a cell, counter-clockwise in (u, v) from (u0, v0).
-  std::vector<int> boundary(const Cell& c, VertexCache& cache) const {
+  std::vector<int> boundary(const Cell& cell, VertexCache& cache) const {
+    const ParamRect& c = cell.rect;
     std::vector<int> out;
     for (double u : between(u_on_v_line, c.v0, c.u0, c.u1)) out.push_back(cache.index(u, c.v0));
     for (double v : between(v_on_u_line, c.u1, c.v0, c.v1)) out.push_back(cache.index(c.u1, v));
@@ -126,16 +127,15 @@ struct CornerIndex {
 };
 
 int centre_of(const Cell& c, VertexCache& cache) {
-  return cache.index(0.5 * (c.u0 + c.u1), 0.5 * (c.v0 + c.v1));
+  const Eigen::Vector2d m = c.rect.centre();
+  return cache.index(m[0], m[1]);
 }
 
 // Unit normal at (u, v), the limit normal on a collapsed edge; where even that
 // is undefined (a fully collapsed corner) the normal of a point slightly
 // towards the domain centre.
 Eigen::Vector3d normal_at(const BSplineSurface& surface, Eigen::Vector2d uv) {
-  const Eigen::Vector2d centre(
-      0.5 * (surface.domain_start(Direction::u) + surface.domain_end(Direction::u)),
-      0.5 * (surface.domain_start(Direction::v) + surface.domain_end(Direction::v)));
+  const Eigen::Vector2d centre = domain_of(surface).centre();
   for (int attempt = 0; attempt < 4; ++attempt) {
     const Eigen::Vector3d n = unit_normal(surface, uv.x(), uv.y());
     if (n.squaredNorm() > 0.0) return n;
@@ -144,23 +144,16 @@ Eigen::Vector3d normal_at(const BSplineSurface& surface, Eigen::Vector2d uv) {
   return Eigen::Vector3d::Zero();
 }
 
-}  // namespace
-
-TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& options,
-                             int face_index) {
-  const BSplineSurface& s = face.surface;
-  const double tolerance = options.chord_tolerance_mm;
-  // Bezier patches of degree above 3 can wiggle between the few samples of an
-  // unsplit cell; one more forced level makes that aliasing unlikely.
-  const int min_depth = std::max(s.degree[0], s.degree[1]) > 3 ? 2 : 1;
-  VertexCache cache(s);
-
-  // Phase 1: split each knot-span patch by the flatness of its own four-corner fan.
+// Phase 1: each non-empty knot-span patch split by the flatness of its own
+// four-corner fan (`min_depth` levels at least).
+std::vector<Cell> flat_cells(VertexCache& cache, const TessellationOptions& options,
+                             int min_depth) {
+  const BSplineSurface& s = cache.surface();
   std::vector<Cell> stack;
   for (Eigen::Index i = s.degree[0]; i < s.count(Direction::u); ++i) {
     for (Eigen::Index j = s.degree[1]; j < s.count(Direction::v); ++j) {
-      const Cell root{s.knots[0][i], s.knots[0][i + 1], s.knots[1][j], s.knots[1][j + 1], 0};
-      if (root.u1 > root.u0 && root.v1 > root.v0) stack.push_back(root);
+      const Cell root{{s.knots[0][i], s.knots[0][i + 1], s.knots[1][j], s.knots[1][j + 1]}, 0};
+      if (root.rect.width() > 0 && root.rect.height() > 0) stack.push_back(root);
     }
   }
   std::vector<Cell> leaves;
@@ -169,9 +162,12 @@ TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& 
     stack.pop_back();
     bool flat = c.depth >= options.max_depth;
     if (!flat && c.depth >= min_depth) {
-      const std::vector<int> corners{cache.index(c.u0, c.v0), cache.index(c.u1, c.v0),
-                                     cache.index(c.u1, c.v1), cache.index(c.u0, c.v1)};
-      flat = fan_within(cache, centre_of(c, cache), corners, tolerance);
+      std::vector<int> corners;
+      for (int k : {0, 1, 3, 2}) {  // counter-clockwise
+        const Eigen::Vector2d uv = c.rect.corner(k);
+        corners.push_back(cache.index(uv[0], uv[1]));
+      }
+      flat = fan_within(cache, centre_of(c, cache), corners, options.chord_tolerance_mm);
     }
     if (flat) {
       leaves.push_back(c);
@@ -179,9 +175,20 @@ TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& 
       for (const Cell& child : split(c)) stack.push_back(child);
     }
   }
+  return leaves;
+}
 
-  // Phase 2: with neighbours' vertices in each fan, re-check and split until
-  // every fan is within tolerance (usually one or two rounds).
+// Leaves whose fans, with their neighbours' vertices on shared edges, are all
+// within tolerance, and each leaf's boundary vertices.
+struct ConformingCells {
+  std::vector<Cell> leaves;
+  std::vector<std::vector<int>> boundaries;
+};
+
+// Phase 2: re-checks and splits until every fan is within tolerance
+// (usually one or two rounds).
+ConformingCells conforming_cells(std::vector<Cell> leaves, VertexCache& cache,
+                                 const TessellationOptions& options) {
   std::vector<std::vector<int>> boundaries;
   while (true) {
     const CornerIndex corners(leaves);
@@ -191,7 +198,8 @@ TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& 
     for (std::size_t k = 0; k < leaves.size(); ++k) {
       boundaries[k] = corners.boundary(leaves[k], cache);
       if (leaves[k].depth < options.max_depth && boundaries[k].size() > 4 &&
-          !fan_within(cache, centre_of(leaves[k], cache), boundaries[k], tolerance)) {
+          !fan_within(cache, centre_of(leaves[k], cache), boundaries[k],
+                      options.chord_tolerance_mm)) {
         for (const Cell& child : split(leaves[k])) next.push_back(child);
         changed = true;
       } else {
@@ -201,24 +209,33 @@ TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& 
     if (!changed) break;
     leaves = std::move(next);
   }
+  return {std::move(leaves), std::move(boundaries)};
+}
 
-  // Phase 3: fans, trimmed by the centroid test.
+// Phase 3: the fans' triangles whose (u, v) centroid is inside the trim.
+std::vector<std::array<int, 3>> trimmed_fans(const FaceRecord& face, const ConformingCells& cells,
+                                             VertexCache& cache,
+                                             const TessellationOptions& options) {
   std::vector<std::vector<Eigen::Vector2d>> polygons;
   for (const TrimLoop& loop : face.loops) {
     polygons.push_back(loop_polygon(loop, options.trim_samples_per_span));
   }
   std::vector<std::array<int, 3>> kept;
-  for (std::size_t k = 0; k < leaves.size(); ++k) {
-    const int c = centre_of(leaves[k], cache);
-    const std::vector<int>& b = boundaries[k];
+  for (std::size_t k = 0; k < cells.leaves.size(); ++k) {
+    const int c = centre_of(cells.leaves[k], cache);
+    const std::vector<int>& b = cells.boundaries[k];
     for (std::size_t e = 0; e < b.size(); ++e) {
       const std::array<int, 3> t{c, b[e], b[(e + 1) % b.size()]};
       const Eigen::Vector2d centroid = (cache.uv(t[0]) + cache.uv(t[1]) + cache.uv(t[2])) / 3.0;
       if (polygons.empty() || inside_trim(polygons, centroid)) kept.push_back(t);
     }
   }
+  return kept;
+}
 
-  // Compact to the vertices the kept triangles use.
+// The mesh of the kept triangles, compacted to the vertices they use.
+TriangleMesh compact_mesh(const FaceRecord& face, const VertexCache& cache,
+                          const std::vector<std::array<int, 3>>& kept, int face_index) {
   std::vector<int> remap(cache.size(), -1);
   int used = 0;
   for (const auto& t : kept) {
@@ -238,7 +255,7 @@ TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& 
     const int vi = static_cast<int>(v);
     mesh.positions.row(r) = cache.point(vi).transpose();
     mesh.uv.row(r) = cache.uv(vi).transpose();
-    mesh.normals.row(r) = side * normal_at(s, cache.uv(vi)).transpose();
+    mesh.normals.row(r) = side * normal_at(face.surface, cache.uv(vi)).transpose();
   }
   mesh.triangles.resize(static_cast<Eigen::Index>(kept.size()), 3);
   for (std::size_t k = 0; k < kept.size(); ++k) {
@@ -250,6 +267,20 @@ TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& 
     mesh.triangles(row, 2) = remap[static_cast<std::size_t>(face.reversed ? t[1] : t[2])];
   }
   return mesh;
+}
+
+}  // namespace
+
+TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& options,
+                             int face_index) {
+  const BSplineSurface& s = face.surface;
+  // Bezier patches of degree above 3 can wiggle between the few samples of an
+  // unsplit cell; one more forced level makes that aliasing unlikely.
+  const int min_depth = std::max(s.degree[0], s.degree[1]) > 3 ? 2 : 1;
+  VertexCache cache(s);
+  const ConformingCells cells =
+      conforming_cells(flat_cells(cache, options, min_depth), cache, options);
+  return compact_mesh(face, cache, trimmed_fans(face, cells, cache, options), face_index);
 }
 
 Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& options) {

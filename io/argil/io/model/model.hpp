@@ -8,22 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "argil/core/geometry/bspline_curve.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
 
 namespace argil::io {
 
-/// A planar B-spline or NURBS curve in a surface's (u, v) parameter space.
-/// Same conventions as BSplineSurface: clamped non-decreasing knots,
-/// poles.rows() == knots.size() - degree - 1, weights empty or one per pole.
-struct TrimCurve {
-  int degree = 1;
-  Eigen::VectorXd knots;
-  Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> poles;  // (u, v) rows
-  Eigen::VectorXd weights;                                          // empty: polynomial
-
-  bool is_rational() const { return weights.size() > 0; }
-  int count() const { return static_cast<int>(knots.size()) - degree - 1; }
-};
+/// A planar B-spline or NURBS curve in a surface's (u, v) parameter space:
+/// a BSplineCurve whose points have two columns, (u, v).
+using TrimCurve = BSplineCurve;
 
 /// A closed chain of trim curves, each starting where the previous one ends.
 /// The outer loop runs counter-clockwise in (u, v), inner loops (holes) clockwise,

@@ -1,86 +1,22 @@
 #include "argil/io/model/trim_curve.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <string>
 
-#include "argil/core/base/number_text.hpp"
-#include "argil/core/geometry/basis.hpp"
-
 namespace argil::io {
-namespace {
-
-Status curve_error(const std::string& what) {
-  return Status::error(StatusCode::invalid_surface, "trim curve: " + what);
-}
-
-std::string at(const char* field, Eigen::Index index, double value) {
-  return std::string(field) + "[" + std::to_string(index) + "] = " + number_text(value);
-}
-
-}  // namespace
 
 Status validate_trim_curve(const TrimCurve& curve) {
-  const Eigen::Index p = curve.degree;
-  if (curve.degree < 1 || curve.degree > kMaxDegree) {
-    return curve_error("degree " + std::to_string(curve.degree) + " out of range [1, " +
-                       std::to_string(kMaxDegree) + "]");
-  }
-  if (curve.knots.size() < 2 * (p + 1)) {
-    return curve_error("needs at least " + std::to_string(2 * (p + 1)) + " knots, has " +
-                       std::to_string(curve.knots.size()));
-  }
-  for (Eigen::Index k = 0; k < curve.knots.size(); ++k) {
-    if (!std::isfinite(curve.knots[k])) return curve_error(at("knots", k, curve.knots[k]));
-    if (k > 0 && curve.knots[k] < curve.knots[k - 1]) {
-      return curve_error("knots decrease at " + at("knots", k, curve.knots[k]));
-    }
-  }
-  const Eigen::Index last = curve.knots.size() - 1;
-  for (Eigen::Index k = 1; k <= p; ++k) {
-    if (curve.knots[k] != curve.knots[0] || curve.knots[last - k] != curve.knots[last]) {
-      return curve_error("knots not clamped (end knots must repeat degree + 1 times)");
-    }
-  }
-  if (curve.knots[0] == curve.knots[last]) return curve_error("empty parameter range");
-  if (curve.poles.rows() != curve.count()) {
-    return curve_error("has " + std::to_string(curve.poles.rows()) + " poles, knots imply " +
-                       std::to_string(curve.count()));
-  }
-  for (Eigen::Index i = 0; i < curve.poles.rows(); ++i) {
-    if (!curve.poles.row(i).allFinite()) {
-      return curve_error("pole " + std::to_string(i) + " is not finite");
-    }
-  }
-  if (curve.weights.size() != 0 && curve.weights.size() != curve.poles.rows()) {
-    return curve_error("has " + std::to_string(curve.weights.size()) + " weights for " +
-                       std::to_string(curve.poles.rows()) + " poles");
-  }
-  for (Eigen::Index i = 0; i < curve.weights.size(); ++i) {
-    if (!std::isfinite(curve.weights[i]) || !(curve.weights[i] > 0.0)) {
-      return curve_error("weight must be positive and finite: " +
-                         at("weights", i, curve.weights[i]));
-    }
+  const SurfaceValidation check = validate(curve);
+  if (!check.ok())
+    return Status::error(StatusCode::invalid_surface, "trim curve: " + check.message);
+  if (curve.points.cols() != 2) {
+    return Status::error(StatusCode::invalid_surface, "trim curve: points has " +
+                                                          std::to_string(curve.points.cols()) +
+                                                          " columns, expected 2 (u, v)");
   }
   return Status::success();
 }
 
-Eigen::Vector2d evaluate_trim_curve(const TrimCurve& curve, double t) {
-  const int n = curve.count();
-  const double t_clamped =
-      std::clamp(t, curve.knots[curve.degree], curve.knots[static_cast<Eigen::Index>(n)]);
-  const int span = find_span(curve.degree, curve.knots, n, t_clamped);
-  const Eigen::MatrixXd basis = basis_derivatives(curve.degree, curve.knots, span, t_clamped, 0);
-  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-  double weight_sum = 0.0;
-  for (int r = 0; r <= curve.degree; ++r) {
-    const Eigen::Index i = span - curve.degree + r;
-    const double w = curve.is_rational() ? curve.weights[i] : 1.0;
-    sum += basis(0, r) * w * curve.poles.row(i).transpose();
-    weight_sum += basis(0, r) * w;
-  }
-  return sum / weight_sum;
-}
+Eigen::Vector2d evaluate_trim_curve(const TrimCurve& curve, double t) { return evaluate(curve, t); }
 
 std::vector<Eigen::Vector2d> loop_polygon(const TrimLoop& loop, int samples_per_span) {
   std::vector<Eigen::Vector2d> polygon;

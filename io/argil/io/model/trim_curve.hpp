@@ -10,9 +10,10 @@
 
 namespace argil::io {
 
-/// Checks a trim curve's invariants (degree, clamped non-decreasing finite knots,
-/// pole and weight counts, finite poles, positive weights). The message names
-/// the first problem with its index and value.
+/// Checks a trim curve: two columns of points, then every invariant of
+/// BSplineCurve with the rules surfaces follow (validate(const BSplineCurve&)).
+/// The message starts "trim curve: " and names the first problem's field,
+/// index and value.
 Status validate_trim_curve(const TrimCurve& curve);
 
 /// Point of the curve at t (clamped to the knot range). Precondition:

@@ -132,20 +132,10 @@ Camera fit_camera(const Box3& box, int width, int height, const Eigen::Vector3d&
   return c;
 }
 
-Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolPath& path,
-                                       const Camera& camera, const SurfacePictureOptions& options) {
-  Result<std::pair<SurfacePtr, ContextPtr>> made = canvas(camera.width, camera.height);
-  if (!made.ok()) return made.status();
-  cairo_t* cr = made.value().second.get();
-  const bool coloured = !options.vertex_displacement.empty();
-  if (coloured &&
-      (options.vertex_displacement.size() != static_cast<std::size_t>(mesh.positions.rows()) ||
-       !(options.displacement_scale > 0.0))) {
-    return Status::error(StatusCode::invalid_argument,
-                         "vertex_displacement needs one value per vertex and a positive scale");
-  }
+namespace {
 
-  // Painter's algorithm: far triangles first.
+/// Triangle indices far to near along the view (the painter's algorithm).
+std::vector<Eigen::Index> far_to_near(const io::TriangleMesh& mesh, const Camera& camera) {
   const Eigen::Index count = mesh.triangles.rows();
   std::vector<double> depth(static_cast<std::size_t>(count));
   for (Eigen::Index t = 0; t < count; ++t) {
@@ -159,13 +149,20 @@ Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolP
   std::stable_sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
     return depth[static_cast<std::size_t>(a)] < depth[static_cast<std::size_t>(b)];
   });
-  // Light from over the viewer's left shoulder.
+  return order;
+}
+
+/// Triangles shaded by a light over the viewer's left shoulder, clay or
+/// coloured by the mean displacement of their vertices.
+void draw_triangles(cairo_t* cr, const io::TriangleMesh& mesh, const Camera& camera,
+                    const SurfacePictureOptions& options) {
+  const bool coloured = !options.vertex_displacement.empty();
   const Eigen::Vector3d light =
       (camera.eye_direction + 0.5 * camera.up - 0.3 * camera.right).normalized();
   const Eigen::Vector3d clay(0.82, 0.64, 0.47);
   cairo_set_line_width(cr, 0.6);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  for (const Eigen::Index t : order) {
+  for (const Eigen::Index t : far_to_near(mesh, camera)) {
     const Eigen::Vector3d a = mesh.positions.row(mesh.triangles(t, 0)).transpose();
     const Eigen::Vector3d b = mesh.positions.row(mesh.triangles(t, 1)).transpose();
     const Eigen::Vector3d c = mesh.positions.row(mesh.triangles(t, 2)).transpose();
@@ -192,8 +189,10 @@ Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolP
     cairo_fill_preserve(cr);
     cairo_stroke(cr);
   }
+}
 
-  // Tool path on top.
+/// The tool path: red where engaged, grey where moving freely.
+void draw_tool_path(cairo_t* cr, const ToolPath& path, const Camera& camera) {
   cairo_set_line_width(cr, 2.0);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   for (std::size_t k = 1; k < path.positions.size(); ++k) {
@@ -208,29 +207,54 @@ Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolP
     cairo_line_to(cr, p1.x(), p1.y());
     cairo_stroke(cr);
   }
+}
 
+/// Colour bar: displacement 0 .. scale, bottom right.
+void draw_colour_bar(cairo_t* cr, const Camera& camera, double displacement_scale) {
+  const double x0 = camera.width - 240.0, y0 = camera.height - 30.0, w = 200.0, h = 12.0;
+  for (int k = 0; k < 100; ++k) {
+    const Eigen::Vector3d col = ramp(k / 99.0);
+    cairo_set_source_rgb(cr, col.x(), col.y(), col.z());
+    cairo_rectangle(cr, x0 + w * k / 100.0, y0, w / 100.0 + 0.5, h);
+    cairo_fill(cr);
+  }
+  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+  char label[64];
+  std::snprintf(label, sizeof label, "%.3g mm", displacement_scale);
+  draw_text(cr, x0, y0 - 4, "0", 12);
+  draw_text(cr, x0 + w, y0 - 4, label, 12, false, true);
+  draw_text(cr, x0 + w / 2, y0 + h + 13, "displacement", 12, true);
+}
+
+/// Title, the path legend and, when coloured, the colour bar.
+void draw_surface_labels(cairo_t* cr, const Camera& camera, const SurfacePictureOptions& options) {
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
   draw_text(cr, 14, 26, options.title, 18);
   cairo_set_source_rgb(cr, 0.85, 0.05, 0.05);
   draw_text(cr, 14, camera.height - 14.0, "tool path (engaged)", 13);
   cairo_set_source_rgb(cr, 0.4, 0.4, 0.4);
   draw_text(cr, 160, camera.height - 14.0, "free move", 13);
-  if (coloured) {
-    // Colour bar: displacement 0 .. scale.
-    const double x0 = camera.width - 240.0, y0 = camera.height - 30.0, w = 200.0, h = 12.0;
-    for (int k = 0; k < 100; ++k) {
-      const Eigen::Vector3d col = ramp(k / 99.0);
-      cairo_set_source_rgb(cr, col.x(), col.y(), col.z());
-      cairo_rectangle(cr, x0 + w * k / 100.0, y0, w / 100.0 + 0.5, h);
-      cairo_fill(cr);
-    }
-    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    char label[64];
-    std::snprintf(label, sizeof label, "%.3g mm", options.displacement_scale);
-    draw_text(cr, x0, y0 - 4, "0", 12);
-    draw_text(cr, x0 + w, y0 - 4, label, 12, false, true);
-    draw_text(cr, x0 + w / 2, y0 + h + 13, "displacement", 12, true);
+  if (!options.vertex_displacement.empty()) {
+    draw_colour_bar(cr, camera, options.displacement_scale);
   }
+}
+
+}  // namespace
+
+Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolPath& path,
+                                       const Camera& camera, const SurfacePictureOptions& options) {
+  Result<std::pair<SurfacePtr, ContextPtr>> made = canvas(camera.width, camera.height);
+  if (!made.ok()) return made.status();
+  cairo_t* cr = made.value().second.get();
+  if (!options.vertex_displacement.empty() &&
+      (options.vertex_displacement.size() != static_cast<std::size_t>(mesh.positions.rows()) ||
+       !(options.displacement_scale > 0.0))) {
+    return Status::error(StatusCode::invalid_argument,
+                         "vertex_displacement needs one value per vertex and a positive scale");
+  }
+  draw_triangles(cr, mesh, camera, options);
+  draw_tool_path(cr, path, camera);  // on top
+  draw_surface_labels(cr, camera, options);
   return encode_png(made.value().first.get());
 }
 
@@ -256,6 +280,105 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
   return ticks;
 }
 
+namespace {
+
+/// The plot area [pixels] and the data ranges it shows.
+struct PlotFrame {
+  double left, right, top, bottom;
+  double t_lo, t_hi, f_lo, f_hi;
+  double x(double t) const { return left + (t - t_lo) / (t_hi - t_lo) * (right - left); }
+  double y(double f) const { return bottom - (f - f_lo) / (f_hi - f_lo) * (bottom - top); }
+};
+
+/// Vertical grid lines with ticks and labels at the time ticks.
+void draw_time_axis(cairo_t* cr, const PlotFrame& frame, const std::vector<double>& ticks) {
+  for (const double t : ticks) {
+    cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
+    cairo_move_to(cr, frame.x(t), frame.top);
+    cairo_line_to(cr, frame.x(t), frame.bottom);
+    cairo_stroke(cr);
+    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+    cairo_move_to(cr, frame.x(t), frame.bottom);
+    cairo_line_to(cr, frame.x(t), frame.bottom + 5);
+    cairo_stroke(cr);
+    draw_text(cr, frame.x(t), frame.bottom + 20,
+              tick_label(t, ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0), 12, true);
+  }
+}
+
+/// Horizontal grid lines with ticks and labels at the force ticks.
+void draw_force_axis(cairo_t* cr, const PlotFrame& frame, const std::vector<double>& ticks) {
+  for (const double f : ticks) {
+    cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
+    cairo_move_to(cr, frame.left, frame.y(f));
+    cairo_line_to(cr, frame.right, frame.y(f));
+    cairo_stroke(cr);
+    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+    cairo_move_to(cr, frame.left - 5, frame.y(f));
+    cairo_line_to(cr, frame.left, frame.y(f));
+    cairo_stroke(cr);
+    draw_text(cr, frame.left - 8, frame.y(f) + 4,
+              tick_label(f, ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0), 12, false, true);
+  }
+}
+
+/// The frame's border, the axis titles and the plot title.
+void draw_plot_labels(cairo_t* cr, const PlotFrame& frame, const std::string& title, int height) {
+  cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+  cairo_rectangle(cr, frame.left, frame.top, frame.right - frame.left, frame.bottom - frame.top);
+  cairo_stroke(cr);
+  draw_text(cr, 0.5 * (frame.left + frame.right), height - 18.0, "time [s]", 14, true);
+  cairo_save(cr);
+  cairo_translate(cr, 22, 0.5 * (frame.top + frame.bottom));
+  cairo_rotate(cr, -M_PI / 2);
+  draw_text(cr, 0, 0, "force on the device [N]", 14, true);
+  cairo_restore(cr);
+  draw_text(cr, frame.left, 30, title, 18);
+}
+
+struct ForceCurve {
+  int component;  // 3 = magnitude
+  double r, g, b, width;
+  const char* name;
+};
+// Components thin, magnitude thick.
+constexpr ForceCurve kForceCurves[] = {{0, 0.85, 0.25, 0.2, 1.2, "fx"},
+                                       {1, 0.2, 0.6, 0.25, 1.2, "fy"},
+                                       {2, 0.2, 0.35, 0.85, 1.2, "fz"},
+                                       {3, 0.05, 0.05, 0.05, 2.0, "|f|"}};
+
+/// The force curves, clipped to the frame, and their legend above it.
+void draw_force_curves(cairo_t* cr, const PlotFrame& frame, const std::vector<double>& times,
+                       const std::vector<Eigen::Vector3d>& forces) {
+  cairo_rectangle(cr, frame.left, frame.top, frame.right - frame.left, frame.bottom - frame.top);
+  cairo_clip(cr);
+  for (const ForceCurve& c : kForceCurves) {
+    cairo_set_source_rgb(cr, c.r, c.g, c.b);
+    cairo_set_line_width(cr, c.width);
+    for (std::size_t k = 0; k < times.size(); ++k) {
+      const double value = c.component == 3 ? forces[k].norm() : forces[k][c.component];
+      if (k == 0)
+        cairo_move_to(cr, frame.x(times[k]), frame.y(value));
+      else
+        cairo_line_to(cr, frame.x(times[k]), frame.y(value));
+    }
+    cairo_stroke(cr);
+  }
+  cairo_reset_clip(cr);
+  double legend_x = frame.right - 260;
+  for (const ForceCurve& c : kForceCurves) {
+    cairo_set_source_rgb(cr, c.r, c.g, c.b);
+    cairo_set_line_width(cr, c.width + 1);
+    cairo_move_to(cr, legend_x, 32);
+    cairo_line_to(cr, legend_x + 22, 32);
+    cairo_stroke(cr);
+    draw_text(cr, legend_x + 27, 37, c.name, 13);
+    legend_x += 65;
+  }
+}
+
+}  // namespace
+
 Result<std::string> plot_force_png(const std::vector<double>& times,
                                    const std::vector<Eigen::Vector3d>& forces,
                                    const std::string& title, int width, int height) {
@@ -266,94 +389,21 @@ Result<std::string> plot_force_png(const std::vector<double>& times,
   Result<std::pair<SurfacePtr, ContextPtr>> made = canvas(width, height);
   if (!made.ok()) return made.status();
   cairo_t* cr = made.value().second.get();
-
-  double t_lo = times.empty() ? 0.0 : times.front(), t_hi = times.empty() ? 1.0 : times.back();
   double f_lo = 0.0, f_hi = 0.0;
   for (const Eigen::Vector3d& f : forces) {
     f_lo = std::min({f_lo, f.minCoeff()});
     f_hi = std::max({f_hi, f.maxCoeff(), f.norm()});
   }
-  const std::vector<double> xt = nice_ticks(t_lo, t_hi, 8);
+  const std::vector<double> xt =
+      nice_ticks(times.empty() ? 0.0 : times.front(), times.empty() ? 1.0 : times.back(), 8);
   const std::vector<double> yt = nice_ticks(f_lo, f_hi, 6);
-  t_lo = xt.front();
-  t_hi = xt.back();
-  f_lo = yt.front();
-  f_hi = yt.back();
-
-  const double left = 80, right = width - 30.0, top = 50, bottom = height - 60.0;
-  auto X = [&](double t) { return left + (t - t_lo) / (t_hi - t_lo) * (right - left); };
-  auto Y = [&](double f) { return bottom - (f - f_lo) / (f_hi - f_lo) * (bottom - top); };
-
-  // Grid, ticks and labels.
+  const PlotFrame frame{80,         width - 30.0, 50,         height - 60.0,
+                        xt.front(), xt.back(),    yt.front(), yt.back()};
   cairo_set_line_width(cr, 1.0);
-  for (const double t : xt) {
-    cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
-    cairo_move_to(cr, X(t), top);
-    cairo_line_to(cr, X(t), bottom);
-    cairo_stroke(cr);
-    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
-    cairo_move_to(cr, X(t), bottom);
-    cairo_line_to(cr, X(t), bottom + 5);
-    cairo_stroke(cr);
-    draw_text(cr, X(t), bottom + 20, tick_label(t, xt.size() > 1 ? xt[1] - xt[0] : 1.0), 12, true);
-  }
-  for (const double f : yt) {
-    cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
-    cairo_move_to(cr, left, Y(f));
-    cairo_line_to(cr, right, Y(f));
-    cairo_stroke(cr);
-    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
-    cairo_move_to(cr, left - 5, Y(f));
-    cairo_line_to(cr, left, Y(f));
-    cairo_stroke(cr);
-    draw_text(cr, left - 8, Y(f) + 4, tick_label(f, yt.size() > 1 ? yt[1] - yt[0] : 1.0), 12, false,
-              true);
-  }
-  cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
-  cairo_rectangle(cr, left, top, right - left, bottom - top);
-  cairo_stroke(cr);
-  draw_text(cr, 0.5 * (left + right), height - 18.0, "time [s]", 14, true);
-  cairo_save(cr);
-  cairo_translate(cr, 22, 0.5 * (top + bottom));
-  cairo_rotate(cr, -M_PI / 2);
-  draw_text(cr, 0, 0, "force on the device [N]", 14, true);
-  cairo_restore(cr);
-  draw_text(cr, left, 30, title, 18);
-
-  // Curves: components thin, magnitude thick.
-  const struct {
-    int component;  // 3 = magnitude
-    double r, g, b, width;
-    const char* name;
-  } curves[] = {{0, 0.85, 0.25, 0.2, 1.2, "fx"},
-                {1, 0.2, 0.6, 0.25, 1.2, "fy"},
-                {2, 0.2, 0.35, 0.85, 1.2, "fz"},
-                {3, 0.05, 0.05, 0.05, 2.0, "|f|"}};
-  cairo_rectangle(cr, left, top, right - left, bottom - top);
-  cairo_clip(cr);
-  for (const auto& c : curves) {
-    cairo_set_source_rgb(cr, c.r, c.g, c.b);
-    cairo_set_line_width(cr, c.width);
-    for (std::size_t k = 0; k < times.size(); ++k) {
-      const double value = c.component == 3 ? forces[k].norm() : forces[k][c.component];
-      if (k == 0)
-        cairo_move_to(cr, X(times[k]), Y(value));
-      else
-        cairo_line_to(cr, X(times[k]), Y(value));
-    }
-    cairo_stroke(cr);
-  }
-  cairo_reset_clip(cr);
-  double legend_x = right - 260;
-  for (const auto& c : curves) {
-    cairo_set_source_rgb(cr, c.r, c.g, c.b);
-    cairo_set_line_width(cr, c.width + 1);
-    cairo_move_to(cr, legend_x, 32);
-    cairo_line_to(cr, legend_x + 22, 32);
-    cairo_stroke(cr);
-    draw_text(cr, legend_x + 27, 37, c.name, 13);
-    legend_x += 65;
-  }
+  draw_time_axis(cr, frame, xt);
+  draw_force_axis(cr, frame, yt);
+  draw_plot_labels(cr, frame, title, height);
+  draw_force_curves(cr, frame, times, forces);
   return encode_png(made.value().first.get());
 }
 

@@ -17,7 +17,7 @@ std::string mm(double x) { return number_text(x) + " mm"; }
 
 }  // namespace
 
-Status check_request(const CollisionRequest& request, SurfaceHierarchy& surface) {
+Status check_request(const CollisionRequest& request, const SurfaceHierarchy& surface) {
   if (request.max_contacts < 1) {
     return out_of_range("max_contacts " + std::to_string(request.max_contacts) +
                         " must be at least 1");

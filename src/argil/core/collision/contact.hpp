@@ -76,6 +76,6 @@ inline constexpr double kMinRelativeTolerance = 1e-12;
 /// [0, SurfaceHierarchy::kMaxLevel]. Every query runs it first and returns
 /// its status (invalid_argument, naming the value and the limit) on failure.
 /// O(1) for unchanged control points (the root block's bound is cached).
-Status check_request(const CollisionRequest& request, SurfaceHierarchy& surface);
+Status check_request(const CollisionRequest& request, const SurfaceHierarchy& surface);
 
 }  // namespace argil

@@ -9,10 +9,6 @@ namespace argil {
 
 namespace {
 
-bool rectangles_touch(const LeafContact& a, const LeafContact& b) {
-  return a.u0 <= b.u1 && b.u0 <= a.u1 && a.v0 <= b.v1 && b.v0 <= a.v1;
-}
-
 int find(std::vector<int>& parent, int i) {
   while (parent[static_cast<std::size_t>(i)] != i) {
     parent[static_cast<std::size_t>(i)] =
@@ -90,14 +86,15 @@ void group_regions(std::vector<LeafContact>& leaves, int max_contacts, Collision
   std::vector<int> by_u0(static_cast<std::size_t>(n));
   std::iota(by_u0.begin(), by_u0.end(), 0);
   std::stable_sort(by_u0.begin(), by_u0.end(), [&](int a, int b) {
-    return leaves[static_cast<std::size_t>(a)].u0 < leaves[static_cast<std::size_t>(b)].u0;
+    return leaves[static_cast<std::size_t>(a)].rect.u0 <
+           leaves[static_cast<std::size_t>(b)].rect.u0;
   });
   for (std::size_t x = 0; x < by_u0.size(); ++x) {
     const LeafContact& li = leaves[static_cast<std::size_t>(by_u0[x])];
     for (std::size_t y = x + 1; y < by_u0.size(); ++y) {
       const LeafContact& lj = leaves[static_cast<std::size_t>(by_u0[y])];
-      if (lj.u0 > li.u1) break;
-      if (rectangles_touch(li, lj))
+      if (lj.rect.u0 > li.rect.u1) break;
+      if (li.rect.touches(lj.rect))
         parent[static_cast<std::size_t>(find(parent, by_u0[x]))] = find(parent, by_u0[y]);
     }
   }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "argil/core/collision/contact.hpp"
+#include "argil/core/geometry/param_rect.hpp"
 
 namespace argil {
 
@@ -13,7 +14,7 @@ namespace argil {
 /// surface a (the side regions are grouped on).
 struct LeafContact {
   Contact contact;
-  double u0, u1, v0, v1;
+  ParamRect rect;
   /// A lower bound of the tool function on the leaf (-inf when unknown): how
   /// deep anything on the leaf can be, for refining region heads.
   double value_lower_bound = -std::numeric_limits<double>::infinity();

@@ -16,7 +16,7 @@ namespace argil {
 /// Descent: a node is pruned when f(centre) - L radius > eps; it is a leaf
 /// when its flatness is at most eps and either a local minimum on it is in
 /// contact or L radius <= eps (then nothing on it is deeper than eps).
-CollisionResult collide(SurfaceHierarchy& surface, const ImplicitTool& tool,
+CollisionResult collide(const SurfaceHierarchy& surface, const ImplicitTool& tool,
                         const CollisionRequest& request = {});
 
 /// Closest point on the surface to p_W (the point tool / proxy).
@@ -34,7 +34,7 @@ struct ClosestPoint {
 
 /// Best-first search on the hierarchy ordered by the sphere lower bound, then
 /// Newton projection at leaves; stops when no node can beat the best by eps.
-ClosestPoint closest_point(SurfaceHierarchy& surface, const Eigen::Vector3d& p_W,
+ClosestPoint closest_point(const SurfaceHierarchy& surface, const Eigen::Vector3d& p_W,
                            const CollisionRequest& request = {});
 
 }  // namespace argil

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace argil {
 
@@ -14,17 +15,16 @@ namespace {
 /// through the B-spline.
 class RectangleEvaluator {
  public:
-  RectangleEvaluator(const BSplineSurface& s, const BezierPatch* patch, double u0, double u1,
-                     double v0, double v1)
-      : s_(s), patch_(patch), u0_(u0), v0_(v0), wu_(u1 - u0), wv_(v1 - v0) {
+  RectangleEvaluator(const BSplineSurface& s, const ParamRect& rect, const BezierPatch* patch)
+      : s_(s), patch_(patch), u0_(rect.u0), v0_(rect.v0), wu_(rect.width()), wv_(rect.height()) {
     if (patch_ && !(wu_ > 0.0 && wv_ > 0.0)) patch_ = nullptr;
   }
-  Eigen::Vector3d point(double u, double v) const {
-    return patch_ ? evaluate(*patch_, local_u(u), local_v(v)) : evaluate(s_, u, v);
+  Eigen::Vector3d point(const Eigen::Vector2d& uv) const {
+    return patch_ ? evaluate(*patch_, local_u(uv[0]), local_v(uv[1])) : evaluate(s_, uv[0], uv[1]);
   }
-  SurfaceDerivatives derivatives(double u, double v, int order) const {
-    if (!patch_) return evaluate_derivatives(s_, u, v, order);
-    SurfaceDerivatives d = evaluate_derivatives(*patch_, local_u(u), local_v(v), order);
+  SurfaceDerivatives derivatives(const Eigen::Vector2d& uv, int order) const {
+    if (!patch_) return evaluate_derivatives(s_, uv[0], uv[1], order);
+    SurfaceDerivatives d = evaluate_derivatives(*patch_, local_u(uv[0]), local_v(uv[1]), order);
     d.du /= wu_;
     d.dv /= wv_;
     d.duu /= wu_ * wu_;
@@ -42,114 +42,109 @@ class RectangleEvaluator {
 };
 
 /// Best of the corners and the centre, value only.
-PatchMinimum best_start(const RectangleEvaluator& at, double u0, double u1, double v0, double v1,
-                        const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
+PatchMinimum best_start(const RectangleEvaluator& at, const ParamRect& rect, const PointFunction& f,
                         const std::array<Eigen::Vector3d, 4>* corners) {
   PatchMinimum best;
   best.value = std::numeric_limits<double>::infinity();
-  // Start from the best of the corners and the centre.
-  for (int a = 0; a <= 2; a += 2) {
-    for (int b = 0; b <= 2; b += 2) {
-      const double u = a == 0 ? u0 : u1;
-      const double v = b == 0 ? v0 : v1;
-      const Eigen::Vector3d x =
-          corners ? (*corners)[static_cast<std::size_t>(a / 2 + b)] : at.point(u, v);
-      const double value = f(x).value;
-      if (value < best.value) {
-        best.value = value;
-        best.uv = {u, v};
-      }
-    }
-  }
-  {
-    const double u = 0.5 * (u0 + u1), v = 0.5 * (v0 + v1);
-    const double value = f(at.point(u, v)).value;
+  const auto offer = [&](const Eigen::Vector2d& uv, const Eigen::Vector3d& x) {
+    const double value = f(x).value;
     if (value < best.value) {
       best.value = value;
-      best.uv = {u, v};
+      best.uv = uv;
+    }
+  };
+  for (int k : {0, 2, 1, 3}) {  // (u0,v0), (u0,v1), (u1,v0), (u1,v1): ties keep the first
+    const Eigen::Vector2d uv = rect.corner(k);
+    offer(uv, corners ? (*corners)[static_cast<std::size_t>(k)] : at.point(uv));
+  }
+  offer(rect.centre(), at.point(rect.centre()));
+  return best;
+}
+
+/// The projected Newton step at uv from f's sample g and S's derivatives d:
+/// variables at a bound with the gradient pushing outward stay fixed; where
+/// the reduced Hessian is not positive definite, steepest descent scaled to a
+/// tenth of the rectangle. Nullopt when the projected gradient vanishes.
+std::optional<Eigen::Vector2d> newton_step(const SurfaceDerivatives& d, const DistanceSample& g,
+                                           const Eigen::Vector2d& uv, const ParamRect& rect,
+                                           const Eigen::Vector2d& scale) {
+  Eigen::Matrix<double, 3, 2> J;
+  J << d.du, d.dv;
+  const Eigen::Vector2d grad = J.transpose() * g.gradient;
+  Eigen::Matrix2d H = J.transpose() * g.hessian * J;
+  H(0, 0) += g.gradient.dot(d.duu);
+  H(0, 1) += g.gradient.dot(d.duv);
+  H(1, 0) += g.gradient.dot(d.duv);
+  H(1, 1) += g.gradient.dot(d.dvv);
+  const Eigen::Vector2d lo = rect.lower(), hi = rect.upper();
+  Eigen::Vector2d free_mask(1.0, 1.0);
+  for (int k = 0; k < 2; ++k) {
+    if ((uv[k] <= lo[k] && grad[k] > 0) || (uv[k] >= hi[k] && grad[k] < 0)) {
+      free_mask[k] = 0.0;
+      H.row(k).setZero();
+      H.col(k).setZero();
+      H(k, k) = 1.0;
     }
   }
-  return best;
+  const Eigen::Vector2d gf = grad.cwiseProduct(free_mask);
+  // Exactly zero: Eigen's isZero() compares with an absolute 1e-12, which
+  // stops the descent at once on models a few micrometres across.
+  if ((gf.array() == 0.0).all()) return std::nullopt;
+  Eigen::LLT<Eigen::Matrix2d> llt(H);
+  if (llt.info() == Eigen::Success && H.determinant() > 0.0) {
+    return Eigen::Vector2d(-llt.solve(gf));
+  }
+  const Eigen::Vector2d dir = -gf.cwiseProduct(scale);
+  return Eigen::Vector2d(dir / std::max(dir.cwiseQuotient(scale).cwiseAbs().maxCoeff(), 1e-300) *
+                         0.1);
+}
+
+/// Backtracking on the clamped step from uv (where f is `value`): the first
+/// trial that does not increase f, or nullopt when none does.
+std::optional<Eigen::Vector2d> backtrack(const RectangleEvaluator& at, const PointFunction& f,
+                                         const Eigen::Vector2d& uv, const Eigen::Vector2d& step,
+                                         double value, const ParamRect& rect) {
+  double t = 1.0;
+  for (int k = 0; k < 30; ++k) {
+    const Eigen::Vector2d trial = (uv + t * step).cwiseMax(rect.lower()).cwiseMin(rect.upper());
+    const double trial_value = f(at.point(trial)).value;
+    if (trial_value < value || (trial_value <= value && trial != uv)) return trial;
+    t *= 0.5;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
 
-PatchMinimum best_sample_on_patch(const BSplineSurface& s, double u0, double u1, double v0,
-                                  double v1,
-                                  const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
-                                  const std::array<Eigen::Vector3d, 4>* corners,
-                                  const BezierPatch* patch) {
-  const RectangleEvaluator at(s, patch, u0, u1, v0, v1);
-  PatchMinimum best = best_start(at, u0, u1, v0, v1, f, corners);
-  best.derivatives = at.derivatives(best.uv[0], best.uv[1], 1);
+PatchMinimum best_sample_on_patch(const BSplineSurface& s, const ParamRect& rect,
+                                  const PointFunction& f, const PatchHints& hints) {
+  const RectangleEvaluator at(s, rect, hints.patch);
+  PatchMinimum best = best_start(at, rect, f, hints.corners);
+  best.derivatives = at.derivatives(best.uv, 1);
   return best;
 }
 
-PatchMinimum minimize_on_patch(const BSplineSurface& s, double u0, double u1, double v0, double v1,
-                               const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
-                               const std::array<Eigen::Vector3d, 4>* corners,
-                               const BezierPatch* patch) {
-  const RectangleEvaluator at(s, patch, u0, u1, v0, v1);
-  PatchMinimum best = best_start(at, u0, u1, v0, v1, f, corners);
-  const Eigen::Vector2d lo(u0, v0), hi(u1, v1);
-  const Eigen::Vector2d scale = (hi - lo).cwiseMax(std::numeric_limits<double>::min());
+PatchMinimum minimize_on_patch(const BSplineSurface& s, const ParamRect& rect,
+                               const PointFunction& f, const PatchHints& hints) {
+  const RectangleEvaluator at(s, rect, hints.patch);
+  PatchMinimum best = best_start(at, rect, f, hints.corners);
+  const Eigen::Vector2d scale =
+      (rect.upper() - rect.lower()).cwiseMax(std::numeric_limits<double>::min());
   Eigen::Vector2d uv = best.uv;
   constexpr int kMaxIterations = 30;
   for (int it = 0; it < kMaxIterations; ++it) {
-    const SurfaceDerivatives d = at.derivatives(uv[0], uv[1], 2);
+    const SurfaceDerivatives d = at.derivatives(uv, 2);
     const DistanceSample g = f(d.point);
-    Eigen::Matrix<double, 3, 2> J;
-    J << d.du, d.dv;
-    const Eigen::Vector2d grad = J.transpose() * g.gradient;
-    Eigen::Matrix2d H = J.transpose() * g.hessian * J;
-    H(0, 0) += g.gradient.dot(d.duu);
-    H(0, 1) += g.gradient.dot(d.duv);
-    H(1, 0) += g.gradient.dot(d.duv);
-    H(1, 1) += g.gradient.dot(d.dvv);
-    // Variables at a bound with the gradient pushing outward stay fixed.
-    Eigen::Vector2d free_mask(1.0, 1.0);
-    for (int k = 0; k < 2; ++k) {
-      if ((uv[k] <= lo[k] && grad[k] > 0) || (uv[k] >= hi[k] && grad[k] < 0)) free_mask[k] = 0.0;
-    }
-    Eigen::Vector2d step = Eigen::Vector2d::Zero();
-    Eigen::Matrix2d Hf = H;
-    for (int k = 0; k < 2; ++k) {
-      if (free_mask[k] == 0.0) {
-        Hf.row(k).setZero();
-        Hf.col(k).setZero();
-        Hf(k, k) = 1.0;
-      }
-    }
-    const Eigen::Vector2d gf = grad.cwiseProduct(free_mask);
-    // Exactly zero: Eigen's isZero() compares with an absolute 1e-12, which
-    // stops the descent at once on models a few micrometres across.
-    if ((gf.array() == 0.0).all()) break;
-    Eigen::LLT<Eigen::Matrix2d> llt(Hf);
-    if (llt.info() == Eigen::Success && Hf.determinant() > 0.0) {
-      step = -llt.solve(gf);
-    } else {
-      // Not convex here: steepest descent scaled to a tenth of the rectangle.
-      const Eigen::Vector2d dir = -gf.cwiseProduct(scale);
-      step = dir / std::max(dir.cwiseQuotient(scale).cwiseAbs().maxCoeff(), 1e-300) * 0.1;
-    }
-    // Backtracking on the clamped step.
-    double t = 1.0;
-    bool moved = false;
-    for (int k = 0; k < 30; ++k) {
-      const Eigen::Vector2d trial = (uv + t * step).cwiseMax(lo).cwiseMin(hi);
-      const double value = f(at.point(trial[0], trial[1])).value;
-      if (value < g.value || (value <= g.value && trial != uv)) {
-        moved = (trial - uv).cwiseQuotient(scale).cwiseAbs().maxCoeff() > 1e-15;
-        uv = trial;
-        break;
-      }
-      t *= 0.5;
-    }
+    const std::optional<Eigen::Vector2d> step = newton_step(d, g, uv, rect, scale);
+    if (!step) break;
+    const std::optional<Eigen::Vector2d> next = backtrack(at, f, uv, *step, g.value, rect);
     best.iterations = it + 1;
+    const bool moved = next && (*next - uv).cwiseQuotient(scale).cwiseAbs().maxCoeff() > 1e-15;
+    if (next) uv = *next;
     if (!moved) break;
   }
   best.uv = uv;
-  best.derivatives = at.derivatives(uv[0], uv[1], 1);
+  best.derivatives = at.derivatives(uv, 1);
   best.value = f(best.derivatives.point).value;
   return best;
 }

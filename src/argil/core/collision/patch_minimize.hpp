@@ -10,6 +10,7 @@
 #include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/core/geometry/implicit_tool.hpp"
+#include "argil/core/geometry/param_rect.hpp"
 
 namespace argil {
 
@@ -20,27 +21,29 @@ struct PatchMinimum {
   int iterations = 0;
 };
 
-/// The best of the corners and the centre of the rectangle, with first
-/// derivatives there: a contact sample without Newton iterations.
-/// `corners`, when given, are S at (u0,v0), (u1,v0), (u0,v1), (u1,v1).
-/// `patch`, when given, is the Bezier patch of exactly this rectangle (a
-/// hierarchy node's): S is then evaluated through it, without a knot search.
-PatchMinimum best_sample_on_patch(const BSplineSurface& surface, double u0, double u1, double v0,
-                                  double v1,
-                                  const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
-                                  const std::array<Eigen::Vector3d, 4>* corners = nullptr,
-                                  const BezierPatch* patch = nullptr);
+/// The function minimised: f(x) with gradient and Hessian at a surface point x.
+using PointFunction = std::function<DistanceSample(const Eigen::Vector3d&)>;
 
-/// Minimises g(u, v) = f(S(u, v)) over [u0, u1] x [v0, v1] by projected
-/// Newton steps (Hessian J^T H_f J + grad f . S'', gradient steps where it is
-/// not positive definite) with backtracking, from the best of the corners and the centre.
+/// What the caller may already know about the rectangle (a hierarchy node
+/// knows both); each saves work and leaves the result unchanged up to rounding.
+struct PatchHints {
+  /// S at the rectangle's corners in ParamRect::corner() order: saves four evaluations.
+  const std::array<Eigen::Vector3d, 4>* corners = nullptr;
+  /// The Bezier patch of exactly this rectangle: S is then evaluated through
+  /// it, without a knot search.
+  const BezierPatch* patch = nullptr;
+};
+
+/// The best of the corners and the centre of `rect`, with first derivatives
+/// there: a contact sample without Newton iterations.
+PatchMinimum best_sample_on_patch(const BSplineSurface& surface, const ParamRect& rect,
+                                  const PointFunction& f, const PatchHints& hints = {});
+
+/// Minimises g(u, v) = f(S(u, v)) over `rect` by projected Newton steps
+/// (Hessian J^T H_f J + grad f . S'', gradient steps where it is not positive
+/// definite) with backtracking, from the best of the corners and the centre.
 /// Finds a local minimum; callers certify globality with their bounds.
-/// `corners`, when given, are S at (u0,v0), (u1,v0), (u0,v1), (u1,v1) (a
-/// hierarchy node has them), saving four evaluations; `patch` as above.
-PatchMinimum minimize_on_patch(const BSplineSurface& surface, double u0, double u1, double v0,
-                               double v1,
-                               const std::function<DistanceSample(const Eigen::Vector3d&)>& f,
-                               const std::array<Eigen::Vector3d, 4>* corners = nullptr,
-                               const BezierPatch* patch = nullptr);
+PatchMinimum minimize_on_patch(const BSplineSurface& surface, const ParamRect& rect,
+                               const PointFunction& f, const PatchHints& hints = {});
 
 }  // namespace argil

@@ -6,8 +6,9 @@
 
 #include <Eigen/Core>
 
-#include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/collision/contact.hpp"
+#include "argil/core/collision/surface_pair_refine.hpp"
+#include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
 
 namespace argil {
@@ -46,29 +47,7 @@ namespace argil {
 /// the model size; near-touch contacts move to a local closest pair, with
 /// depth = -gap (0 when the surfaces turn out to cross there). A point whose
 /// iteration does not converge near its leaf keeps its unrefined value.
-CollisionResult collide(SurfaceHierarchy& a, SurfaceHierarchy& b,
+CollisionResult collide(const SurfaceHierarchy& a, const SurfaceHierarchy& b,
                         const CollisionRequest& request = {});
-
-/// A pair of surface points after refine_surface_pair().
-struct RefinedPair {
-  Eigen::Vector2d uv_a = Eigen::Vector2d::Zero();
-  Eigen::Vector2d uv_b = Eigen::Vector2d::Zero();
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // midpoint of S_a(uv_a) and S_b(uv_b) [mm]
-  double gap = 0.0;                                 // |S_a(uv_a) - S_b(uv_b)| [mm]
-  int iterations = 0;
-};
-
-/// Gauss-Newton from (uv_a, uv_b) on F = S_a(u, v) - S_b(s, t) with
-/// minimum-norm steps in the 4 parameters, clamped to both domains.
-/// `on_curve`: adds the constraint that keeps the point from sliding along
-/// the intersection curve: a parameter that starts exactly on its domain edge
-/// stays there; otherwise the point stays on the plane through the start point
-/// across the curve (normal n_a x n_b there). Without it (or where the
-/// surfaces are tangent) the iteration converges to a local minimum of |F|:
-/// a local closest pair. Stops when |F| <= 1e-14 of `scale` [mm] or the step
-/// stalls, after at most 40 iterations.
-RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b,
-                                const Eigen::Vector2d& uv_a, const Eigen::Vector2d& uv_b,
-                                bool on_curve, double scale);
 
 }  // namespace argil

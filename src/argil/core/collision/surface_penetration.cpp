@@ -3,20 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
-#include "argil/core/geometry/evaluate.hpp"
 #include "argil/core/collision/patch_minimize.hpp"
+#include "argil/core/geometry/evaluate.hpp"
 
 namespace argil {
 
 namespace {
 
-struct ParamBox {
-  double u0, u1, v0, v1;
-};
-
 /// The box of `uv` grown by half its size each way (at least 1% of the
 /// domain), clamped to the surface's domain.
-ParamBox grown_box(const BSplineSurface& s, std::span<const Contact> region, bool side_a) {
+ParamRect grown_box(const BSplineSurface& s, std::span<const Contact> region, bool side_a) {
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d hi = -lo;
   for (const Contact& c : region) {
@@ -24,17 +20,17 @@ ParamBox grown_box(const BSplineSurface& s, std::span<const Contact> region, boo
     lo = lo.cwiseMin(uv);
     hi = hi.cwiseMax(uv);
   }
-  const Eigen::Vector2d start(s.domain_start(Direction::u), s.domain_start(Direction::v));
-  const Eigen::Vector2d end(s.domain_end(Direction::u), s.domain_end(Direction::v));
+  const ParamRect domain = domain_of(s);
+  const Eigen::Vector2d start = domain.lower(), end = domain.upper();
   const Eigen::Vector2d grow = (0.5 * (hi - lo)).cwiseMax(0.01 * (end - start));
   lo = (lo - grow).cwiseMax(start);
   hi = (hi + grow).cwiseMin(end);
-  return {lo[0], hi[0], lo[1], hi[1]};
+  return ParamRect::from_corners(lo, hi);
 }
 
 /// The local foot of x on a within the box: the nearest point found by Newton.
-PatchMinimum foot_on(const BSplineSurface& a, const ParamBox& box, const Eigen::Vector3d& x) {
-  return minimize_on_patch(a, box.u0, box.u1, box.v0, box.v1, [&x](const Eigen::Vector3d& p) {
+PatchMinimum foot_on(const BSplineSurface& a, const ParamRect& box, const Eigen::Vector3d& x) {
+  return minimize_on_patch(a, box, [&x](const Eigen::Vector3d& p) {
     DistanceSample s;
     const Eigen::Vector3d d = p - x;
     s.value = 0.5 * d.squaredNorm();  // smooth at the foot, same minimiser as |d|
@@ -45,7 +41,7 @@ PatchMinimum foot_on(const BSplineSurface& a, const ParamBox& box, const Eigen::
 }
 
 /// The point of b in the box lowest along -n below the plane through `origin`.
-PatchMinimum lowest_below_plane(const BSplineSurface& b, const ParamBox& box,
+PatchMinimum lowest_below_plane(const BSplineSurface& b, const ParamRect& box,
                                 const Eigen::Vector3d& origin, const Eigen::Vector3d& n) {
   const auto height = [&](const Eigen::Vector3d& p) {
     DistanceSample s;
@@ -55,13 +51,8 @@ PatchMinimum lowest_below_plane(const BSplineSurface& b, const ParamBox& box,
   };
   PatchMinimum best;
   best.value = std::numeric_limits<double>::infinity();
-  const double um = 0.5 * (box.u0 + box.u1), vm = 0.5 * (box.v0 + box.v1);
-  const ParamBox quarters[4] = {{box.u0, um, box.v0, vm},
-                                {um, box.u1, box.v0, vm},
-                                {box.u0, um, vm, box.v1},
-                                {um, box.u1, vm, box.v1}};
-  for (const ParamBox& q : quarters) {
-    const PatchMinimum m = minimize_on_patch(b, q.u0, q.u1, q.v0, q.v1, height);
+  for (const ParamRect& q : box.split()) {
+    const PatchMinimum m = minimize_on_patch(b, q, height);
     if (m.value < best.value) best = m;
   }
   return best;
@@ -73,8 +64,8 @@ Penetration deepest_penetration(const BSplineSurface& a, const BSplineSurface& b
                                 std::span<const Contact> region) {
   Penetration out;
   if (region.empty()) return out;
-  const ParamBox box_a = grown_box(a, region, true);
-  const ParamBox box_b = grown_box(b, region, false);
+  const ParamRect box_a = grown_box(a, region, true);
+  const ParamRect box_b = grown_box(b, region, false);
 
   // Start from a's point and normal at the region's first contact.
   Eigen::Vector2d uv_a = region.front().uv_a;

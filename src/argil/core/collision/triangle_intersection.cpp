@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "argil/core/geometry/triangle_distance.hpp"
@@ -132,8 +133,85 @@ Orientation orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const E
   return o;
 }
 
-TriangleIntersection intersect_triangles(const Triangle& a, const Triangle& b) {
+namespace {
+
+/// Direction to compare two plane cuts along: the planes' common line, or the
+/// longer cut when the planes are too close to parallel to give a line;
+/// nullopt for two single points (touching is left to the distance test).
+std::optional<Eigen::Vector3d> common_axis(const Triangle& a, const Triangle& b,
+                                           const PlaneCut& cut_a, const PlaneCut& cut_b) {
+  const Eigen::Vector3d na = (a[1] - a[0]).cross(a[2] - a[0]);
+  const Eigen::Vector3d nb = (b[1] - b[0]).cross(b[2] - b[0]);
+  const Eigen::Vector3d axis = na.cross(nb);
+  if (axis.squaredNorm() > 1e-24 * na.squaredNorm() * nb.squaredNorm()) return axis;
+  const Eigen::Vector3d da =
+      cut_a.points[static_cast<std::size_t>(cut_a.count - 1)] - cut_a.points[0];
+  const Eigen::Vector3d db =
+      cut_b.points[static_cast<std::size_t>(cut_b.count - 1)] - cut_b.points[0];
+  const Eigen::Vector3d longer = da.squaredNorm() >= db.squaredNorm() ? da : db;
+  if (longer.squaredNorm() == 0.0) return std::nullopt;
+  return longer;
+}
+
+/// A cut's end points ordered along the axis, with their axis values.
+struct CutInterval {
+  int lo = 0, hi = 0;     // indices into the cut's points
+  double t0 = 0, t1 = 0;  // axis values of lo and hi
+  /// Barycentric coordinates of the point at axis value x on the cut.
+  Eigen::Vector3d at(const PlaneCut& c, double x) const {
+    const double f = t1 > t0 ? std::clamp((x - t0) / (t1 - t0), 0.0, 1.0) : 0.0;
+    return Eigen::Vector3d((1.0 - f) * c.bary[static_cast<std::size_t>(lo)] +
+                           f * c.bary[static_cast<std::size_t>(hi)]);
+  }
+};
+
+CutInterval interval_along(const PlaneCut& c, const Eigen::Vector3d& axis) {
+  CutInterval i{0, c.count - 1, 0.0, 0.0};
+  if (axis.dot(c.points[static_cast<std::size_t>(i.hi)]) <
+      axis.dot(c.points[static_cast<std::size_t>(i.lo)]))
+    std::swap(i.lo, i.hi);
+  i.t0 = axis.dot(c.points[static_cast<std::size_t>(i.lo)]);
+  i.t1 = axis.dot(c.points[static_cast<std::size_t>(i.hi)]);
+  return i;
+}
+
+Eigen::Vector3d point_of(const Triangle& t, const Eigen::Vector3d& w) {
+  return Eigen::Vector3d(w[0] * t[0] + w[1] * t[1] + w[2] * t[2]);
+}
+
+/// The overlap of the two cuts along the axis: lower end the later start of
+/// the two, upper end the earlier finish; none when they do not overlap.
+TriangleIntersection overlap_of_cuts(const Triangle& a, const Triangle& b, const PlaneCut& cut_a,
+                                     const PlaneCut& cut_b, const Eigen::Vector3d& axis) {
   TriangleIntersection out;
+  const CutInterval ia = interval_along(cut_a, axis);
+  const CutInterval ib = interval_along(cut_b, axis);
+  if (ia.t1 < ib.t0 || ib.t1 < ia.t0) return out;
+  out.kind = TriangleIntersection::Kind::segment;
+  if (ia.t0 >= ib.t0) {
+    out.bary_a[0] = cut_a.bary[static_cast<std::size_t>(ia.lo)];
+    out.bary_b[0] = ib.at(cut_b, ia.t0);
+  } else {
+    out.bary_b[0] = cut_b.bary[static_cast<std::size_t>(ib.lo)];
+    out.bary_a[0] = ia.at(cut_a, ib.t0);
+  }
+  if (ia.t1 <= ib.t1) {
+    out.bary_a[1] = cut_a.bary[static_cast<std::size_t>(ia.hi)];
+    out.bary_b[1] = ib.at(cut_b, ia.t1);
+  } else {
+    out.bary_b[1] = cut_b.bary[static_cast<std::size_t>(ib.hi)];
+    out.bary_a[1] = ia.at(cut_a, ib.t1);
+  }
+  for (std::size_t k = 0; k < 2; ++k) {
+    // Both evaluations lie on the common line; their mean splits the rounding.
+    out.points[k] = 0.5 * (point_of(a, out.bary_a[k]) + point_of(b, out.bary_b[k]));
+  }
+  return out;
+}
+
+}  // namespace
+
+TriangleIntersection intersect_triangles(const Triangle& a, const Triangle& b) {
   std::array<Orientation, 3> side_a, side_b;  // corners of a against plane b, and back
   for (std::size_t k = 0; k < 3; ++k) side_a[k] = orient3d(b[0], b[1], b[2], a[k]);
   const auto all_same = [](const std::array<Orientation, 3>& s) {
@@ -143,73 +221,17 @@ TriangleIntersection intersect_triangles(const Triangle& a, const Triangle& b) {
   const auto all_zero = [](const std::array<Orientation, 3>& s) {
     return s[0].sign == 0 && s[1].sign == 0 && s[2].sign == 0;
   };
-  if (all_same(side_a)) return out;
+  if (all_same(side_a)) return {};
   for (std::size_t k = 0; k < 3; ++k) side_b[k] = orient3d(a[0], a[1], a[2], b[k]);
-  if (all_same(side_b)) return out;
+  if (all_same(side_b)) return {};
   if (all_zero(side_a) || all_zero(side_b)) return coplanar_overlap(a, b);
-
   const PlaneCut cut_a = cut_by_plane(a, side_a);
   const PlaneCut cut_b = cut_by_plane(b, side_b);
-  if (cut_a.count == 0 || cut_b.count == 0) return out;
-  // Both cuts lie on the planes' common line; compare them along it (or along
-  // the longer cut when the planes are too close to parallel to give a line).
-  const Eigen::Vector3d na = (a[1] - a[0]).cross(a[2] - a[0]);
-  const Eigen::Vector3d nb = (b[1] - b[0]).cross(b[2] - b[0]);
-  Eigen::Vector3d axis = na.cross(nb);
-  if (axis.squaredNorm() <= 1e-24 * na.squaredNorm() * nb.squaredNorm()) {
-    const Eigen::Vector3d da =
-        cut_a.points[static_cast<std::size_t>(cut_a.count - 1)] - cut_a.points[0];
-    const Eigen::Vector3d db =
-        cut_b.points[static_cast<std::size_t>(cut_b.count - 1)] - cut_b.points[0];
-    axis = da.squaredNorm() >= db.squaredNorm() ? da : db;
-    if (axis.squaredNorm() == 0.0)
-      return out;  // two single points: touching is left to the distance test
-  }
-  const auto interval = [&axis](const PlaneCut& c, int& lo, int& hi) {
-    lo = 0;
-    hi = c.count - 1;
-    if (axis.dot(c.points[static_cast<std::size_t>(hi)]) <
-        axis.dot(c.points[static_cast<std::size_t>(lo)]))
-      std::swap(lo, hi);
-  };
-  int a_lo, a_hi, b_lo, b_hi;
-  interval(cut_a, a_lo, a_hi);
-  interval(cut_b, b_lo, b_hi);
-  const double ta0 = axis.dot(cut_a.points[static_cast<std::size_t>(a_lo)]);
-  const double ta1 = axis.dot(cut_a.points[static_cast<std::size_t>(a_hi)]);
-  const double tb0 = axis.dot(cut_b.points[static_cast<std::size_t>(b_lo)]);
-  const double tb1 = axis.dot(cut_b.points[static_cast<std::size_t>(b_hi)]);
-  if (ta1 < tb0 || tb1 < ta0) return out;
-  // Barycentric coordinates of the point at axis value x on a cut.
-  const auto along = [](const PlaneCut& c, int lo, int hi, double t0, double t1, double x) {
-    const double f = t1 > t0 ? std::clamp((x - t0) / (t1 - t0), 0.0, 1.0) : 0.0;
-    return Eigen::Vector3d((1.0 - f) * c.bary[static_cast<std::size_t>(lo)] +
-                           f * c.bary[static_cast<std::size_t>(hi)]);
-  };
-  const auto point_of = [](const Triangle& t, const Eigen::Vector3d& w) {
-    return Eigen::Vector3d(w[0] * t[0] + w[1] * t[1] + w[2] * t[2]);
-  };
-  out.kind = TriangleIntersection::Kind::segment;
-  // Lower end: the later start of the two cuts; upper end: the earlier finish.
-  if (ta0 >= tb0) {
-    out.bary_a[0] = cut_a.bary[static_cast<std::size_t>(a_lo)];
-    out.bary_b[0] = along(cut_b, b_lo, b_hi, tb0, tb1, ta0);
-  } else {
-    out.bary_b[0] = cut_b.bary[static_cast<std::size_t>(b_lo)];
-    out.bary_a[0] = along(cut_a, a_lo, a_hi, ta0, ta1, tb0);
-  }
-  if (ta1 <= tb1) {
-    out.bary_a[1] = cut_a.bary[static_cast<std::size_t>(a_hi)];
-    out.bary_b[1] = along(cut_b, b_lo, b_hi, tb0, tb1, ta1);
-  } else {
-    out.bary_b[1] = cut_b.bary[static_cast<std::size_t>(b_hi)];
-    out.bary_a[1] = along(cut_a, a_lo, a_hi, ta0, ta1, tb1);
-  }
-  for (std::size_t k = 0; k < 2; ++k) {
-    // Both evaluations lie on the common line; their mean splits the rounding.
-    out.points[k] = 0.5 * (point_of(a, out.bary_a[k]) + point_of(b, out.bary_b[k]));
-  }
-  return out;
+  if (cut_a.count == 0 || cut_b.count == 0) return {};
+  // Both cuts lie on the planes' common line; compare them along it.
+  const std::optional<Eigen::Vector3d> axis = common_axis(a, b, cut_a, cut_b);
+  if (!axis) return {};
+  return overlap_of_cuts(a, b, cut_a, cut_b, *axis);
 }
 
 Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Triangle& t) {
@@ -257,12 +279,11 @@ TriangleDistance triangle_distance(const Triangle& a, const Triangle& b) {
     const int i1 = (i + 1) % 3;
     for (int j = 0; j < 3; ++j) {
       const int j1 = (j + 1) % 3;
-      double s = 0, t = 0;
       const auto& p0 = a[static_cast<std::size_t>(i)];
       const auto& p1 = a[static_cast<std::size_t>(i1)];
       const auto& q0 = b[static_cast<std::size_t>(j)];
       const auto& q1 = b[static_cast<std::size_t>(j1)];
-      closest_on_segments(p0, p1, q0, q1, s, t);
+      const auto [s, t] = closest_on_segments(p0, p1, q0, q1);
       Eigen::Vector3d wa = Eigen::Vector3d::Zero(), wb = Eigen::Vector3d::Zero();
       wa[i] = 1.0 - s;
       wa[i1] = s;

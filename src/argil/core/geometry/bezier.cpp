@@ -22,7 +22,7 @@ int last_index_of(const Eigen::VectorXd& knots, double t) {
 /// Operator of span s: insert both span ends to multiplicity p into the local
 /// knot vector U[s-p .. s+p+1] refining the identity "points".
 Eigen::MatrixXd span_operator(int p, const Eigen::VectorXd& U, int s) {
-  CurveNet local{p, U.segment(s - p, 2 * p + 2), Eigen::MatrixXd::Identity(p + 1, p + 1)};
+  BSplineCurve local{p, U.segment(s - p, 2 * p + 2), Eigen::MatrixXd::Identity(p + 1, p + 1), {}};
   const double a = U[s];
   const double b = U[s + 1];
   const int missing_a = p - count_equal(local.knots, a);
@@ -153,42 +153,40 @@ SurfaceDerivatives evaluate_derivatives(const BezierPatch& patch, double s, doub
   return detail::cartesian(h, order);
 }
 
-Eigen::MatrixX4d transform_net(const Eigen::MatrixXd* m_u, const Eigen::MatrixXd* m_v,
-                               const Eigen::MatrixX4d& net, int p, int q) {
-  Eigen::MatrixX4d along_u = net;
-  if (m_u) {
-    for (int a = 0; a <= p; ++a) {
-      for (int b = 0; b <= q; ++b) {
-        Eigen::RowVector4d sum = Eigen::RowVector4d::Zero();
-        for (int i = 0; i <= p; ++i) {
-          if ((*m_u)(a, i) != 0.0) sum += (*m_u)(a, i) * net.row(i * (q + 1) + b);
-        }
-        along_u.row(a * (q + 1) + b) = sum;
-      }
-    }
-  }
-  if (!m_v) return along_u;
-  Eigen::MatrixX4d out(along_u.rows(), 4);
-  for (int a = 0; a <= p; ++a) {
-    for (int b = 0; b <= q; ++b) {
+BezierPatch map_along(const BezierPatch& patch, Direction d, const Eigen::MatrixXd& m) {
+  // Row of pole (a, b) is a * (q + 1) + b: a line of the net along d steps by
+  // `along`, its neighbour line by `across`.
+  const int q1 = patch.degree_v + 1;
+  const bool in_u = d == Direction::u;
+  const int count_along = in_u ? patch.degree_u + 1 : q1;
+  const int count_across = in_u ? q1 : patch.degree_u + 1;
+  const int along = in_u ? q1 : 1;
+  const int across = in_u ? 1 : q1;
+  BezierPatch out{patch.degree_u, patch.degree_v, Eigen::MatrixX4d(patch.points.rows(), 4)};
+  for (int line = 0; line < count_across; ++line) {
+    for (int k = 0; k < count_along; ++k) {
       Eigen::RowVector4d sum = Eigen::RowVector4d::Zero();
-      for (int j = 0; j <= q; ++j) {
-        if ((*m_v)(b, j) != 0.0) sum += (*m_v)(b, j) * along_u.row(a * (q + 1) + j);
+      for (int i = 0; i < count_along; ++i) {
+        if (m(k, i) != 0.0) sum += m(k, i) * patch.points.row(line * across + i * along);
       }
-      out.row(a * (q + 1) + b) = sum;
+      out.points.row(line * across + k * along) = sum;
     }
   }
   return out;
 }
 
 BezierPatch subdivide(const BezierPatch& patch, const SubdivisionMatrices& su,
-                      const SubdivisionMatrices& sv, bool split_u, int half_u, bool split_v,
-                      int half_v) {
-  const Eigen::MatrixXd& hu = half_u == 0 ? su.left : su.right;
-  const Eigen::MatrixXd& hv = half_v == 0 ? sv.left : sv.right;
-  return {patch.degree_u, patch.degree_v,
-          transform_net(split_u ? &hu : nullptr, split_v ? &hv : nullptr, patch.points,
-                        patch.degree_u, patch.degree_v)};
+                      const SubdivisionMatrices& sv, const PatchHalves& which) {
+  const auto half = [](const SubdivisionMatrices& s, int h) -> const Eigen::MatrixXd& {
+    return h == 0 ? s.left : s.right;
+  };
+  if (which.u && which.v) {
+    return map_along(map_along(patch, Direction::u, half(su, *which.u)), Direction::v,
+                     half(sv, *which.v));
+  }
+  if (which.u) return map_along(patch, Direction::u, half(su, *which.u));
+  if (which.v) return map_along(patch, Direction::v, half(sv, *which.v));
+  return patch;
 }
 
 }  // namespace argil

@@ -3,6 +3,7 @@
 // matrices of a Bezier segment, and Bezier patches (the hierarchy's nodes).
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "argil/core/geometry/evaluate.hpp"
@@ -42,16 +43,22 @@ Eigen::Vector3d evaluate(const BezierPatch& patch, double s, double t);
 /// hierarchy evaluate through their own patch. Degree at most kMaxDegree.
 SurfaceDerivatives evaluate_derivatives(const BezierPatch& patch, double s, double t, int order);
 
-/// M_u * B * M_v^T applied to a homogeneous net with rows a * (q + 1) + b;
-/// a null matrix leaves that direction as it is. Two passes of 4-vector sums
-/// without temporaries: node refreshes run it every tick.
-Eigen::MatrixX4d transform_net(const Eigen::MatrixXd* m_u, const Eigen::MatrixXd* m_v,
-                               const Eigen::MatrixX4d& net, int p, int q);
+/// The patch with its net mapped by `m` along direction d: M * B for u,
+/// B * M^T for v (rows of M give the new control points of each line of the
+/// net in d). A sum of 4-vectors without temporaries: node refreshes run it
+/// every tick. Preconditions: m is (degree_d + 1) x (degree_d + 1).
+BezierPatch map_along(const BezierPatch& patch, Direction d, const Eigen::MatrixXd& m);
 
-/// Child patch: `half_u`, `half_v` in {0 (lower half), 1 (upper half)}; a
-/// direction is split only when its `split_*` flag is set.
+/// Which child of a patch subdivide() returns: in each direction either the
+/// lower half (0), the upper half (1), or no split (nullopt).
+struct PatchHalves {
+  std::optional<int> u;
+  std::optional<int> v;
+};
+
+/// Child patch over the halves `which` of the parent's [0, 1]^2, split with
+/// the de Casteljau matrices `su` (degree_u) and `sv` (degree_v).
 BezierPatch subdivide(const BezierPatch& patch, const SubdivisionMatrices& su,
-                      const SubdivisionMatrices& sv, bool split_u, int half_u, bool split_v,
-                      int half_v);
+                      const SubdivisionMatrices& sv, const PatchHalves& which);
 
 }  // namespace argil

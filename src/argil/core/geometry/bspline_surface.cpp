@@ -1,11 +1,11 @@
 #include "argil/core/geometry/bspline_surface.hpp"
 
+#include "argil/core/geometry/detail/validation_message.hpp"
+#include "argil/core/geometry/knot_vector.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <type_traits>
-
-#include "argil/core/base/number_text.hpp"
 
 namespace argil {
 
@@ -51,95 +51,14 @@ const char* to_string(SurfaceDefect defect) {
   return "unknown";
 }
 
-namespace {
-
-/// A part of a defect's text; numbers print as number_text, exact and short.
-template <class Part>
-void append_part(std::ostringstream& text, const Part& part) {
-  if constexpr (std::is_floating_point_v<Part>) {
-    text << number_text(static_cast<double>(part));
-  } else {
-    text << part;
-  }
-}
-
-template <class... Parts>
-SurfaceValidation defect(SurfaceDefect d, const Parts&... parts) {
-  std::ostringstream text;
-  (append_part(text, parts), ...);
-  return {d, text.str()};
-}
-
-SurfaceValidation validate_knots(const BSplineSurface& s, Direction d) {
-  const char* dir = to_string(d);
-  const int p = s.degree_in(d);
-  const Eigen::VectorXd& t = s.knots_in(d);
-  const Eigen::Index m = t.size();
-  if (p < 1 || p > kMaxDegree) {
-    return defect(SurfaceDefect::degree_out_of_range, "degree_", dir, " is ", p, ", expected 1 to ",
-                  kMaxDegree);
-  }
-  if (m < 2 * (p + 1)) {
-    return defect(SurfaceDefect::too_few_knots, "knots_", dir, " has ", m, " values, degree ", p,
-                  " needs at least ", 2 * (p + 1));
-  }
-  for (Eigen::Index k = 0; k < m; ++k) {
-    if (!std::isfinite(t[k])) {
-      return defect(SurfaceDefect::non_finite_knot, "knots_", dir, "[", k, "] is ", t[k]);
-    }
-    if (std::abs(t[k]) > kMaxKnotMagnitude) {
-      return defect(SurfaceDefect::knot_out_of_range, "knots_", dir, "[", k, "] is ", t[k],
-                    ", beyond the supported magnitude ", kMaxKnotMagnitude);
-    }
-  }
-  for (Eigen::Index k = 1; k < m; ++k) {
-    if (t[k] < t[k - 1]) {
-      return defect(SurfaceDefect::knots_decreasing, "knots_", dir, "[", k, "] = ", t[k],
-                    " is below knots_", dir, "[", k - 1, "] = ", t[k - 1]);
-    }
-  }
-  for (int k = 1; k <= p; ++k) {
-    if (t[k] != t[0] || t[m - 1 - k] != t[m - 1]) {
-      return defect(SurfaceDefect::knots_not_clamped, "knots_", dir,
-                    " is not clamped: the first and last values must each repeat ", p + 1,
-                    " times for degree ", p);
-    }
-  }
-  if (!(t[0] < t[m - 1])) {
-    return defect(SurfaceDefect::empty_domain, "knots_", dir, " spans an empty domain [", t[0],
-                  ", ", t[m - 1], "]");
-  }
-  // Interior runs: indices p+1 .. m-p-2 hold the interior knots of a clamped vector.
-  for (Eigen::Index k = p + 1; k < m - p - 1;) {
-    Eigen::Index run = 1;
-    while (k + run < m - p - 1 && t[k + run] == t[k]) ++run;
-    if (run > p) {
-      return defect(SurfaceDefect::multiplicity_too_high, "knots_", dir, " value ", t[k],
-                    " at index ", k, " repeats ", run, " times, degree ", p, " allows at most ", p);
-    }
-    k += run;
-  }
-  const double domain = t[m - 1] - t[0];
-  const double largest = std::max({1.0, std::abs(t[0]), std::abs(t[m - 1])});
-  if (domain < kMinSpanRatio * largest) {
-    return defect(SurfaceDefect::span_too_short, "knots_", dir, " domain [", t[0], ", ", t[m - 1],
-                  "] is shorter than ", kMinSpanRatio, " of its knots' magnitude ", largest);
-  }
-  for (Eigen::Index k = 1; k < m; ++k) {
-    if (t[k] > t[k - 1] && t[k] - t[k - 1] < kMinSpanRatio * domain) {
-      return defect(SurfaceDefect::span_too_short, "knots_", dir, " span [", t[k - 1], ", ", t[k],
-                    "] (index ", k - 1, ") is shorter than ", kMinSpanRatio,
-                    " of the domain length ", domain, ": merge the two knots");
-    }
-  }
-  return {};
-}
-
-}  // namespace
+using detail::defect;
 
 SurfaceValidation validate(const BSplineSurface& s) {
   for (Direction d : kDirections) {
-    SurfaceValidation v = validate_knots(s, d);
+    const std::string degree_field = std::string("degree_") + to_string(d);
+    const std::string knots_field = std::string("knots_") + to_string(d);
+    SurfaceValidation v =
+        validate_knots(s.degree_in(d), s.knots_in(d), {degree_field, knots_field});
     if (!v.ok()) return v;
   }
   const Eigen::Index n = static_cast<Eigen::Index>(s.count(Direction::u)) * s.count(Direction::v);
@@ -160,28 +79,7 @@ SurfaceValidation validate(const BSplineSurface& s) {
                     ") has a coordinate beyond the supported ", kMaxCoordinate, " mm");
     }
   }
-  if (s.weights.size() != 0 && s.weights.size() != n) {
-    return defect(SurfaceDefect::weight_count, "weights has ", s.weights.size(),
-                  " values, expected 0 or ", n);
-  }
-  for (Eigen::Index r = 0; r < s.weights.size(); ++r) {
-    if (!std::isfinite(s.weights[r])) {
-      return defect(SurfaceDefect::non_finite_weight, "weights[", r, "] is ", s.weights[r]);
-    }
-    if (!(s.weights[r] > 0.0)) {
-      return defect(SurfaceDefect::non_positive_weight, "weights[", r, "] is ", s.weights[r],
-                    ", weights must be positive");
-    }
-    if (s.weights[r] > kMaxWeight || s.weights[r] < 1.0 / kMaxWeight) {
-      return defect(SurfaceDefect::weight_out_of_range, "weights[", r, "] is ", s.weights[r],
-                    ", outside the supported [", 1.0 / kMaxWeight, ", ", kMaxWeight, "]");
-    }
-  }
-  if (s.weights.size() > 0 && s.weights.maxCoeff() > kMaxWeightRatio * s.weights.minCoeff()) {
-    return defect(SurfaceDefect::weight_out_of_range, "weights range from ", s.weights.minCoeff(),
-                  " to ", s.weights.maxCoeff(), ", a ratio above the supported ", kMaxWeightRatio);
-  }
-  return {};
+  return detail::validate_weights(s.weights, n);
 }
 
 Eigen::VectorXd greville_abscissae(int degree, const Eigen::VectorXd& knots) {

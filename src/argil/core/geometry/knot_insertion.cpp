@@ -8,7 +8,10 @@
 
 namespace argil {
 
-CurveNet insert_knot(const CurveNet& c, double t, int times) {
+namespace {
+
+/// Knot insertion on polynomial control points (The NURBS Book A5.1).
+BSplineCurve insert_polynomial(const BSplineCurve& c, double t, int times) {
   const int p = c.degree;
   const Eigen::VectorXd& U = c.knots;
   const int m = static_cast<int>(U.size());  // knots: 0 .. m-1
@@ -20,7 +23,7 @@ CurveNet insert_knot(const CurveNet& c, double t, int times) {
   const int s = knot_multiplicity(U, t);
   assert(s + times <= p && "multiplicity would exceed the degree");
 
-  CurveNet out;
+  BSplineCurve out;
   out.degree = p;
   out.knots.resize(m + times);
   out.knots.head(k + 1) = U.head(k + 1);
@@ -31,7 +34,7 @@ CurveNet insert_knot(const CurveNet& c, double t, int times) {
   out.points.resize(n + 1 + times, dim);
   for (int i = 0; i <= k - p; ++i) out.points.row(i) = c.points.row(i);
   for (int i = k - s; i <= n; ++i) out.points.row(i + times) = c.points.row(i);
-  Eigen::MatrixXd r(p - s + 1, dim);
+  BSplineCurve::Points r(p - s + 1, dim);
   for (int i = 0; i <= p - s; ++i) r.row(i) = c.points.row(k - p + i);
   int L = k - p;
   for (int j = 1; j <= times; ++j) {
@@ -44,6 +47,20 @@ CurveNet insert_knot(const CurveNet& c, double t, int times) {
     out.points.row(k + times - j - s) = r.row(p - j - s);
   }
   for (int i = L + 1; i < k - s; ++i) out.points.row(i) = r.row(i - L);
+  return out;
+}
+
+}  // namespace
+
+BSplineCurve insert_knot(const BSplineCurve& c, double t, int times) {
+  if (!c.is_rational()) return insert_polynomial(c, t, times);
+  const Eigen::Index dim = c.points.cols();
+  BSplineCurve homogeneous{c.degree, c.knots, BSplineCurve::Points(c.points.rows(), dim + 1), {}};
+  homogeneous.points.leftCols(dim) = c.points.array().colwise() * c.weights.array();
+  homogeneous.points.col(dim) = c.weights;
+  BSplineCurve out = insert_polynomial(homogeneous, t, times);
+  out.weights = out.points.col(dim);
+  out.points = (out.points.leftCols(dim).array().colwise() / out.weights.array()).eval();
   return out;
 }
 
@@ -75,10 +92,10 @@ Result<BSplineSurface> insert_knot(const BSplineSurface& s, Direction d, double 
   BSplineSurface out = s;
   const int n_new = n_d + times;
   Eigen::MatrixX4d pw_new(static_cast<Eigen::Index>(n_new) * n_o, 4);
-  CurveNet line{p, U, Eigen::MatrixXd(n_d, 4)};
+  BSplineCurve line{p, U, BSplineCurve::Points(n_d, 4), {}};
   for (int a = 0; a < n_o; ++a) {
     for (int i = 0; i < n_d; ++i) line.points.row(i) = pw.row(pole(i, a));
-    const CurveNet refined = insert_knot(line, t, times);
+    const BSplineCurve refined = insert_knot(line, t, times);
     if (a == 0) out.knots[index_of(d)] = refined.knots;
     for (int i = 0; i < n_new; ++i) {
       const Eigen::Index row = d == Direction::u ? static_cast<Eigen::Index>(i) * n_o + a

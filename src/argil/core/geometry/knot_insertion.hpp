@@ -4,22 +4,17 @@
 
 #include <Eigen/Core>
 
-#include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/base/status.hpp"
+#include "argil/core/geometry/bspline_curve.hpp"
+#include "argil/core/geometry/bspline_surface.hpp"
 
 namespace argil {
 
-/// A curve of any point dimension: `points` has one row per control point.
-struct CurveNet {
-  int degree = 1;
-  Eigen::VectorXd knots;
-  Eigen::MatrixXd points;
-};
-
 /// Inserts `t` `times` times. Preconditions: t inside the knot range and
-/// multiplicity(t) + times <= degree. Linear in the points, so it also refines
-/// homogeneous or identity "points" (how the extraction operators are built).
-CurveNet insert_knot(const CurveNet& curve, double t, int times);
+/// multiplicity(t) + times <= degree. A rational curve is refined in
+/// homogeneous coordinates, so it stays exact. Linear in the points, so it
+/// also refines identity "points" (how the extraction operators are built).
+BSplineCurve insert_knot(const BSplineCurve& curve, double t, int times);
 
 /// Inserts `t` `times` times in direction d (homogeneous, so rational surfaces
 /// stay exact). Errors: t outside the open domain, or the resulting

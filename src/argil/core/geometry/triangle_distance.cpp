@@ -42,40 +42,26 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
-void closest_on_segments(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
-                         const Eigen::Vector3d& q0, const Eigen::Vector3d& q1, double& s,
-                         double& t) {
+SegmentParameters closest_on_segments(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                      const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
   const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
   const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  s = 0.0;
-  t = 0.0;
-  if (a <= 0 && e <= 0) return;
-  if (a <= 0) {
-    t = std::clamp(f / e, 0.0, 1.0);
-    return;
-  }
+  if (a <= 0 && e <= 0) return {};
+  if (a <= 0) return {0.0, std::clamp(f / e, 0.0, 1.0)};
   const double c = d1.dot(r);
-  if (e <= 0) {
-    s = std::clamp(-c / a, 0.0, 1.0);
-    return;
-  }
+  if (e <= 0) return {std::clamp(-c / a, 0.0, 1.0), 0.0};
   const double b = d1.dot(d2);
   const double denom = a * e - b * b;
-  s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-  t = (b * s + f) / e;
-  if (t < 0) {
-    t = 0;
-    s = std::clamp(-c / a, 0.0, 1.0);
-  } else if (t > 1) {
-    t = 1;
-    s = std::clamp((b - c) / a, 0.0, 1.0);
-  }
+  const double s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+  const double t = (b * s + f) / e;
+  if (t < 0) return {std::clamp(-c / a, 0.0, 1.0), 0.0};
+  if (t > 1) return {std::clamp((b - c) / a, 0.0, 1.0), 1.0};
+  return {s, t};
 }
 
 double segment_segment_distance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
                                 const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
-  double s = 0.0, t = 0.0;
-  closest_on_segments(p0, p1, q0, q1, s, t);
+  const auto [s, t] = closest_on_segments(p0, p1, q0, q1);
   return ((p0 + (p1 - p0) * s) - (q0 + (q1 - q0) * t)).norm();
 }
 

@@ -21,10 +21,8 @@ Result<SurfaceHierarchy> SurfaceHierarchy::build(const BSplineSurface& surface,
       HierarchyNode n;
       n.element_u = static_cast<int>(eu);
       n.element_v = static_cast<int>(ev);
-      n.u0 = surface.knots[0][xu.spans[eu]];
-      n.u1 = surface.knots[0][xu.spans[eu] + 1];
-      n.v0 = surface.knots[1][xv.spans[ev]];
-      n.v1 = surface.knots[1][xv.spans[ev] + 1];
+      n.rect = {surface.knots[0][xu.spans[eu]], surface.knots[0][xu.spans[eu] + 1],
+                surface.knots[1][xv.spans[ev]], surface.knots[1][xv.spans[ev] + 1]};
       n.version = 0;  // stale: built on first visit
       h.roots_.push_back(static_cast<int>(h.nodes_.size()));
       h.nodes_.push_back(std::move(n));
@@ -65,7 +63,7 @@ int SurfaceHierarchy::build_block(int eu0, int eu1, int ev0, int ev1) {
   return id;
 }
 
-const ElementBlock& SurfaceHierarchy::block(int id, QueryCounters* counters) {
+const ElementBlock& SurfaceHierarchy::block(int id, QueryCounters* counters) const {
   ElementBlock& b = blocks_[static_cast<std::size_t>(id)];
   if (counters) ++counters->nodes_visited;
   if (b.version == version_) return b;
@@ -111,7 +109,7 @@ void SurfaceHierarchy::release_nodes() {
   for (HierarchyNode& root : nodes_) root.children = {-1, -1, -1, -1};
 }
 
-void SurfaceHierarchy::refresh(int id, QueryCounters* counters) {
+void SurfaceHierarchy::refresh(int id, QueryCounters* counters) const {
   HierarchyNode& self = nodes_[static_cast<std::size_t>(id)];
   if (self.version == version_) return;
   if (self.parent < 0) {
@@ -119,21 +117,21 @@ void SurfaceHierarchy::refresh(int id, QueryCounters* counters) {
   } else {
     refresh(self.parent, counters);  // creates no nodes, so `self` stays valid
     const HierarchyNode& parent = nodes_[static_cast<std::size_t>(self.parent)];
-    self.patch = subdivide(parent.patch, ops_.u->subdivision(), ops_.v->subdivision(), true,
-                           self.half_u, true, self.half_v);
+    self.patch = subdivide(parent.patch, ops_.u->subdivision(), ops_.v->subdivision(),
+                           {self.half_u, self.half_v});
   }
   self.bound = bound_patch(self.patch);
   self.version = version_;
   if (counters) ++counters->nodes_refreshed;
 }
 
-const HierarchyNode& SurfaceHierarchy::node(int id, QueryCounters* counters) {
+const HierarchyNode& SurfaceHierarchy::node(int id, QueryCounters* counters) const {
   refresh(id, counters);
   if (counters) ++counters->nodes_visited;
   return nodes_[static_cast<std::size_t>(id)];
 }
 
-int SurfaceHierarchy::child(int id, int half_u, int half_v) {
+int SurfaceHierarchy::child(int id, int half_u, int half_v) const {
   const int slot = half_u * 2 + half_v;
   const int existing =
       nodes_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(slot)];
@@ -146,12 +144,7 @@ int SurfaceHierarchy::child(int id, int half_u, int half_v) {
   c.parent = id;
   c.half_u = half_u;
   c.half_v = half_v;
-  const double um = 0.5 * (parent.u0 + parent.u1);
-  const double vm = 0.5 * (parent.v0 + parent.v1);
-  c.u0 = half_u == 0 ? parent.u0 : um;
-  c.u1 = half_u == 0 ? um : parent.u1;
-  c.v0 = half_v == 0 ? parent.v0 : vm;
-  c.v1 = half_v == 0 ? vm : parent.v1;
+  c.rect = parent.rect.quarter(half_u, half_v);
   c.version = 0;
   const int index = static_cast<int>(nodes_.size());
   nodes_.push_back(std::move(c));  // may reallocate: no references held across this

@@ -8,15 +8,16 @@
 #include <cstdint>
 #include <vector>
 
+#include "argil/core/base/status.hpp"
 #include "argil/core/geometry/bezier.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
+#include "argil/core/geometry/param_rect.hpp"
 #include "argil/core/hierarchy/patch_bound.hpp"
-#include "argil/core/base/status.hpp"
 #include "argil/core/operators/surface_operators.hpp"
 
 namespace argil {
 
-/// One node: the Bezier sub-patch over [u0, u1] x [v0, v1] of element
+/// One node: the Bezier sub-patch over `rect` of element
 /// (element_u, element_v) at `level` (each level halves both directions).
 struct HierarchyNode {
   int element_u = 0;
@@ -25,7 +26,7 @@ struct HierarchyNode {
   int parent = -1;
   int half_u = 0;  // which half of the parent, in u and v
   int half_v = 0;
-  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  ParamRect rect;
   std::array<int, 4> children{-1, -1, -1, -1};  // index half_u * 2 + half_v
   BezierPatch patch;
   PatchBound bound;
@@ -53,7 +54,9 @@ struct QueryCounters {
 };
 
 /// Owns a copy of the surface's control points (the per-frame state), shares
-/// its operators, and grows nodes on demand. Not thread-safe: one per model.
+/// its operators, and grows nodes on demand. The nodes and blocks are a cache
+/// over the control points: queries create and refresh them through const
+/// access, which changes no answer. Not thread-safe: one query at a time.
 class SurfaceHierarchy {
  public:
   /// Validates the surface and fetches its operators from `cache`.
@@ -71,11 +74,13 @@ class SurfaceHierarchy {
   const std::vector<int>& roots() const { return roots_; }
   /// The block tree over the elements (built with the structure; bounds lazy).
   /// Block 0 covers every element: its bound is the broad-phase bound of the surface.
-  const ElementBlock& block(int id, QueryCounters* counters = nullptr);
+  const ElementBlock& block(int id, QueryCounters* counters = nullptr) const;
   /// The node with fresh bounds (refreshing its ancestors first if needed).
-  const HierarchyNode& node(int id, QueryCounters* counters = nullptr);
+  const HierarchyNode& node(int id, QueryCounters* counters = nullptr) const;
   /// Index of child (half_u, half_v) of `id`, created on first use.
-  int child(int id, int half_u, int half_v);
+  /// Creating a node may reallocate the pool: references from node() do not
+  /// survive a call.
+  int child(int id, int half_u, int half_v) const;
 
   /// Number of nodes created so far (for tests and memory accounting).
   std::size_t node_count() const { return nodes_.size(); }
@@ -94,15 +99,15 @@ class SurfaceHierarchy {
 
  private:
   SurfaceHierarchy() = default;
-  void refresh(int id, QueryCounters* counters);
+  void refresh(int id, QueryCounters* counters) const;
   int build_block(int eu0, int eu1, int ev0, int ev1);
 
   BSplineSurface surface_;
   SurfaceOperators ops_;
   std::uint64_t version_ = 1;
-  std::vector<HierarchyNode> nodes_;
+  mutable std::vector<HierarchyNode> nodes_;
   std::vector<int> roots_;
-  std::vector<ElementBlock> blocks_;
+  mutable std::vector<ElementBlock> blocks_;
   std::size_t node_budget_ = std::size_t{1} << 15;  // about 25 MB of bicubic nodes
 };
 

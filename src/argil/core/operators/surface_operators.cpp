@@ -1,6 +1,7 @@
 #include "argil/core/operators/surface_operators.hpp"
 
 #include <cassert>
+#include <utility>
 
 #include "argil/core/geometry/detail/homogeneous_derivatives.hpp"
 
@@ -29,18 +30,11 @@ void resize(ControlNet& m, Eigen::Index rows) {
   if (m.rows() != rows) m.resize(rows, 3);
 }
 
-}  // namespace
-
-void evaluate_grid(const BSplineSurface& s, const SamplingRows& u_rows, const SamplingRows& v_rows,
-                   int order, SurfaceGrid& out) {
-  assert(order >= 0 && order <= 2);
-  const int p = s.degree[0];
-  const int q = s.degree[1];
-  const int nv = s.count(Direction::v);
-  const bool rational = s.is_rational();
-  out.count_u = static_cast<int>(u_rows.size());
-  out.count_v = static_cast<int>(v_rows.size());
-  const Eigen::Index total = u_rows.size() * v_rows.size();
+/// Sizes the grid's arrays for `total` samples up to `order`.
+void prepare_grid(SurfaceGrid& out, Eigen::Index count_u, Eigen::Index count_v, int order) {
+  out.count_u = static_cast<int>(count_u);
+  out.count_v = static_cast<int>(count_v);
+  const Eigen::Index total = count_u * count_v;
   resize(out.points, total);
   if (order >= 1) {
     resize(out.du, total);
@@ -52,60 +46,103 @@ void evaluate_grid(const BSplineSurface& s, const SamplingRows& u_rows, const Sa
     resize(out.duv, total);
     resize(out.dvv, total);
   }
+}
 
-  // Row a of the grid: contract the net over u once (c0 = sum N, c1 = sum N',
-  // c2 = sum N''), then each sample in v is a short (q+1)-term sum.
-  Eigen::MatrixX4d c0(nv, 4), c1(nv, 4), c2(nv, 4);
+/// The homogeneous net contracted over u at one u sample: c[k].row(j) =
+/// sum_r N^(k)_r(u) (w P, w)_(first + r, j) for k = 0 .. order.
+struct ContractedRow {
+  Eigen::MatrixX4d c0, c1, c2;
+};
+
+/// Contracts the net row by row into one set of buffers, reused across the
+/// rows of a grid (grids are evaluated every tick).
+class RowContractor {
+ public:
+  RowContractor(const BSplineSurface& s, const SamplingRows& u_rows, int order)
+      : s_(s), u_rows_(u_rows), order_(order) {
+    const int nv = s.count(Direction::v);
+    row_ = {Eigen::MatrixX4d(nv, 4), Eigen::MatrixX4d(nv, 4), Eigen::MatrixX4d(nv, 4)};
+  }
+
+  /// Row at u sample a; valid until the next call.
+  const ContractedRow& at(Eigen::Index a) {
+    const int fu = u_rows_.first_pole[static_cast<std::size_t>(a)];
+    const bool rational = s_.is_rational();
+    row_.c0.setZero();
+    if (order_ >= 1) row_.c1.setZero();
+    if (order_ >= 2) row_.c2.setZero();
+    for (int r = 0; r <= s_.degree[0]; ++r) {
+      const double n0 = u_rows_.values(a, r);
+      const double n1 = u_rows_.d1(a, r);
+      const double n2 = u_rows_.d2(a, r);
+      for (int j = 0; j < row_.c0.rows(); ++j) {
+        const Eigen::Index k = s_.pole_index(fu + r, j);
+        const double w = rational ? s_.weights[k] : 1.0;
+        const Eigen::Vector4d pw(w * s_.control_points(k, 0), w * s_.control_points(k, 1),
+                                 w * s_.control_points(k, 2), w);
+        row_.c0.row(j) += n0 * pw.transpose();
+        if (order_ >= 1) row_.c1.row(j) += n1 * pw.transpose();
+        if (order_ >= 2) row_.c2.row(j) += n2 * pw.transpose();
+      }
+    }
+    return row_;
+  }
+
+ private:
+  const BSplineSurface& s_;
+  const SamplingRows& u_rows_;
+  int order_;
+  ContractedRow row_;
+};
+
+/// Derivatives at v sample b from a contracted row: a short (q+1)-term sum.
+SurfaceDerivatives sample_along_v(const ContractedRow& c, const SamplingRows& v_rows,
+                                  Eigen::Index b, int q, int order) {
+  const int fv = v_rows.first_pole[static_cast<std::size_t>(b)];
+  detail::HomogeneousDerivatives h;
+  for (int l = 0; l <= q; ++l) {
+    const double m0 = v_rows.values(b, l);
+    h.a00 += m0 * c.c0.row(fv + l).transpose();
+    if (order >= 1) {
+      const double m1 = v_rows.d1(b, l);
+      h.a10 += m0 * c.c1.row(fv + l).transpose();
+      h.a01 += m1 * c.c0.row(fv + l).transpose();
+    }
+    if (order >= 2) {
+      h.a20 += m0 * c.c2.row(fv + l).transpose();
+      h.a11 += v_rows.d1(b, l) * c.c1.row(fv + l).transpose();
+      h.a02 += v_rows.d2(b, l) * c.c0.row(fv + l).transpose();
+    }
+  }
+  return detail::cartesian(h, order);
+}
+
+void store(SurfaceGrid& out, Eigen::Index row, const SurfaceDerivatives& d, int order) {
+  out.points.row(row) = d.point;
+  if (order >= 1) {
+    out.du.row(row) = d.du;
+    out.dv.row(row) = d.dv;
+    out.normals.row(row) = unit_normal(d);
+  }
+  if (order >= 2) {
+    out.duu.row(row) = d.duu;
+    out.duv.row(row) = d.duv;
+    out.dvv.row(row) = d.dvv;
+  }
+}
+
+}  // namespace
+
+void evaluate_grid(const BSplineSurface& s, const SamplingRows& u_rows, const SamplingRows& v_rows,
+                   int order, SurfaceGrid& out) {
+  assert(order >= 0 && order <= 2);
+  prepare_grid(out, u_rows.size(), v_rows.size(), order);
+  // Row a of the grid: contract the net over u once, then sample along v.
+  RowContractor contract(s, u_rows, order);
   for (Eigen::Index a = 0; a < u_rows.size(); ++a) {
-    const int fu = u_rows.first_pole[static_cast<std::size_t>(a)];
-    c0.setZero();
-    if (order >= 1) c1.setZero();
-    if (order >= 2) c2.setZero();
-    for (int r = 0; r <= p; ++r) {
-      const double n0 = u_rows.values(a, r);
-      const double n1 = u_rows.d1(a, r);
-      const double n2 = u_rows.d2(a, r);
-      for (int j = 0; j < nv; ++j) {
-        const Eigen::Index k = s.pole_index(fu + r, j);
-        const double w = rational ? s.weights[k] : 1.0;
-        const Eigen::Vector4d pw(w * s.control_points(k, 0), w * s.control_points(k, 1),
-                                 w * s.control_points(k, 2), w);
-        c0.row(j) += n0 * pw.transpose();
-        if (order >= 1) c1.row(j) += n1 * pw.transpose();
-        if (order >= 2) c2.row(j) += n2 * pw.transpose();
-      }
-    }
-    for (Eigen::Index b = 0; b < v_rows.size(); ++b) {
-      const int fv = v_rows.first_pole[static_cast<std::size_t>(b)];
-      detail::HomogeneousDerivatives h;
-      for (int l = 0; l <= q; ++l) {
-        const double m0 = v_rows.values(b, l);
-        h.a00 += m0 * c0.row(fv + l).transpose();
-        if (order >= 1) {
-          const double m1 = v_rows.d1(b, l);
-          h.a10 += m0 * c1.row(fv + l).transpose();
-          h.a01 += m1 * c0.row(fv + l).transpose();
-        }
-        if (order >= 2) {
-          h.a20 += m0 * c2.row(fv + l).transpose();
-          h.a11 += v_rows.d1(b, l) * c1.row(fv + l).transpose();
-          h.a02 += v_rows.d2(b, l) * c0.row(fv + l).transpose();
-        }
-      }
-      const SurfaceDerivatives d = detail::cartesian(h, order);
-      const Eigen::Index row = a * v_rows.size() + b;
-      out.points.row(row) = d.point;
-      if (order >= 1) {
-        out.du.row(row) = d.du;
-        out.dv.row(row) = d.dv;
-        out.normals.row(row) = unit_normal(d);
-      }
-      if (order >= 2) {
-        out.duu.row(row) = d.duu;
-        out.duv.row(row) = d.duv;
-        out.dvv.row(row) = d.dvv;
-      }
-    }
+    const ContractedRow& c = contract.at(a);
+    for (Eigen::Index b = 0; b < v_rows.size(); ++b)
+      store(out, a * v_rows.size() + b, sample_along_v(c, v_rows, b, s.degree[1], order), order);
   }
 }
 
@@ -131,7 +168,8 @@ BezierPatch bezier_patch(const BSplineSurface& s, const SurfaceOperators& ops, i
           w * s.control_points(k, 2), w;
     }
   }
-  return {p, q, transform_net(&eu, &ev, local, p, q)};
+  return map_along(map_along(BezierPatch{p, q, std::move(local)}, Direction::u, eu), Direction::v,
+                   ev);
 }
 
 ControlNet evaluate_nodes(const BSplineSurface& s, const SurfaceOperators& ops) {

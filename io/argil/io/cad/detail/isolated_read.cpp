@@ -69,10 +69,10 @@ void write_all(int fd, std::string_view bytes) {
       report = std::string(1, static_cast<char>(model.status().code)) + model.status().message;
     }
   } catch (const std::bad_alloc&) {
-    report = std::string(1, static_cast<char>(StatusCode::external_failure)) +
-             "out of memory (limit " + std::to_string(limits.memory_limit_mb) + " MB)";
+    report = std::string(1, static_cast<char>(StatusCode::parse_error)) + "out of memory (limit " +
+             std::to_string(limits.memory_limit_mb) + " MB)";
   } catch (...) {
-    report = std::string(1, static_cast<char>(StatusCode::external_failure)) +
+    report = std::string(1, static_cast<char>(StatusCode::parse_error)) +
              "the reader threw an unknown exception";
   }
   write_all(fd, report);
@@ -84,6 +84,66 @@ void write_all(int fd, std::string_view bytes) {
 /// code lets callers tell a contained OpenCASCADE failure from a bad file.
 Status child_error(const std::string& what, const std::string& text) {
   return Status::error(StatusCode::external_failure, what + ": " + text);
+}
+
+/// What the parent collected from the child's pipe.
+struct ChildReport {
+  std::string bytes;
+  bool timed_out = false;
+};
+
+/// Reads the pipe until it closes or the time limit passes.
+ChildReport collect_report(int fd, double time_limit_s) {
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(time_limit_s));
+  ChildReport report;
+  char buffer[1 << 16];
+  for (;;) {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+    if (left.count() <= 0) {
+      report.timed_out = true;
+      break;
+    }
+    pollfd wait{fd, POLLIN, 0};
+    const int ready = ::poll(&wait, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+    if (ready < 0 && errno != EINTR) break;
+    if (ready <= 0) continue;
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // end of the report (or a read error)
+    report.bytes.append(buffer, static_cast<std::size_t>(n));
+  }
+  return report;
+}
+
+/// The model, or the error, the child's report and exit status stand for.
+Result<Model> decode_report(const ChildReport& report, int status, const IsolationLimits& limits,
+                            const std::string& what) {
+  if (report.timed_out) {
+    return child_error(what, "OpenCASCADE did not finish reading within " +
+                                 number_text(limits.time_limit_s) + " s (stopped)");
+  }
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    return child_error(what, "OpenCASCADE crashed reading the file (signal " +
+                                 std::to_string(signal) + ", " + ::strsignal(signal) +
+                                 "): malformed or beyond what it handles");
+  }
+  if (report.bytes.empty() || WEXITSTATUS(status) != 0) {
+    return child_error(what, "the reader process ended without a result (exit status " +
+                                 std::to_string(WEXITSTATUS(status)) + ")");
+  }
+  const auto code = static_cast<StatusCode>(static_cast<unsigned char>(report.bytes[0]));
+  if (code > StatusCode::external_failure) {
+    return child_error(what, "the reader process sent an unreadable report");
+  }
+  const std::string_view body = std::string_view(report.bytes).substr(1);
+  if (code != StatusCode::ok) return Status::error(code, std::string(body));
+  Result<Model> model = parse_json(body, what + " (from the reader process)");
+  if (!model.ok()) return child_error(what, "reader process report: " + model.status().message);
+  return model;
 }
 
 }  // namespace
@@ -107,58 +167,13 @@ Result<Model> read_in_child_process(const std::function<Result<Model>()>& read,
     run_child(fds[1], read, limits);
   }
   ::close(fds[1]);
-
-  using Clock = std::chrono::steady_clock;
-  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                           std::chrono::duration<double>(limits.time_limit_s));
-  std::string report;
-  bool timed_out = false;
-  char buffer[1 << 16];
-  for (;;) {
-    const auto left =
-        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
-    if (left.count() <= 0) {
-      timed_out = true;
-      break;
-    }
-    pollfd wait{fds[0], POLLIN, 0};
-    const int ready = ::poll(&wait, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
-    if (ready < 0 && errno != EINTR) break;
-    if (ready <= 0) continue;
-    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;  // end of the report (or a read error)
-    report.append(buffer, static_cast<std::size_t>(n));
-  }
+  const ChildReport report = collect_report(fds[0], limits.time_limit_s);
   ::close(fds[0]);
-  if (timed_out) ::kill(child, SIGKILL);
+  if (report.timed_out) ::kill(child, SIGKILL);
   int status = 0;
   while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
   }
-
-  if (timed_out) {
-    return child_error(what, "OpenCASCADE did not finish reading within " +
-                                 number_text(limits.time_limit_s) + " s (stopped)");
-  }
-  if (WIFSIGNALED(status)) {
-    const int signal = WTERMSIG(status);
-    return child_error(what, "OpenCASCADE crashed reading the file (signal " +
-                                 std::to_string(signal) + ", " + ::strsignal(signal) +
-                                 "): malformed or beyond what it handles");
-  }
-  if (report.empty() || WEXITSTATUS(status) != 0) {
-    return child_error(what, "the reader process ended without a result (exit status " +
-                                 std::to_string(WEXITSTATUS(status)) + ")");
-  }
-  const auto code = static_cast<StatusCode>(static_cast<unsigned char>(report[0]));
-  if (code > StatusCode::external_failure) {
-    return child_error(what, "the reader process sent an unreadable report");
-  }
-  const std::string_view body = std::string_view(report).substr(1);
-  if (code != StatusCode::ok) return Status::error(code, std::string(body));
-  Result<Model> model = parse_json(body, what + " (from the reader process)");
-  if (!model.ok()) return child_error(what, "reader process report: " + model.status().message);
-  return model;
+  return decode_report(report, status, limits, what);
 }
 
 }  // namespace argil::io::detail

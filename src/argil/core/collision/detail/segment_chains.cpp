@@ -1,0 +1,131 @@
+#include "argil/core/collision/detail/segment_chains.hpp"
+
+#include <algorithm>
+#include <tuple>
+#include <utility>
+
+namespace argil::detail {
+
+namespace {
+
+/// End point `e` is point e % 2 of segment e / 2.
+class SegmentEnds {
+ public:
+  explicit SegmentEnds(const std::vector<Segment>& segments) : segments_(segments) {}
+  int count() const { return static_cast<int>(2 * segments_.size()); }
+  const Segment& segment(int e) const { return segments_[static_cast<std::size_t>(e / 2)]; }
+  const Eigen::Vector3d& position(int e) const {
+    return segment(e).points[static_cast<std::size_t>(e % 2)];
+  }
+  /// End points e and f (of different segments) coincide: within eps in space
+  /// and within half the smaller leaf on each surface in parameters.
+  bool coincide(int e, int f, double eps) const {
+    const Segment& s = segment(e);
+    const Segment& t = segment(f);
+    const auto i = static_cast<std::size_t>(e % 2), j = static_cast<std::size_t>(f % 2);
+    return (s.points[i] - t.points[j]).norm() <= eps &&
+           (s.uv_a[i] - t.uv_a[j]).cwiseAbs().maxCoeff() <= 0.5 * std::min(s.width_a, t.width_a) &&
+           (s.uv_b[i] - t.uv_b[j]).cwiseAbs().maxCoeff() <= 0.5 * std::min(s.width_b, t.width_b);
+  }
+
+ private:
+  const std::vector<Segment>& segments_;
+};
+
+/// Pairs of coinciding end points (distance, lower end, higher end), closest
+/// first: a sweep along x finds them.
+std::vector<std::tuple<double, int, int>> coinciding_ends(const SegmentEnds& ends, double eps) {
+  std::vector<int> by_x(static_cast<std::size_t>(ends.count()));
+  for (int e = 0; e < ends.count(); ++e) by_x[static_cast<std::size_t>(e)] = e;
+  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) {
+    return std::make_pair(ends.position(a).x(), a) < std::make_pair(ends.position(b).x(), b);
+  });
+  std::vector<std::tuple<double, int, int>> candidates;
+  for (std::size_t x = 0; x < by_x.size(); ++x) {
+    const int e = by_x[x];
+    for (std::size_t y = x + 1; y < by_x.size(); ++y) {
+      const int f = by_x[y];
+      if (ends.position(f).x() - ends.position(e).x() > eps) break;
+      if (e / 2 == f / 2) continue;
+      if (ends.coincide(e, f, eps))
+        candidates.emplace_back((ends.position(e) - ends.position(f)).norm(), std::min(e, f),
+                                std::max(e, f));
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  return candidates;
+}
+
+/// For each end point, the end point it is matched to (-1 when free).
+std::vector<int> match_ends(const SegmentEnds& ends, double eps) {
+  std::vector<int> next(static_cast<std::size_t>(ends.count()), -1);
+  for (const auto& [d, e, f] : coinciding_ends(ends, eps)) {
+    if (next[static_cast<std::size_t>(e)] >= 0 || next[static_cast<std::size_t>(f)] >= 0) continue;
+    next[static_cast<std::size_t>(e)] = f;
+    next[static_cast<std::size_t>(f)] = e;
+  }
+  return next;
+}
+
+/// Walks chains through matched end points, marking segments used.
+class ChainWalker {
+ public:
+  ChainWalker(const SegmentEnds& ends, std::vector<int> next)
+      : ends_(ends), next_(std::move(next)), used_(static_cast<std::size_t>(ends.count() / 2)) {}
+
+  bool used(int e) const { return used_[static_cast<std::size_t>(e / 2)]; }
+  bool free_end(int e) const { return next_[static_cast<std::size_t>(e)] < 0; }
+
+  /// Walks from end point `start` (its segment not yet used) until the chain
+  /// ends or closes.
+  void walk(int start) {
+    out_.curves.emplace_back();
+    out_.reaches.emplace_back();
+    append(start);
+    int e = start;
+    for (;;) {
+      used_[static_cast<std::size_t>(e / 2)] = true;
+      const int far = e ^ 1;
+      const int f = next_[static_cast<std::size_t>(far)];
+      if (f < 0 || used(f)) {
+        // Closed when the far end meets the start point.
+        append(f == start ? start : far);
+        break;
+      }
+      append(far);
+      e = f;
+    }
+  }
+
+  ChainedCurves take() { return std::move(out_); }
+
+ private:
+  void append(int e) {
+    const Segment& s = ends_.segment(e);
+    const auto k = static_cast<std::size_t>(e % 2);
+    IntersectionCurve& c = out_.curves.back();
+    out_.reaches.back().push_back(s.reach);
+    c.points.push_back(s.points[k]);
+    c.uv_a.push_back(s.uv_a[k]);
+    c.uv_b.push_back(s.uv_b[k]);
+  }
+
+  const SegmentEnds& ends_;
+  std::vector<int> next_;
+  std::vector<bool> used_;
+  ChainedCurves out_;
+};
+
+}  // namespace
+
+ChainedCurves chain_segments(const std::vector<Segment>& segments, double eps) {
+  const SegmentEnds ends(segments);
+  ChainWalker walker(ends, match_ends(ends, eps));
+  for (int e = 0; e < ends.count(); ++e)  // open chains from their free ends
+    if (!walker.used(e) && walker.free_end(e)) walker.walk(e);
+  for (int e = 0; e < ends.count(); e += 2)  // what is left are closed loops
+    if (!walker.used(e)) walker.walk(e);
+  return walker.take();
+}
+
+}  // namespace argil::detail

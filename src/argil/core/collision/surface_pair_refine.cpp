@@ -1,0 +1,115 @@
+#include "argil/core/collision/surface_pair_refine.hpp"
+
+#include <Eigen/Dense>
+#include <array>
+#include <limits>
+
+#include "argil/core/geometry/evaluate.hpp"
+
+namespace argil {
+
+namespace {
+
+/// What keeps an on-curve point from sliding along the curve: parameters
+/// fixed on their domain edges, or else a plane across the curve.
+struct CurveConstraint {
+  std::array<bool, 4> fixed{false, false, false, false};
+  int fixed_count = 0;
+  Eigen::Vector3d plane_normal = Eigen::Vector3d::Zero();  // zero: no plane
+  Eigen::Vector3d plane_point = Eigen::Vector3d::Zero();
+};
+
+CurveConstraint curve_constraint(const BSplineSurface& a, const BSplineSurface& b,
+                                 const Eigen::Vector4d& x, const Eigen::Vector4d& lo,
+                                 const Eigen::Vector4d& hi) {
+  CurveConstraint c;
+  for (int k = 0; k < 4; ++k) {
+    if (x[k] == lo[k] || x[k] == hi[k]) {
+      c.fixed[static_cast<std::size_t>(k)] = true;
+      ++c.fixed_count;
+    }
+  }
+  if (c.fixed_count > 0) return c;
+  const SurfaceDerivatives da = evaluate_derivatives(a, x[0], x[1], 1);
+  const SurfaceDerivatives db = evaluate_derivatives(b, x[2], x[3], 1);
+  const Eigen::Vector3d t = unit_normal(da).cross(unit_normal(db));
+  // Tangent surfaces have no curve direction: fall back to closest points.
+  if (t.norm() > 1e-8) c.plane_normal = t.normalized();
+  c.plane_point = 0.5 * (da.point + db.point);
+  return c;
+}
+
+/// The minimum-norm Gauss-Newton step in (u_a, v_a, u_b, v_b) for
+/// S_a - S_b = 0 under the constraint.
+Eigen::Vector4d gauss_newton_step(const SurfaceDerivatives& da, const SurfaceDerivatives& db,
+                                  const CurveConstraint& constraint) {
+  Eigen::Matrix<double, 5, 4> m = Eigen::Matrix<double, 5, 4>::Zero();
+  Eigen::Matrix<double, 5, 1> rhs = Eigen::Matrix<double, 5, 1>::Zero();
+  m.block<3, 1>(0, 0) = da.du;
+  m.block<3, 1>(0, 1) = da.dv;
+  m.block<3, 1>(0, 2) = -db.du;
+  m.block<3, 1>(0, 3) = -db.dv;
+  rhs.head<3>() = -(da.point - db.point);
+  int rows = 3;
+  if (constraint.fixed_count > 0) {
+    // Edge parameters stay put: their columns drop out of the step.
+    for (int k = 0; k < 4; ++k)
+      if (constraint.fixed[static_cast<std::size_t>(k)]) m.col(k).setZero();
+  } else if (constraint.plane_normal.squaredNorm() > 0) {
+    const Eigen::Vector3d& n = constraint.plane_normal;
+    m(3, 0) = n.dot(da.du);
+    m(3, 1) = n.dot(da.dv);
+    rhs[3] = -n.dot(da.point - constraint.plane_point);
+    rows = 4;
+  }
+  // Column scaling keeps the minimum-norm step meaningful when u and s
+  // live on very different parameter ranges.
+  Eigen::Vector4d col_scale;
+  for (int k = 0; k < 4; ++k) {
+    const double n = m.col(k).head(rows).norm();
+    col_scale[k] = n > 0 ? 1.0 / n : 1.0;
+  }
+  const Eigen::MatrixXd ms = m.topRows(rows) * col_scale.asDiagonal();
+  return col_scale.cwiseProduct(
+      Eigen::Vector4d(ms.completeOrthogonalDecomposition().solve(rhs.head(rows))));
+}
+
+}  // namespace
+
+RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b,
+                                const PairRefineRequest& request) {
+  Eigen::Vector4d x(request.uv_a[0], request.uv_a[1], request.uv_b[0], request.uv_b[1]);
+  const Eigen::Vector4d lo(a.domain_start(Direction::u), a.domain_start(Direction::v),
+                           b.domain_start(Direction::u), b.domain_start(Direction::v));
+  const Eigen::Vector4d hi(a.domain_end(Direction::u), a.domain_end(Direction::v),
+                           b.domain_end(Direction::u), b.domain_end(Direction::v));
+  const CurveConstraint constraint =
+      request.on_curve ? curve_constraint(a, b, x, lo, hi) : CurveConstraint{};
+  RefinedPair out;
+  const double stop = 1e-14 * request.scale;
+  constexpr int kMaxIterations = 40;
+  double previous = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < kMaxIterations; ++it) {
+    const SurfaceDerivatives da = evaluate_derivatives(a, x[0], x[1], 1);
+    const SurfaceDerivatives db = evaluate_derivatives(b, x[2], x[3], 1);
+    out.iterations = it;
+    const double residual = (da.point - db.point).norm();
+    if (residual <= stop) break;
+    // Gauss-Newton stalls once rounding dominates: stop when |F| stops shrinking.
+    if (it > 3 && residual >= 0.5 * previous) break;
+    previous = residual;
+    const Eigen::Vector4d next =
+        (x + gauss_newton_step(da, db, constraint)).cwiseMax(lo).cwiseMin(hi);
+    if (next == x) break;
+    x = next;
+  }
+  const Eigen::Vector3d pa = evaluate(a, x[0], x[1]);
+  const Eigen::Vector3d pb = evaluate(b, x[2], x[3]);
+  out.uv_a = x.head<2>();
+  out.uv_b = x.tail<2>();
+  out.point = 0.5 * (pa + pb);
+  out.gap = (pa - pb).norm();
+  return out;
+}
+
+}  // namespace argil

@@ -1,0 +1,42 @@
+#pragma once
+// Newton refinement of a point pair onto two exact surfaces: the last step of
+// the surface-surface query for curve points and contacts.
+
+#include <Eigen/Core>
+
+#include "argil/core/geometry/bspline_surface.hpp"
+
+namespace argil {
+
+/// Where refine_surface_pair() starts and what it keeps fixed.
+struct PairRefineRequest {
+  Eigen::Vector2d uv_a = Eigen::Vector2d::Zero();  // start on surface a
+  Eigen::Vector2d uv_b = Eigen::Vector2d::Zero();  // start on surface b
+  /// Keep the point from sliding along the intersection curve: a parameter
+  /// that starts exactly on its domain edge stays there; otherwise the point
+  /// stays on the plane through the start point across the curve (normal
+  /// n_a x n_b there). Without it (or where the surfaces are tangent) the
+  /// iteration converges to a local minimum of |S_a - S_b|: a local closest pair.
+  bool on_curve = false;
+  /// Model size [mm]: the iteration stops when |S_a - S_b| <= 1e-14 of it.
+  double scale = 1.0;
+};
+
+/// A pair of surface points after refine_surface_pair().
+struct RefinedPair {
+  Eigen::Vector2d uv_a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d uv_b = Eigen::Vector2d::Zero();
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // midpoint of S_a(uv_a) and S_b(uv_b) [mm]
+  double gap = 0.0;                                 // |S_a(uv_a) - S_b(uv_b)| [mm]
+  int iterations = 0;
+};
+
+/// Gauss-Newton from (uv_a, uv_b) on F = S_a(u, v) - S_b(s, t) with
+/// minimum-norm steps in the 4 parameters (columns scaled to unit norm),
+/// clamped to both domains. Stops when |F| <= 1e-14 of `scale`, when |F|
+/// stops halving after the first iterations, or when the step stalls; at most
+/// 40 iterations.
+RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b,
+                                const PairRefineRequest& request);
+
+}  // namespace argil
