@@ -15,14 +15,14 @@
 #include <vector>
 
 #include "argil/io/base/atomic_write.hpp"
-#include "argil/io/files/model_files.hpp"
 #include "argil/io/base/text_file.hpp"
-#include "argil/sculpt/session/journal.hpp"
-#include "argil/sculpt/scene/scene.hpp"
-#include "argil/sculpt/script/script.hpp"
-#include "argil/sculpt/session/session.hpp"
+#include "argil/io/files/model_files.hpp"
 #include "argil/sculpt/output/session_pictures.hpp"
 #include "argil/sculpt/output/tick_log.hpp"
+#include "argil/sculpt/scene/scene.hpp"
+#include "argil/sculpt/script/script.hpp"
+#include "argil/sculpt/session/journal.hpp"
+#include "argil/sculpt/session/session.hpp"
 #include "commands.hpp"
 
 namespace argil::cli {
@@ -158,13 +158,13 @@ int run_sculpt(const std::vector<std::string>& args) {
                 o.scene.string());
   }
   // Every tick's sample and log row stay in memory until the end.
-  const double ticks = script.keyframes.back().time * scene.haptic_rate;
+  const double ticks = script.keyframes.back().t * scene.haptic_rate;
   if (ticks > kMaxTicks) {
     char message[160];
     std::snprintf(
         message, sizeof message,
         ": keyframes[%zu].t: the script lasts %.17g s, %.3g ticks at %g Hz (at most %.0f)",
-        script.keyframes.size() - 1, script.keyframes.back().time, ticks, scene.haptic_rate,
+        script.keyframes.size() - 1, script.keyframes.back().t, ticks, scene.haptic_rate,
         kMaxTicks);
     return fail(o.script.string() + message);
   }
@@ -192,8 +192,8 @@ int run_sculpt(const std::vector<std::string>& args) {
   JournalHeader header;
   char tolerance_text[40];
   std::snprintf(tolerance_text, sizeof tolerance_text, " tolerance=%a", scene.tolerance);
-  header.scene_hash = fnv1a64(scene_bytes + tolerance_text);
-  header.script_hash = fnv1a64(script_bytes);
+  header.scene_hash = input_hash(scene_bytes + tolerance_text);
+  header.script_hash = input_hash(script_bytes);
   header.haptic_rate = scene.haptic_rate;
   const std::filesystem::path journal_path = o.out / kJournalName;
   std::optional<JournalContents> resume;
@@ -302,7 +302,7 @@ int run_sculpt(const std::vector<std::string>& args) {
     const LoadedModel& loaded = session.models()[static_cast<std::size_t>(m)];
     model_names.push_back(loaded.spec.name);
     after.push_back(session.current_model(m));
-    const OutputSpec& out = scene.outputs;
+    const OutputOptions& out = scene.outputs;
     for (const auto& [wanted, extension] :
          {std::pair{out.step, ".step"}, std::pair{out.iges, ".iges"},
           std::pair{out.json, ".json"}}) {
@@ -346,7 +346,7 @@ int run_sculpt(const std::vector<std::string>& args) {
     }
     ToolPath path;
     for (const DeviceSample& s : received) {
-      path.positions.push_back(s.position);
+      path.positions.push_back(s.X_WD.p);
       path.engaged.push_back(s.engaged);
     }
     const Status s = write_session_pictures(all_before, all_after, path, log.times(), log.forces(),

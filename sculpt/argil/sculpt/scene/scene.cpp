@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "argil/core/deform/contact_response.hpp"
 #include "argil/io/base/text_file.hpp"
 #include "argil/sculpt/detail/json_reader.hpp"
 
@@ -56,7 +57,7 @@ class SceneReader {
     std::set<std::string> names;
     bool any_deformable = false;
     for (std::size_t k = 0; k < models->size(); ++k) {
-      ModelSpec model;
+      ModelOptions model;
       const std::string path = JsonReader::index("models", k);
       if (!this->model((*models)[k], path, model)) return false;
       if (!names.insert(model.name).second) {
@@ -73,7 +74,7 @@ class SceneReader {
     }
     names.clear();
     for (std::size_t k = 0; k < tools->size(); ++k) {
-      ToolSpec tool;
+      ToolOptions tool;
       const std::string path = JsonReader::index("tools", k);
       if (!this->tool((*tools)[k], path, tool)) return false;
       if (!names.insert(tool.name).second) {
@@ -113,7 +114,7 @@ class SceneReader {
     return true;
   }
 
-  bool coupling(const Json& value, CouplingSpec& out) {
+  bool coupling(const Json& value, CouplingOptions& out) {
     if (!r_.only_known(value, "coupling", {"stiffness", "damping", "max_force"})) return false;
     if (const Json* k = r_.member(value, "coupling", "stiffness", false)) {
       if (!r_.positive(*k, "coupling.stiffness", out.stiffness)) return false;
@@ -152,7 +153,7 @@ class SceneReader {
     return true;
   }
 
-  bool model(const Json& value, const std::string& path, ModelSpec& out) {
+  bool model(const Json& value, const std::string& path, ModelOptions& out) {
     if (!r_.only_known(value, path,
                        {"name", "file", "faces", "kind", "material", "boundary", "friction"})) {
       return false;
@@ -197,9 +198,7 @@ class SceneReader {
         return r_.fail(path + ".friction",
                        "only rigid models take a friction here (deformable: material.friction)");
       }
-      if (!r_.positive(*friction, path + ".friction", out.rigid_friction, /*allow_zero=*/true)) {
-        return false;
-      }
+      if (!this->friction(*friction, path + ".friction", out.friction)) return false;
     }
     if (!out.deformable && (material != nullptr || boundary != nullptr)) {
       return r_.fail(path + (material != nullptr ? ".material" : ".boundary"),
@@ -208,16 +207,24 @@ class SceneReader {
     if (out.deformable && material == nullptr) {
       return r_.fail(path + ".material", "missing field (a deformable model needs a material)");
     }
-    if (material != nullptr && !this->material(*material, path + ".material", out.material)) {
-      return false;
-    }
+    if (material != nullptr && !this->material(*material, path + ".material", out)) return false;
     if (boundary != nullptr && !this->boundary(*boundary, path + ".boundary", out.boundary)) {
       return false;
     }
     return true;
   }
 
-  bool material(const Json& value, const std::string& path, Material& out) {
+  /// The tool-body pair's Coulomb coefficient, in [0, kMaxFriction].
+  bool friction(const Json& value, const std::string& path, double& out) {
+    if (!r_.positive(value, path, out, /*allow_zero=*/true)) return false;
+    if (out <= kMaxFriction) return true;
+    return r_.fail(
+        path, "must be at most " + format_double(kMaxFriction) + ", got " + format_double(out));
+  }
+
+  /// The material of `model`, and the tool's friction against it.
+  bool material(const Json& value, const std::string& path, ModelOptions& model) {
+    Material& out = model.material;
     if (!r_.only_known(
             value, path,
             {"density", "stiffness", "damping", "anchor_stiffness", "yield", "friction"})) {
@@ -229,15 +236,17 @@ class SceneReader {
       const Json* v = r_.member(value, path, key);
       if (v == nullptr || !r_.positive(*v, JsonReader::join(path, key), *field)) return false;
     }
-    const std::pair<const char*, double*> optional[] = {{"damping", &out.damping},
-                                                        {"anchor_stiffness", &out.anchor_stiffness},
-                                                        {"friction", &out.friction}};
+    const std::pair<const char*, double*> optional[] = {
+        {"damping", &out.damping}, {"anchor_stiffness", &out.anchor_stiffness}};
     for (const auto& [key, field] : optional) {
       if (const Json* v = r_.member(value, path, key, false)) {
         if (!r_.positive(*v, JsonReader::join(path, key), *field, /*allow_zero=*/true)) {
           return false;
         }
       }
+    }
+    if (const Json* friction = r_.member(value, path, "friction", false)) {
+      if (!this->friction(*friction, path + ".friction", model.friction)) return false;
     }
     if (const Json* v = r_.member(value, path, "yield", false)) {
       // JSON has no infinity: "none" (or absence) means purely elastic.
@@ -287,7 +296,7 @@ class SceneReader {
     return v != nullptr && r_.positive(*v, JsonReader::join(path, key), out);
   }
 
-  bool tool(const Json& value, const std::string& path, ToolSpec& out) {
+  bool tool(const Json& value, const std::string& path, ToolOptions& out) {
     if (!name(value, path, out.name)) return false;
     const Json* type = r_.member(value, path, "type");
     std::string text;
@@ -329,7 +338,7 @@ class SceneReader {
     return false;
   }
 
-  bool outputs(const Json& value, OutputSpec& out) {
+  bool outputs(const Json& value, OutputOptions& out) {
     if (!r_.only_known(value, "outputs",
                        {"surfaces", "forces", "contacts", "timing", "pictures"})) {
       return false;

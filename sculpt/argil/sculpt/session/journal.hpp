@@ -20,6 +20,10 @@
 
 namespace argil::sculpt {
 
+/// The hash a journal header records of an input file's bytes (scene_hash,
+/// script_hash): FNV-1a 64, not cryptographic.
+std::uint64_t input_hash(std::string_view bytes);
+
 /// What a journal was written for: a run resumes only with the same inputs.
 struct JournalHeader {
   std::uint64_t scene_hash = 0;   // of the scene file's bytes

@@ -31,7 +31,7 @@ Result<Session> Session::create(const Scene& scene, const std::string& tool_name
     return Status::error(StatusCode::invalid_argument,
                          "tool \"" + tool_name + "\" is not in the scene's tools");
   }
-  const ToolSpec& tool = scene.tools[static_cast<std::size_t>(s.tool_index_)];
+  const ToolOptions& tool = scene.tools[static_cast<std::size_t>(s.tool_index_)];
   const std::string tool_field = "tools[" + std::to_string(s.tool_index_) + "]";
   switch (tool.type) {
     case ToolType::sphere:
@@ -55,7 +55,7 @@ Result<Session> Session::create(const Scene& scene, const std::string& tool_name
     }
   }
   for (std::size_t m = 0; m < scene.models.size(); ++m) {
-    const ModelSpec& spec = scene.models[m];
+    const ModelOptions& spec = scene.models[m];
     Result<io::Model> read = read_for(spec.file, model_path(m) + ".file");
     if (!read.ok()) return read.status();
     io::Model& file = read.value();
@@ -94,9 +94,7 @@ Result<Session> Session::create(const Scene& scene, const std::string& tool_name
 Status Session::rebuild_world() {
   WorldOptions options;
   options.tolerance = scene_.tolerance;
-  options.coupling.stiffness = scene_.coupling.stiffness;
-  options.coupling.damping = scene_.coupling.damping;
-  options.coupling.max_force = scene_.coupling.max_force;
+  options.coupling = scene_.coupling;
   Result<HapticWorld> world = HapticWorld::create(tool_shape_, options);
   if (!world.ok()) {
     return Status::error(world.status().code, "tools[" + std::to_string(tool_index_) +
@@ -111,8 +109,9 @@ Status Session::rebuild_world() {
       const BSplineSurface& surface = loaded.initial.faces[f].surface;
       const Result<int> body =
           loaded.spec.deformable
-              ? world_->add_deformable(surface, loaded.spec.material, loaded.spec.boundary)
-              : world_->add_rigid(surface, loaded.spec.rigid_friction);
+              ? world_->add_deformable(surface, loaded.spec.material, loaded.spec.boundary,
+                                       loaded.spec.friction)
+              : world_->add_rigid(surface, loaded.spec.friction);
       if (!body.ok()) {
         return Status::error(body.status().code, model_path(m) + " face " +
                                                      std::to_string(loaded.file_faces[f]) + ": " +
@@ -126,21 +125,17 @@ Status Session::rebuild_world() {
 }
 
 Result<TickReport> Session::advance(const DeviceSample& sample) {
-  DevicePose pose;
-  pose.position = sample.position;
-  pose.orientation = sample.orientation;
-  pose.engaged = sample.engaged;
-  const TickResult r = world_->step(pose, time_step());
+  const TickResult r = world_->step(sample, time_step());
   if (!r.status.ok()) {
     return Status::error(r.status.code,
                          "tick " + std::to_string(sample.tick) + ": " + r.status.message);
   }
   TickReport report;
   report.tick = sample.tick;
-  report.time = sample.time;
+  report.time = sample.t;
   report.force = r.force;
   report.clamped = r.clamped;
-  report.proxy = r.proxy.position;
+  report.proxy = r.proxy.X_WT.p;
   report.max_depth = r.max_depth;
   for (std::size_t b = 0; b < r.body_contacts.size() && b < body_owner_.size(); ++b) {
     const auto [model, face] = body_owner_[b];
@@ -223,7 +218,7 @@ Status Session::replay_history() {
   return Status::success();
 }
 
-io::Model Session::current_model(int index) {
+io::Model Session::current_model(int index) const {
   const LoadedModel& loaded = models_[static_cast<std::size_t>(index)];
   io::Model model = loaded.initial;
   for (std::size_t f = 0; f < model.faces.size(); ++f) {
@@ -232,7 +227,7 @@ io::Model Session::current_model(int index) {
   return model;
 }
 
-std::uint64_t Session::state_hash() {
+std::uint64_t Session::state_hash() const {
   std::uint64_t h = fnv1a64("argil.session");
   for (int b = 0; b < world_->body_count(); ++b) {
     const ControlNet& points = world_->surface(b).control_points;
@@ -244,9 +239,9 @@ std::uint64_t Session::state_hash() {
                  static_cast<std::size_t>(body->velocities().size()) * sizeof(double));
     }
   }
-  const ToolState& proxy = world_->proxy();
-  hash_bytes(h, proxy.position.data(), 3 * sizeof(double));
-  hash_bytes(h, proxy.velocity.data(), 3 * sizeof(double));
+  const ProxyState& proxy = world_->proxy();
+  hash_bytes(h, proxy.X_WT.p.data(), 3 * sizeof(double));
+  hash_bytes(h, proxy.v_WT.data(), 3 * sizeof(double));
   return h;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// From collision contacts to forces (ARCHITECTURE 3.5): how a tool force is
+// From collision contacts to forces: how a tool force is
 // shared among contacts, carried exactly onto the nodes, and split by Coulomb
 // friction into stick and slip.
 
@@ -25,6 +25,10 @@ std::vector<double> contact_shares(const std::vector<Contact>& contacts, double 
 Eigen::VectorXd contact_load_pattern(const BSplineSurface& surface, const SurfaceOperators& ops,
                                      const std::vector<Contact>& contacts,
                                      const std::vector<double>& shares);
+
+/// Largest Coulomb coefficient mu [-] of a tool-body pair (rubber on rubber
+/// is about 1; beyond 10 the stick cone is a wall).
+inline constexpr double kMaxFriction = 10.0;
 
 /// Coulomb friction for a proxy held by a spring (stiffness k [N/mm]) at its
 /// stick point on a surface with outward unit normal n (from the surface

@@ -16,7 +16,7 @@ Status coupling_error(const char* field, double value, const char* range) {
 
 }  // namespace
 
-Status validate(const CouplingParams& c) {
+Status validate(const CouplingOptions& c) {
   if (!(c.stiffness > 0.0 && c.stiffness <= 1e6))
     return coupling_error("stiffness", c.stiffness, "(0, 1e6] N/mm");
   if (!(c.damping >= 0.0 && c.damping <= 1e3))
@@ -31,10 +31,10 @@ double implicit_coupling_force(double explicit_force, double stiffness, double f
   return std::max(0.0, (explicit_force - stiffness * free_motion) / (1.0 + stiffness * compliance));
 }
 
-Eigen::Vector3d clamp_force(const Eigen::Vector3d& force, double max_force, bool& clamped) {
+ClampedForce clamp_force(const Eigen::Vector3d& force, double max_force) {
   const double size = force.norm();
-  clamped = size > max_force;
-  return clamped ? Eigen::Vector3d(force * (max_force / size)) : force;
+  if (!(size > max_force)) return {force, false};
+  return {force * (max_force / size), true};
 }
 
 }  // namespace argil
