@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "argil/core/collision/contact_regions.hpp"
-#include "argil/core/geometry/evaluate.hpp"
 #include "argil/core/collision/surface_penetration.hpp"
-#include "argil/core/geometry/triangle_distance.hpp"
 #include "argil/core/collision/triangle_intersection.hpp"
+#include "argil/core/geometry/evaluate.hpp"
+#include "argil/core/geometry/triangle_distance.hpp"
 
 namespace argil {
 
@@ -155,8 +155,10 @@ void add_penetration_contacts(const BSplineSurface& a, const BSplineSurface& b,
       ++end;
     }
     const std::span<const Contact> region(contacts.data() + begin, end - begin);
-    const Penetration deepest = crossing ? deepest_penetration(a, b, region) : Penetration{};
-    if (deepest.found) {
+    const std::optional<Penetration> found =
+        crossing ? deepest_penetration(a, b, region) : std::nullopt;
+    if (found) {
+      const Penetration& deepest = *found;
       Contact c;
       const SurfaceDerivatives d = evaluate_derivatives(a, deepest.uv_a[0], deepest.uv_a[1], 1);
       c.point = d.point;

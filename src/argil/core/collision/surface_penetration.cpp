@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "argil/core/geometry/evaluate.hpp"
 #include "argil/core/collision/patch_minimize.hpp"
+#include "argil/core/geometry/evaluate.hpp"
 
 namespace argil {
 
@@ -69,9 +69,9 @@ PatchMinimum lowest_below_plane(const BSplineSurface& b, const ParamBox& box,
 
 }  // namespace
 
-Penetration deepest_penetration(const BSplineSurface& a, const BSplineSurface& b,
-                                std::span<const Contact> region) {
-  Penetration out;
+std::optional<Penetration> deepest_penetration(const BSplineSurface& a, const BSplineSurface& b,
+                                               std::span<const Contact> region) {
+  std::optional<Penetration> out;
   if (region.empty()) return out;
   const ParamBox box_a = grown_box(a, region, true);
   const ParamBox box_b = grown_box(b, region, false);
@@ -91,8 +91,8 @@ Penetration deepest_penetration(const BSplineSurface& a, const BSplineSurface& b
     const Eigen::Vector3d offset = x - df.point;
     if (n_foot.isZero() || offset.dot(n_foot) >= 0.0) return out;  // b's point is in front
     const double depth = offset.norm();
-    const bool settled = out.found && std::abs(depth - out.depth) <= 1e-12 * (1.0 + depth);
-    out = {true, depth, foot.uv, low.uv};
+    const bool settled = out && std::abs(depth - out->depth) <= 1e-12 * (1.0 + depth);
+    out = Penetration{depth, foot.uv, low.uv};
     if (settled) break;
     uv_a = foot.uv;
   }
