@@ -49,6 +49,19 @@ class SceneReader {
     if (const Json* coupling = r_.member(root, "", "coupling", false)) {
       if (!this->coupling(*coupling, out.coupling)) return false;
     }
+    if (!models(root, out.models) || !tools(root, out.tools)) return false;
+    if (const Json* outputs = r_.member(root, "", "outputs", false)) {
+      if (!this->outputs(*outputs, out.outputs)) return false;
+    }
+    if (const Json* script = r_.member(root, "", "script", false)) {
+      if (!file_path(*script, "script", out.script)) return false;
+    }
+    return true;
+  }
+
+ private:
+  /// "models": a non-empty array with unique names and at least one deformable model.
+  bool models(const Json& root, std::vector<ModelOptions>& out) {
     const Json* models = r_.member(root, "", "models");
     if (models == nullptr) return false;
     if (!models->is_array() || models->empty()) {
@@ -64,15 +77,19 @@ class SceneReader {
         return r_.fail(path + ".name", "\"" + model.name + "\" is used twice");
       }
       any_deformable = any_deformable || model.deformable;
-      out.models.push_back(std::move(model));
+      out.push_back(std::move(model));
     }
-    if (!any_deformable) return r_.fail("models", "no deformable model: nothing to sculpt");
+    return any_deformable || r_.fail("models", "no deformable model: nothing to sculpt");
+  }
+
+  /// "tools": a non-empty array with unique names.
+  bool tools(const Json& root, std::vector<ToolOptions>& out) {
     const Json* tools = r_.member(root, "", "tools");
     if (tools == nullptr) return false;
     if (!tools->is_array() || tools->empty()) {
       return r_.fail("tools", "expected a non-empty array of tools");
     }
-    names.clear();
+    std::set<std::string> names;
     for (std::size_t k = 0; k < tools->size(); ++k) {
       ToolOptions tool;
       const std::string path = JsonReader::index("tools", k);
@@ -80,18 +97,11 @@ class SceneReader {
       if (!names.insert(tool.name).second) {
         return r_.fail(path + ".name", "\"" + tool.name + "\" is used twice");
       }
-      out.tools.push_back(std::move(tool));
-    }
-    if (const Json* outputs = r_.member(root, "", "outputs", false)) {
-      if (!this->outputs(*outputs, out.outputs)) return false;
-    }
-    if (const Json* script = r_.member(root, "", "script", false)) {
-      if (!file_path(*script, "script", out.script)) return false;
+      out.push_back(std::move(tool));
     }
     return true;
   }
 
- private:
   bool header(const Json& root) {
     return r_.format_header(root, kSceneFormatName, kSceneFormatVersion);
   }
