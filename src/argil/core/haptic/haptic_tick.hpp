@@ -47,8 +47,8 @@ struct ProxyState {
 struct TickResult {
   /// Not ok when the tick did not run: an invalid dt, a collision query that
   /// failed (its status, naming the request and the limit) or a deformable
-  /// body that could not step. The world is then left as before the tick
-  /// except for the device's last position.
+  /// body that could not step. The proxy then keeps its state from the last
+  /// good tick (`proxy` repeats it) and no force is rendered.
   Status status;
   /// Force to render on the device [N]: the coupling pulls the hand towards the
   /// proxy; clamped to CouplingOptions::max_force.
@@ -91,14 +91,15 @@ class HapticWorld {
   /// Adds a rigid body (collides, never deforms); `friction` as for add_deformable.
   Result<int> add_rigid(const BSplineSurface& surface, double friction);
 
-  /// One tick of dt [s] with the device at `device`.
+  /// One tick of dt [s] with the device at `device.X_WD` (its tick and time
+  /// are not read: the world keeps no clock).
   ///  1. The proxy moves from its last pose towards the device (god-object,
   ///     never sinking more than eps, never passing through a surface).
   ///  2. Friction: while in contact the proxy stays at its stick point unless
   ///     the coupling's tangential pull exceeds mu N; then it slides until the
   ///     pull is mu N (contact_response.hpp).
   ///  3. Contacts of the proxy with every body (collide); the coupling force
-  ///     F = k (device - proxy) + b (v_device - v_proxy) is shared among them
+  ///     F = k (p_WD - p_WT) + b (v_WD - v_WT) is shared among them
   ///     (contact_shares), solved backwards in time against the bodies'
   ///     compliance (implicit_coupling_force), clamped, and applied through
   ///     exact node load patterns (contact_load_pattern).
