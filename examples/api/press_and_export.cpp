@@ -10,8 +10,9 @@
 
 namespace {
 
-argil::DevicePose device_at(const Eigen::Vector3d& p_WD) {
-  return {p_WD, Eigen::Quaterniond::Identity(), true};
+/// The device handle at p_WD, not rotated, the tool engaged.
+argil::DeviceSample device_at(const Eigen::Vector3d& p_WD) {
+  return {.X_WD = argil::Pose::at(p_WD), .engaged = true};
 }
 
 }  // namespace
@@ -46,7 +47,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   argil::HapticWorld world = std::move(created).value();
-  const argil::Result<int> body = world.add_deformable(surface, argil::Material{}, {});
+  // Default material, free edges, Coulomb friction 0.3 between tool and face.
+  const argil::Result<int> body =
+      world.add_deformable(surface, argil::Material{}, argil::BoundaryConditions{}, 0.3);
   if (!body.ok()) {
     std::fprintf(stderr, "press_and_export: %s\n", body.status().message.c_str());
     return 1;

@@ -17,8 +17,8 @@
 
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/core/geometry/knot_insertion.hpp"
-#include "argil/io/json/json_format.hpp"
 #include "argil/io/files/model_files.hpp"
+#include "argil/io/json/json_format.hpp"
 #include "argil/sculpt/script/script.hpp"
 
 namespace {
@@ -47,9 +47,9 @@ argil::sculpt::Keyframe frame_at(const argil::BSplineSurface& s, double u, doubl
   r.col(1) = n.cross(x);
   r.col(2) = n;
   argil::sculpt::Keyframe f;
-  f.time = t;
-  f.position = d.point + height * n;
-  f.orientation = Eigen::Quaterniond(r).normalized();
+  f.t = t;
+  f.X_WD.p = d.point + height * n;
+  f.X_WD.R = Eigen::Quaterniond(r).normalized();
   return f;
 }
 

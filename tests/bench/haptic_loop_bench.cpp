@@ -86,8 +86,7 @@ void run(int poles, bool sphere, int ticks) {
   clay.anchor_stiffness = 1.0;
   clay.damping = 1e-3;
   clay.yield = 0.5;
-  clay.friction = 0.3;
-  if (!world.value().add_deformable(panel, clay, {}).ok()) std::abort();
+  if (!world.value().add_deformable(panel, clay, {}, /*friction=*/0.3).ok()) std::abort();
   const double offset = sphere ? 5.0 : 0.0;  // sphere centre above its contact point
   std::vector<double> us, cpu;
   us.reserve(static_cast<std::size_t>(ticks));
@@ -95,8 +94,10 @@ void run(int poles, bool sphere, int ticks) {
   long contacts = 0;
   double max_depth = 0.0, force = 0.0;
   for (int t = 0; t < ticks; ++t) {
-    const argil::DevicePose device{device_at(panel, offset, t, ticks),
-                                   Eigen::Quaterniond::Identity(), true};
+    const argil::DeviceSample device{.tick = t,
+                                     .t = t * kDt,
+                                     .X_WD = argil::Pose::at(device_at(panel, offset, t, ticks)),
+                                     .engaged = true};
     const double cpu_start = thread_cpu_us();
     const auto start = std::chrono::steady_clock::now();
     const argil::TickResult r = world.value().step(device, kDt);

@@ -322,7 +322,7 @@ TEST_CASE("extremes: degrees 1 to 15 in both directions agree with OpenCASCADE",
     s.degree[0] = kMaxDegree + 1;
     s.knots[0] = clamped(kMaxDegree + 1, 0, 1, {});
     s.control_points = wavy_net(s.count(Direction::u), 3, 1.0);
-    CHECK(validate(s).defect == SurfaceDefect::degree_out_of_range);
+    CHECK_THAT(validate(s).message, Catch::Contains("expected 1 to"));
   }
 }
 
@@ -345,7 +345,7 @@ TEST_CASE("extremes: interior knots of full multiplicity (C0 seams) agree with O
   SECTION("multiplicity degree + 1 (a discontinuity) is refused") {
     BSplineSurface s =
         surface(3, 2, clamped(3, 0.0, 1.0, {0.5, 0.5, 0.5, 0.5}), clamped(2, 0.0, 1.0, {}));
-    CHECK(validate(s).defect == SurfaceDefect::multiplicity_too_high);
+    CHECK_THAT(validate(s).message, Catch::Contains("allows at most"));
   }
 }
 
@@ -717,40 +717,40 @@ TEST_CASE("extremes: inputs outside the documented range are refused with a clea
           "[extremes]") {
   const BSplineSurface good = test::asymmetric_surface(true);
   REQUIRE(validate(good).ok());
-  const auto refused = [](const BSplineSurface& s, SurfaceDefect expected, const char* word) {
-    const SurfaceValidation v = validate(s);
+  const auto refused = [](const BSplineSurface& s, const char* says, const char* word) {
+    const Status v = validate(s);
     INFO(v.message);
-    CHECK(v.defect == expected);
+    CHECK_THAT(v.message, Catch::Contains(says));
     CHECK_THAT(v.message, Catch::Contains(word));
-    CHECK(v.status().code == StatusCode::invalid_surface);
+    CHECK(v.code == StatusCode::invalid_surface);
   };
   SECTION("a coordinate beyond 1e12 mm") {
     BSplineSurface s = good;
     s.control_points(3, 1) = 2e12;
-    refused(s, SurfaceDefect::control_point_out_of_range, "control_points[3]");
+    refused(s, "beyond the supported", "control_points[3]");
   }
   SECTION("a knot beyond 1e12") {
     BSplineSurface s = good;
     s.knots[1] = s.knots[1].array() * 1e13;
-    refused(s, SurfaceDefect::knot_out_of_range, "knots_v");
+    refused(s, "beyond the supported magnitude", "knots_v");
   }
   SECTION("a span shorter than 1e-12 of the domain") {
     BSplineSurface s =
         surface(3, 2, clamped(3, 0.0, 1.0, {0.5, 0.5 + 1e-13}), clamped(2, 0.0, 1.0, {}));
-    refused(s, SurfaceDefect::span_too_short, "merge");
+    refused(s, "shorter than", "merge");
   }
   SECTION("a domain shorter than 1e-12 of its knots' magnitude") {
     BSplineSurface s = surface(2, 2, clamped(2, 1e6, 1e6 + 1e-7, {}), clamped(2, 0.0, 1.0, {}));
-    refused(s, SurfaceDefect::span_too_short, "domain");
+    refused(s, "shorter than", "domain");
   }
   SECTION("weights with a ratio above 1e8, or beyond [1e-12, 1e12]") {
     BSplineSurface s = good;
     s.weights[0] = 1e-5;
     s.weights[1] = 1e4;
-    refused(s, SurfaceDefect::weight_out_of_range, "ratio");
+    refused(s, "supported", "ratio");
     s = good;
     s.weights.setConstant(1e13);
-    refused(s, SurfaceDefect::weight_out_of_range, "weights[0]");
+    refused(s, "supported", "weights[0]");
   }
   SECTION("tolerances outside [1e-12, 1] of the model size, or below the coordinates' rounding") {
     OperatorCache cache;

@@ -23,8 +23,8 @@ bool same(const argil::sculpt::Script& a, const argil::sculpt::Script& b) {
   for (std::size_t k = 0; k < a.keyframes.size(); ++k) {
     const auto& x = a.keyframes[k];
     const auto& y = b.keyframes[k];
-    if (x.time != y.time || x.position != y.position || x.event != y.event ||
-        x.orientation.coeffs() != y.orientation.coeffs())
+    if (x.t != y.t || x.X_WD.p != y.X_WD.p || x.event != y.event ||
+        x.X_WD.R.coeffs() != y.X_WD.R.coeffs())
       return false;
   }
   return true;
@@ -50,11 +50,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto from_csv = argil::sculpt::parse_script_csv(argil::sculpt::script_to_csv(s), "<csv>");
   if (!from_csv.ok() || !same(from_csv.value(), s)) fail("CSV round trip changed the script");
   // Sampling: only for scripts short enough to sample (the CLI refuses longer ones).
-  if (s.keyframes.back().time <= 10.0) {
+  if (s.keyframes.back().t <= 10.0) {
     const argil::sculpt::ScriptSampler sampler(s, 1000.0);
     for (long long k = 0; k < sampler.tick_count(); k += 1 + sampler.tick_count() / 64) {
       const auto sample = sampler.sample(k);
-      if (!sample.position.allFinite() || !sample.orientation.coeffs().allFinite())
+      if (!sample.X_WD.p.allFinite() || !sample.X_WD.R.coeffs().allFinite())
         fail("sampling gave a non-finite pose");
     }
   }

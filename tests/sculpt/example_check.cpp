@@ -164,7 +164,7 @@ int main(int argc, char** argv) {
   const int tool_index = scene.tool_index(recorded.value().tool);
   check(tool_index >= 0, "recorded.csv names a scene tool");
   if (tool_index < 0) return 1;
-  const argil::sculpt::ToolSpec& tool = scene.tools[static_cast<std::size_t>(tool_index)];
+  const argil::sculpt::ToolOptions& tool = scene.tools[static_cast<std::size_t>(tool_index)];
   double tool_radius = tool.radius;
   if (tool.type == argil::sculpt::ToolType::bspline) {
     const auto tool_model = argil::io::read_model(tool.file);
@@ -180,15 +180,15 @@ int main(int argc, char** argv) {
   {
     argil::sculpt::ScriptSampler sampler(recorded.value(), scene.haptic_rate);
     for (long long k = 0; k < sampler.tick_count(); ++k) {
-      const argil::sculpt::DeviceSample s = sampler.sample(k);
+      const argil::DeviceSample s = sampler.sample(k);
       if (s.engaged && !was) strokes.emplace_back();
-      if (s.engaged) strokes.back().push_back(s.position);
+      if (s.engaged) strokes.back().push_back(s.X_WD.p);
       was = s.engaged;
     }
   }
   check(!strokes.empty(), "the run had at least one stroke");
 
-  for (const argil::sculpt::ModelSpec& spec : scene.models) {
+  for (const argil::sculpt::ModelOptions& spec : scene.models) {
     const auto input = argil::io::read_model(spec.file);
     check(input.ok(), spec.name + ": input model reads");
     if (!input.ok()) return 1;

@@ -78,8 +78,8 @@ class StrokeScript {
     next_stroke();
   }
 
-  argil::DevicePose sample() {
-    argil::DevicePose pose;
+  argil::DeviceSample sample() {
+    argil::DeviceSample pose;
     const int t = tick_++;
     if (t >= end_) {
       next_stroke();
@@ -90,8 +90,8 @@ class StrokeScript {
     const auto d = argil::evaluate_derivatives(rest_, uv[0], uv[1], 1);
     // Press profile: down over the first tenth, up over the last tenth.
     const double ramp = std::min({1.0, 10.0 * s, 10.0 * (1.0 - s)});
-    pose.position = d.point + Eigen::Vector3d::UnitZ() * (offset_ + 5.0 - (5.0 + press_) * ramp);
-    pose.orientation = Eigen::Quaterniond::Identity();
+    pose.X_WD = argil::Pose::at(d.point +
+                                Eigen::Vector3d::UnitZ() * (offset_ + 5.0 - (5.0 + press_) * ramp));
     pose.engaged = s > 0.02 && s < 0.98;
     return pose;
   }
@@ -143,13 +143,12 @@ int main(int argc, char** argv) {
   clay.anchor_stiffness = 1.0;
   clay.damping = 1e-3;
   clay.yield = 0.5;
-  clay.friction = 0.3;
-  if (!world.ok() || !world.value().add_deformable(rest, clay, {}).ok()) {
+  if (!world.ok() || !world.value().add_deformable(rest, clay, {}, /*friction=*/0.3).ok()) {
     std::fprintf(stderr, "soak: could not build the world\n");
     return 2;
   }
   argil::HapticWorld& w = world.value();
-  if (budget > 0) w.hierarchy(0).set_node_budget(static_cast<std::size_t>(budget));
+  if (budget > 0) w.set_node_budget(0, static_cast<std::size_t>(budget));
   StrokeScript script(rest, seed, sphere ? 5.0 : 0.0);
 
   constexpr int kDeciles = 10;
@@ -159,7 +158,7 @@ int main(int argc, char** argv) {
   const long per_decile = ticks / kDeciles;
   for (long t = 0; t < ticks; ++t) {
     const argil::TickResult r = w.step(script.sample(), kDt);
-    if (!r.status.ok() || !r.force.allFinite() || !r.proxy.position.allFinite()) {
+    if (!r.status.ok() || !r.force.allFinite() || !r.proxy.X_WT.p.allFinite()) {
       std::fprintf(stderr, "soak: tick %ld: bad step (%s)\n", t, r.status.message.c_str());
       return 1;
     }

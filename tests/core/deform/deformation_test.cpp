@@ -83,9 +83,6 @@ TEST_CASE("validate(Material) names the field outside its range", "[deformation]
   m.yield = 0.0;
   fails_on(m, "yield");
   m = {};
-  m.friction = 11.0;
-  fails_on(m, "friction");
-  m = {};
   m.yield = std::numeric_limits<double>::infinity();  // purely elastic is valid
   CHECK(argil::validate(m).ok());
 }

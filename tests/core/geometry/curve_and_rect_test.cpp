@@ -46,11 +46,11 @@ TEST_CASE("knot insertion leaves a rational curve unchanged") {
 TEST_CASE("a curve's validation names the field, index and value of its first defect") {
   BSplineCurve c = rational_curve();
   c.weights[4] = 0.0;
-  CHECK(argil::validate(c).defect == argil::SurfaceDefect::non_positive_weight);
+  CHECK(argil::validate(c).code == argil::StatusCode::invalid_surface);
   CHECK_THAT(argil::validate(c).message, Catch::StartsWith("weights[4] is 0"));
   c = rational_curve();
   c.points.conservativeResize(6, 3);
-  CHECK(argil::validate(c).defect == argil::SurfaceDefect::control_point_count);
+  CHECK(argil::validate(c).code == argil::StatusCode::invalid_surface);
   CHECK_THAT(argil::validate(c).message, Catch::Contains("points has 6 rows, the knots need 7"));
 }
 

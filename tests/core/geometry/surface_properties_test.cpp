@@ -290,7 +290,6 @@ TEST_CASE("the control point box encloses the surface") {
 }
 
 TEST_CASE("invalid surfaces are rejected with the status that names the defect") {
-  using argil::SurfaceDefect;
   const BSplineSurface good = argil::test::asymmetric_surface(true);
   REQUIRE(argil::validate(good).ok());
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -298,55 +297,52 @@ TEST_CASE("invalid surfaces are rejected with the status that names the defect")
   struct Case {
     const char* name;
     void (*spoil)(BSplineSurface&);
-    SurfaceDefect expected;
-    const char* names;  // text the message must contain
+    const char* says;   // the defect, in the message's words
+    const char* names;  // the field the message must name
   };
   static double nan_value;
   nan_value = nan;
   const Case cases[] = {
-      {"degree 0", [](BSplineSurface& s) { s.degree[1] = 0; }, SurfaceDefect::degree_out_of_range,
-       "degree_v"},
+      {"degree 0", [](BSplineSurface& s) { s.degree[1] = 0; }, "expected 1 to", "degree_v"},
       {"degree too high", [](BSplineSurface& s) { s.degree[0] = argil::kMaxDegree + 1; },
-       SurfaceDefect::degree_out_of_range, "degree_u"},
+       "expected 1 to", "degree_u"},
       {"too few knots", [](BSplineSurface& s) { s.knots[1] = Eigen::VectorXd::LinSpaced(4, 0, 1); },
-       SurfaceDefect::too_few_knots, "knots_v"},
-      {"nan knot", [](BSplineSurface& s) { s.knots[0][5] = nan_value; },
-       SurfaceDefect::non_finite_knot, "knots_u[5]"},
-      {"decreasing knots", [](BSplineSurface& s) { s.knots[1][4] = -0.5; },
-       SurfaceDefect::knots_decreasing, "knots_v[4]"},
-      {"unclamped", [](BSplineSurface& s) { s.knots[0][0] = -0.1; },
-       SurfaceDefect::knots_not_clamped, "knots_u"},
+       "needs at least", "knots_v"},
+      {"nan knot", [](BSplineSurface& s) { s.knots[0][5] = nan_value; }, "is nan", "knots_u[5]"},
+      {"decreasing knots", [](BSplineSurface& s) { s.knots[1][4] = -0.5; }, "is below",
+       "knots_v[4]"},
+      {"unclamped", [](BSplineSurface& s) { s.knots[0][0] = -0.1; }, "is not clamped", "knots_u"},
       {"multiplicity",
        [](BSplineSurface& s) {
          s.degree[1] = 1;
          s.knots[1].resize(6);
          s.knots[1] << -1.0, -1.0, 0.1, 0.1, 2.0, 2.0;
        },
-       SurfaceDefect::multiplicity_too_high, "knots_v"},
-      {"empty domain", [](BSplineSurface& s) { s.knots[1].setConstant(2.0); },
-       SurfaceDefect::empty_domain, "knots_v"},
+       "allows at most", "knots_v"},
+      {"empty domain", [](BSplineSurface& s) { s.knots[1].setConstant(2.0); }, "empty domain",
+       "knots_v"},
       {"wrong count", [](BSplineSurface& s) { s.control_points.conservativeResize(34, 3); },
-       SurfaceDefect::control_point_count, "control_points"},
-      {"nan point", [](BSplineSurface& s) { s.control_points(12, 2) = nan_value; },
-       SurfaceDefect::non_finite_control_point, "control_points[12]"},
-      {"weight count", [](BSplineSurface& s) { s.weights.conservativeResize(3); },
-       SurfaceDefect::weight_count, "weights"},
+       "the knots need", "control_points"},
+      {"nan point", [](BSplineSurface& s) { s.control_points(12, 2) = nan_value; }, "is not finite",
+       "control_points[12]"},
+      {"weight count", [](BSplineSurface& s) { s.weights.conservativeResize(3); }, "expected 0 or",
+       "weights"},
       {"inf weight",
-       [](BSplineSurface& s) { s.weights[9] = std::numeric_limits<double>::infinity(); },
-       SurfaceDefect::non_finite_weight, "weights[9]"},
-      {"zero weight", [](BSplineSurface& s) { s.weights[4] = 0.0; },
-       SurfaceDefect::non_positive_weight, "weights[4]"},
-      {"negative weight", [](BSplineSurface& s) { s.weights[0] = -1.0; },
-       SurfaceDefect::non_positive_weight, "weights[0]"},
+       [](BSplineSurface& s) { s.weights[9] = std::numeric_limits<double>::infinity(); }, "is inf",
+       "weights[9]"},
+      {"zero weight", [](BSplineSurface& s) { s.weights[4] = 0.0; }, "must be positive",
+       "weights[4]"},
+      {"negative weight", [](BSplineSurface& s) { s.weights[0] = -1.0; }, "must be positive",
+       "weights[0]"},
   };
   for (const Case& c : cases) {
     BSplineSurface s = good;
     c.spoil(s);
-    const argil::SurfaceValidation v = argil::validate(s);
+    const argil::Status v = argil::validate(s);
     INFO(c.name << ": " << v.message);
-    CHECK(v.defect == c.expected);
+    CHECK(v.message.find(c.says) != std::string::npos);
     CHECK(v.message.find(c.names) != std::string::npos);
-    CHECK(v.status().code == argil::StatusCode::invalid_surface);
+    CHECK(v.code == argil::StatusCode::invalid_surface);
     // Never evaluated: building operators refuses the surface with the same message.
     argil::OperatorCache cache;
     const auto ops = argil::surface_operators(s, cache);

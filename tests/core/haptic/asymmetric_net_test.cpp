@@ -31,20 +31,19 @@ argil::Material sheet_material() {
   m.anchor_stiffness = 0.5;
   m.damping = 5e-3;
   m.yield = 0.3;
-  m.friction = 0.3;
   return m;
 }
 
 /// The device's path over 150 ticks of 1 ms: from 8 mm above S(u, v) along the
 /// normal down to 3 mm below it, a hold, a 4 mm slide along S_u while
 /// pressing, then back up out of contact.
-std::vector<argil::DevicePose> press_script(const BSplineSurface& s, const Eigen::Vector2d& uv) {
+std::vector<argil::DeviceSample> press_script(const BSplineSurface& s, const Eigen::Vector2d& uv) {
   const argil::SurfaceDerivatives d = argil::evaluate_derivatives(s, uv.x(), uv.y(), 1);
   const Eigen::Vector3d n = argil::unit_normal(d);
   const Eigen::Vector3d slide = d.du.normalized();
-  std::vector<argil::DevicePose> poses;
+  std::vector<argil::DeviceSample> poses;
   const auto add = [&](const Eigen::Vector3d& p) {
-    poses.push_back({p, Eigen::Quaterniond::Identity(), true});
+    poses.push_back({.X_WD = argil::Pose::at(p), .engaged = true});
   };
   for (int t = 0; t <= 40; ++t) add(d.point + (8.0 - 11.0 * t / 40.0) * n);
   for (int t = 0; t < 30; ++t) add(d.point - 3.0 * n);
@@ -59,18 +58,18 @@ struct Run {
 };
 
 Run run(const BSplineSurface& surface, const argil::ToolShape& tool,
-        const std::vector<argil::DevicePose>& script) {
+        const std::vector<argil::DeviceSample>& script) {
   argil::WorldOptions o;
   o.tolerance = 0.01;
   o.coupling = {.stiffness = 1.0, .damping = 0.0, .max_force = 20.0};
   auto created = argil::HapticWorld::create(tool, o);
   REQUIRE(created.ok());
   argil::HapticWorld w = std::move(created).value();
-  const auto added = w.add_deformable(surface, sheet_material(), {});
+  const auto added = w.add_deformable(surface, sheet_material(), {}, 0.3);
   INFO(added.status().message);
   REQUIRE(added.ok());
   Run r;
-  for (const argil::DevicePose& pose : script) {
+  for (const argil::DeviceSample& pose : script) {
     r.ticks.push_back(w.step(pose, 1e-3));
     REQUIRE(r.ticks.back().status.ok());
   }
@@ -112,14 +111,14 @@ void check_pushes_out(const Run& r, const Eigen::Vector3d& tool_centre_T) {
     const argil::TickResult& tick = r.ticks[t];
     CAPTURE(t);
     REQUIRE(tick.force.allFinite());
-    REQUIRE(tick.proxy.position.allFinite());
+    REQUIRE(tick.proxy.X_WT.p.allFinite());
     CHECK(tick.max_depth <= 0.01);  // never deeper than eps
     if (!tick.proxy.in_contact || tick.body_force.isZero()) continue;
     ++pressing;
     // The side of the surface the tool is on: where the tool's centre is
     // seen from the deepest contact (the proxy origin itself may touch it).
     const argil::Contact& c = tick.body_contacts[0].front();
-    const Eigen::Vector3d centre_W = tick.proxy.orientation * tool_centre_T + tick.proxy.position;
+    const Eigen::Vector3d centre_W = tick.proxy.X_WT.R * tool_centre_T + tick.proxy.X_WT.p;
     const double side = (centre_W - c.point).dot(c.normal) >= 0.0 ? 1.0 : -1.0;
     CHECK(tick.force.dot(side * c.normal) > 0.0);
     CHECK(tick.body_force == -tick.force);
@@ -136,7 +135,7 @@ TEST_CASE("transposing the net leaves the haptic force, the proxy and the dent u
   const BSplineSurface s = argil::test::asymmetric_surface();
   const BSplineSurface t = argil::test::transposed(s);
   const Eigen::Vector2d uv = at_fraction(s, 0.34, 0.68);
-  const std::vector<argil::DevicePose> script = press_script(s, uv);
+  const std::vector<argil::DeviceSample> script = press_script(s, uv);
   const Run a = run(s, argil::SphereToolShape{3.0}, script);
   const Run b = run(t, argil::SphereToolShape{3.0}, script);
   REQUIRE(a.ticks.size() == b.ticks.size());
@@ -145,7 +144,7 @@ TEST_CASE("transposing the net leaves the haptic force, the proxy and the dent u
     CAPTURE(k);
     CHECK(a.ticks[k].proxy.in_contact == b.ticks[k].proxy.in_contact);
     force_gap = std::max(force_gap, (a.ticks[k].force - b.ticks[k].force).norm());
-    proxy_gap = std::max(proxy_gap, (a.ticks[k].proxy.position - b.ticks[k].proxy.position).norm());
+    proxy_gap = std::max(proxy_gap, (a.ticks[k].proxy.X_WT.p - b.ticks[k].proxy.X_WT.p).norm());
   }
   // Iterative closest-point and push-out searches stop on convergence tests,
   // not at a bit-exact point (observed gaps ~2e-7 mm), far inside their
@@ -161,7 +160,7 @@ TEST_CASE("transposing the net leaves the haptic force, the proxy and the dent u
 TEST_CASE("transposing the net leaves a B-spline tool's force and proxy unchanged",
           "[haptic][asymmetric]") {
   const BSplineSurface s = argil::test::asymmetric_surface();
-  const std::vector<argil::DevicePose> script = press_script(s, at_fraction(s, 0.45, 0.6));
+  const std::vector<argil::DeviceSample> script = press_script(s, at_fraction(s, 0.45, 0.6));
   const Run a = run(s, argil::SurfaceToolShape{bowl_tool()}, script);
   const Run b = run(argil::test::transposed(s), argil::SurfaceToolShape{bowl_tool()}, script);
   REQUIRE(a.ticks.size() == b.ticks.size());
@@ -170,7 +169,7 @@ TEST_CASE("transposing the net leaves a B-spline tool's force and proxy unchange
     CAPTURE(k);
     CHECK(a.ticks[k].proxy.in_contact == b.ticks[k].proxy.in_contact);
     force_gap = std::max(force_gap, (a.ticks[k].force - b.ticks[k].force).norm());
-    proxy_gap = std::max(proxy_gap, (a.ticks[k].proxy.position - b.ticks[k].proxy.position).norm());
+    proxy_gap = std::max(proxy_gap, (a.ticks[k].proxy.X_WT.p - b.ticks[k].proxy.X_WT.p).norm());
   }
   // Rounding of transposed evaluations only (observed ~1e-11 mm): a crossing
   // test decided differently would move the proxy by up to eps / 2 = 5e-3 mm.
@@ -188,14 +187,14 @@ TEST_CASE("transposing the net leaves a B-spline tool's force and proxy unchange
 TEST_CASE("a scripted sphere press on the asymmetric net replays bit-identically and pushes out",
           "[haptic][asymmetric]") {
   const BSplineSurface s = argil::test::asymmetric_surface();
-  const std::vector<argil::DevicePose> script = press_script(s, at_fraction(s, 0.72, 0.31));
+  const std::vector<argil::DeviceSample> script = press_script(s, at_fraction(s, 0.72, 0.31));
   const Run a = run(s, argil::SphereToolShape{3.0}, script);
   const Run b = run(s, argil::SphereToolShape{3.0}, script);
   check_pushes_out(a, Eigen::Vector3d::Zero());  // the sphere's centre
   for (std::size_t k = 0; k < a.ticks.size(); ++k) {
     CAPTURE(k);
     CHECK(same_bits(a.ticks[k].force, b.ticks[k].force));
-    CHECK(same_bits(a.ticks[k].proxy.position, b.ticks[k].proxy.position));
+    CHECK(same_bits(a.ticks[k].proxy.X_WT.p, b.ticks[k].proxy.X_WT.p));
   }
   CHECK(same_bits(a.control_points, b.control_points));
 }
@@ -205,7 +204,7 @@ TEST_CASE(
     "pushes out",
     "[haptic][asymmetric]") {
   const BSplineSurface s = argil::test::asymmetric_surface();
-  const std::vector<argil::DevicePose> script = press_script(s, at_fraction(s, 0.45, 0.6));
+  const std::vector<argil::DeviceSample> script = press_script(s, at_fraction(s, 0.45, 0.6));
   const Run a = run(s, argil::SurfaceToolShape{bowl_tool()}, script);
   const Run b = run(s, argil::SurfaceToolShape{bowl_tool()}, script);
   const BSplineSurface tool = bowl_tool();
@@ -213,7 +212,7 @@ TEST_CASE(
   for (std::size_t k = 0; k < a.ticks.size(); ++k) {
     CAPTURE(k);
     CHECK(same_bits(a.ticks[k].force, b.ticks[k].force));
-    CHECK(same_bits(a.ticks[k].proxy.position, b.ticks[k].proxy.position));
+    CHECK(same_bits(a.ticks[k].proxy.X_WT.p, b.ticks[k].proxy.X_WT.p));
   }
   CHECK(same_bits(a.control_points, b.control_points));
 }

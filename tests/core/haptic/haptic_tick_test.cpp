@@ -54,7 +54,13 @@ argil::HapticWorld world(const argil::ToolShape& tool, double eps = 0.01,
   return std::move(w).value();
 }
 
-argil::DevicePose at(double x, double y, double z) { return {{x, y, z}, {1, 0, 0, 0}, true}; }
+argil::DeviceSample at(double x, double y, double z) {
+  return {.tick = 0, .t = 0.0, .X_WD = argil::Pose::at({x, y, z}), .engaged = true};
+}
+
+/// A copy of body b's hierarchy to query (queries refine its lazy bounds;
+/// the world hands out const access only).
+argil::SurfaceHierarchy queryable(const argil::HapticWorld& w, int b) { return w.hierarchy(b); }
 
 }  // namespace
 
@@ -71,11 +77,11 @@ TEST_CASE("friction: a pull below mu N sticks, above it slips to mu N", "[haptic
     CHECK(r.force.z() == Approx(press).epsilon(1e-3));  // N, to the projection tolerance
     if (pull < mu * press) {
       CHECK(r.proxy.stuck);
-      CHECK(r.proxy.position.x() == 45.0);
+      CHECK(r.proxy.X_WT.p.x() == 45.0);
       CHECK(r.force.x() == Approx(-pull).epsilon(1e-9));
     } else {
       CHECK_FALSE(r.proxy.stuck);
-      CHECK(r.proxy.position.x() == Approx(45 + pull - mu * press).epsilon(1e-6));
+      CHECK(r.proxy.X_WT.p.x() == Approx(45 + pull - mu * press).epsilon(1e-6));
       CHECK(-r.force.x() == Approx(mu * press).epsilon(1e-4));  // |F_t| = mu N
     }
   }
@@ -87,7 +93,7 @@ TEST_CASE("without friction the proxy slides to the device's foot on the surface
   w.step(at(30, 30, 10), 1e-3);
   w.step(at(30, 30, 1), 1e-3);
   const argil::TickResult r = w.step(at(37, 31, 1), 1e-3);
-  CHECK((r.proxy.position - Eigen::Vector3d(37, 31, 4)).norm() < 0.01);  // within eps
+  CHECK((r.proxy.X_WT.p - Eigen::Vector3d(37, 31, 4)).norm() < 0.01);  // within eps
   CHECK(r.force.head<2>().norm() < 0.01);
 }
 
@@ -103,7 +109,8 @@ TEST_CASE("a sphere sweeping at 1 m/s and 10 m/s never sinks deeper than eps", "
       // The device runs 2 mm under the surface: the proxy must ride on top.
       const argil::TickResult r = w.step(at(x, 95, height(s, x, 95) - 2.0), 1e-3);
       CHECK(r.max_depth <= eps);
-      const argil::ClosestPoint cp = argil::closest_point(w.hierarchy(0), r.proxy.position);
+      argil::SurfaceHierarchy h = queryable(w, 0);
+      const argil::ClosestPoint cp = argil::closest_point(h, r.proxy.X_WT.p);
       CHECK(cp.distance >= radius - eps);
       CHECK(cp.signed_distance > 0.0);  // still on the +z side
     }
@@ -118,7 +125,8 @@ TEST_CASE("a device plunging through a sheet in one tick leaves the proxy on top
     REQUIRE(w.add_rigid(s, 0.2).ok());
     w.step(at(41, 47, 15), 1e-3);
     const argil::TickResult r = w.step(at(43, 46, -60), 1e-3);
-    const argil::ClosestPoint cp = argil::closest_point(w.hierarchy(0), r.proxy.position);
+    argil::SurfaceHierarchy h = queryable(w, 0);
+    const argil::ClosestPoint cp = argil::closest_point(h, r.proxy.X_WT.p);
     CHECK(cp.signed_distance > 0.0);
     CHECK(cp.distance >= radius - 0.01);
     CHECK(r.proxy.in_contact);
@@ -152,7 +160,7 @@ TEST_CASE("a tool dents an elastic panel, which returns to rest after it leaves"
     m.yield = yield;
     argil::BoundaryConditions bc;
     bc.fixed_u0 = bc.fixed_u1 = true;
-    REQUIRE(w.add_deformable(s, m, bc).ok());
+    REQUIRE(w.add_deformable(s, m, bc, 0.3).ok());
     const ControlNet original = w.deformable(0)->nodes();
     w.step(at(45, 45, 20), 1e-3);
     double deepest = 0.0;
@@ -184,7 +192,7 @@ TEST_CASE("the same inputs give bit-identical forces and surfaces", "[haptic]") 
     m.stiffness = 2.0;
     m.anchor_stiffness = 1.0;
     m.yield = 0.5;
-    REQUIRE(w.add_deformable(sheet(8, 10.0, 2.0), m, {}).ok());
+    REQUIRE(w.add_deformable(sheet(8, 10.0, 2.0), m, {}, 0.3).ok());
     REQUIRE(w.add_rigid(sheet(4, 30.0, 0.0), 0.4).ok());  // a floor under it
     std::vector<Eigen::Vector3d> forces;
     for (int t = 0; t < 400; ++t) {
@@ -224,7 +232,7 @@ TEST_CASE("a B-spline tool stops on a surface without crossing it and slides alo
   for (double x = 30; x <= 60; x += 1.0) {  // 1 m/s, the device 3 mm under the floor
     const argil::TickResult r = w.step(at(x, 40, height(floor, x, 40) - 3.0), 1e-3);
     ControlNet posed = tool.control_points;
-    posed.rowwise() += r.proxy.position.transpose();
+    posed.rowwise() += r.proxy.X_WT.p.transpose();
     tool_h.set_control_points(posed);
     const argil::CollisionResult c =
         argil::collide(floor_h, tool_h, {.tolerance = eps, .refine = false});
@@ -232,4 +240,35 @@ TEST_CASE("a B-spline tool stops on a surface without crossing it and slides alo
     CHECK(r.proxy.in_contact);
     CHECK(r.force.z() > 1.0);  // the hand is pulled up towards the proxy
   }
+}
+
+TEST_CASE("friction outside [0, kMaxFriction] is refused for deformable and rigid bodies",
+          "[haptic]") {
+  argil::HapticWorld w = world(argil::SphereToolShape{5.0});
+  for (const double mu : {-0.1, argil::kMaxFriction * 1.01, std::nan("")}) {
+    const argil::Result<int> rigid = w.add_rigid(sheet(6, 10.0, 0.0), mu);
+    const argil::Result<int> soft = w.add_deformable(sheet(6, 10.0, 0.0), {}, {}, mu);
+    CHECK(rigid.status().code == argil::StatusCode::invalid_argument);
+    CHECK(soft.status().code == argil::StatusCode::invalid_argument);
+    CHECK(soft.status().message.find("friction") != std::string::npos);
+  }
+  CHECK(w.body_count() == 0);
+  const argil::Result<int> edge = w.add_rigid(sheet(6, 10.0, 0.0), argil::kMaxFriction);
+  REQUIRE(edge.ok());
+  CHECK(w.friction(edge.value()) == argil::kMaxFriction);
+}
+
+TEST_CASE("a collision query that fails makes the tick fail and leaves the proxy", "[haptic]") {
+  // A B-spline tool 0.01 mm wide: a tolerance of 0.05 mm exceeds its size, so
+  // every surface-surface query of the tick is outside the documented range.
+  argil::BSplineSurface tool = sheet(4, 0.003, 0.0);
+  const double eps = 0.05;
+  argil::HapticWorld w = world(argil::SurfaceToolShape{tool}, eps, 20.0);
+  REQUIRE(w.add_rigid(sheet(10, 10.0, 0.0), 0.3).ok());
+  const argil::ProxyState before = w.proxy();
+  const argil::TickResult r = w.step(at(30, 40, 1.0), 1e-3);
+  CHECK_FALSE(r.status.ok());
+  CHECK(r.status.code == argil::StatusCode::invalid_argument);
+  CHECK(r.status.message.find("tolerance") != std::string::npos);
+  CHECK(w.proxy().X_WT.p == before.X_WT.p);
 }

@@ -37,15 +37,15 @@ fs::path three_presses(const fs::path& out) {
   double t = 0.0;
   for (const double x : {60.0, 100.0, 140.0}) {
     Keyframe above, engage, down, up;
-    above.time = t;
-    above.position = {x, 0, 10};
-    engage.time = t + 0.04;
-    engage.position = {x, 0, 1};
+    above.t = t;
+    above.X_WD.p = {x, 0, 10};
+    engage.t = t + 0.04;
+    engage.X_WD.p = {x, 0, 1};
     engage.event = ScriptEvent::engage;
-    down.time = t + 0.1;
-    down.position = {x, 10, -4};
-    up.time = t + 0.17;
-    up.position = {x, 20, 5};
+    down.t = t + 0.1;
+    down.X_WD.p = {x, 10, -4};
+    up.t = t + 0.17;
+    up.X_WD.p = {x, 20, 5};
     up.event = ScriptEvent::release;
     s.keyframes.insert(s.keyframes.end(), {above, engage, down, up});
     t += 0.2;
@@ -58,7 +58,7 @@ fs::path three_presses(const fs::path& out) {
 /// strokes are journalled (0: never).
 RunOptions options_for(const fs::path& out, bool fresh, int stop_after = 0) {
   RunOptions o{.scene = kScene, .script = three_presses(out), .out = out, .fresh = fresh};
-  o.outputs = OutputSpec{.step = false,
+  o.outputs = OutputOptions{.step = false,
                          .iges = false,
                          .json = true,
                          .forces = true,

@@ -18,9 +18,9 @@ const char* kGoodScene = R"({
   "models": [
     {"name": "hood", "file": "../surfaces/panel.json", "faces": [0],
      "material": {"density": 2e-6, "stiffness": 3, "damping": 0.02, "anchor_stiffness": 0.5,
-                  "yield": 0.1, "friction": 0.3},
+                  "yield": 0.1, "friction": 0.45},
      "boundary": {"fixed_edges": ["u0", "v1"], "fixed_corners": true}},
-    {"name": "frame", "file": "/abs/frame.step", "kind": "rigid"}
+    {"name": "frame", "file": "/abs/frame.step", "kind": "rigid", "friction": 0.15}
   ],
   "tools": [
     {"name": "ball", "type": "sphere", "radius": 20},
@@ -46,7 +46,7 @@ TEST_CASE("a scene reads every field and resolves paths against its folder", "[s
   CHECK(s.models[0].deformable);
   CHECK(s.models[0].material.stiffness == 3.0);
   CHECK(s.models[0].material.yield == 0.1);
-  CHECK(s.models[0].material.friction == 0.3);
+  CHECK(s.models[0].friction == 0.45);  // from material.friction
   CHECK(s.models[0].boundary.fixed_u0);
   CHECK_FALSE(s.models[0].boundary.fixed_u1);
   CHECK(s.models[0].boundary.fixed_v1);
@@ -54,6 +54,7 @@ TEST_CASE("a scene reads every field and resolves paths against its folder", "[s
   CHECK(s.models[1].file == std::filesystem::path("/abs/frame.step"));
   CHECK_FALSE(s.models[1].deformable);
   CHECK(s.models[1].faces.empty());
+  CHECK(s.models[1].friction == 0.15);  // a rigid model's own friction
   REQUIRE(s.tools.size() == 3);
   CHECK(s.tools[0].type == ToolType::sphere);
   CHECK(s.tools[0].radius == 20.0);
@@ -114,8 +115,12 @@ TEST_CASE("bad scenes give an error naming the field", "[scene][bad-input]") {
       {edited("\"stiffness\": 3", "\"stiffness\": -3"),
        "models[0].material.stiffness: must be > 0 N/mm, got -3 N/mm"},
       {edited("\"density\": 2e-6, ", ""), "models[0].material.density: missing field"},
-      {edited("\"friction\": 0.3", "\"friction\": -0.3"),
+      {edited("\"friction\": 0.45", "\"friction\": -0.3"),
        "models[0].material.friction: must be >= 0, got -0.3"},
+      {edited("\"friction\": 0.45", "\"friction\": 11"),
+       "models[0].material.friction: must be in [0, 10], got 11"},
+      {edited("\"friction\": 0.15", "\"friction\": 12"),
+       "models[1].friction: must be in [0, 10], got 12"},
       {edited("\"yield\": 0.1", "\"yield\": \"soft\""),
        "models[0].material.yield: expected a number"},
       {edited("\"faces\": [0]", "\"faces\": [-1]"), "models[0].faces[0]: face index must be >= 0"},

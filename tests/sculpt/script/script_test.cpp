@@ -14,10 +14,9 @@ namespace {
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 bool same_keyframe(const Keyframe& a, const Keyframe& b) {
-  bool same = same_bits(a.time, b.time) && a.event == b.event;
-  for (int c = 0; c < 3; ++c) same = same && same_bits(a.position[c], b.position[c]);
-  for (int c = 0; c < 4; ++c)
-    same = same && same_bits(a.orientation.coeffs()[c], b.orientation.coeffs()[c]);
+  bool same = same_bits(a.t, b.t) && a.event == b.event;
+  for (int c = 0; c < 3; ++c) same = same && same_bits(a.X_WD.p[c], b.X_WD.p[c]);
+  for (int c = 0; c < 4; ++c) same = same && same_bits(a.X_WD.R.coeffs()[c], b.X_WD.R.coeffs()[c]);
   return same;
 }
 
@@ -31,10 +30,10 @@ Script random_script(unsigned seed, int count) {
   bool engaged = false;
   for (int k = 0; k < count; ++k) {
     Keyframe f;
-    f.time = t;
+    f.t = t;
     t += 0.001 + 0.1 * std::abs(unit(rng));
-    f.position = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 123.456789;
-    f.orientation = Eigen::Quaterniond(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
+    f.X_WD.p = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 123.456789;
+    f.X_WD.R = Eigen::Quaterniond(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
     if (k % 3 == 1) {
       f.event = engaged ? ScriptEvent::release : ScriptEvent::engage;
       engaged = !engaged;
@@ -62,12 +61,12 @@ TEST_CASE("a script written as JSON or CSV reads back bit for bit", "[script]") 
 Script two_keyframes() {
   Script s;
   Keyframe a, b;
-  a.time = 0.0;
-  a.position = Eigen::Vector3d(0, 0, 10);
+  a.t = 0.0;
+  a.X_WD.p = Eigen::Vector3d(0, 0, 10);
   a.event = ScriptEvent::engage;
-  b.time = 0.5;
-  b.position = Eigen::Vector3d(100, -50, 0);
-  b.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitZ()));
+  b.t = 0.5;
+  b.X_WD.p = Eigen::Vector3d(100, -50, 0);
+  b.X_WD.R = Eigen::Quaterniond(Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitZ()));
   b.event = ScriptEvent::release;
   s.keyframes = {a, b};
   return s;
@@ -79,16 +78,16 @@ TEST_CASE("sampling is linear in position and slerp in orientation at t_k = k / 
   REQUIRE(sampler.tick_count() == 501);
   for (const long long k : {0LL, 1LL, 137LL, 250LL, 499LL, 500LL}) {
     const DeviceSample s = sampler.sample(k);
-    CHECK(s.time == static_cast<double>(k) / 1000.0);
-    const double alpha = s.time / 0.5;
+    CHECK(s.t == static_cast<double>(k) / 1000.0);
+    const double alpha = s.t / 0.5;
     // Linear interpolation: rounding of one product and one sum (1e-12 of 100 mm).
-    CHECK((s.position - (Eigen::Vector3d(0, 0, 10) +
-                         alpha * (Eigen::Vector3d(100, -50, 0) - Eigen::Vector3d(0, 0, 10))))
+    CHECK((s.X_WD.p - (Eigen::Vector3d(0, 0, 10) +
+                       alpha * (Eigen::Vector3d(100, -50, 0) - Eigen::Vector3d(0, 0, 10))))
               .norm() < 1e-12);
     // Slerp about a fixed axis turns the angle linearly (rounding of acos/sin: 1e-12).
-    const Eigen::AngleAxisd turn(s.orientation);
+    const Eigen::AngleAxisd turn(s.X_WD.R);
     CHECK(std::abs(turn.angle() - 1.2 * alpha) < 1e-12);
-    CHECK(std::abs(s.orientation.norm() - 1.0) < 1e-14);
+    CHECK(std::abs(s.X_WD.R.norm() - 1.0) < 1e-14);
   }
   // The release at 0.5 s ends the stroke: tick 500 is not engaged.
   CHECK(sampler.sample(0).engaged);
@@ -107,15 +106,15 @@ TEST_CASE("strokes are the engaged intervals, before the first keyframe nothing 
                                 ScriptEvent::engage, ScriptEvent::none};
   for (int k = 0; k < 5; ++k) {
     Keyframe f;
-    f.time = times[k];
-    f.position = Eigen::Vector3d(k, 0, 0);
+    f.t = times[k];
+    f.X_WD.p = Eigen::Vector3d(k, 0, 0);
     f.event = events[k];
     s.keyframes.push_back(f);
   }
   const ScriptSampler sampler(s, 100.0);  // 10 ms ticks; t_k = k / 100
   CHECK(sampler.tick_count() == 46);
   CHECK_FALSE(sampler.sample(9).engaged);
-  CHECK(sampler.sample(9).position == Eigen::Vector3d(0, 0, 0));
+  CHECK(sampler.sample(9).X_WD.p == Eigen::Vector3d(0, 0, 0));
   REQUIRE(sampler.strokes().size() == 2);
   CHECK(sampler.strokes()[0].first_tick == 10);
   CHECK(sampler.strokes()[0].last_tick == 19);
@@ -138,10 +137,10 @@ TEST_CASE("a recorded sample stream replays bit for bit through CSV and JSON", "
     bool identical = true;
     for (long long k = 0; k < replay.tick_count(); ++k) {
       const DeviceSample a = original.sample(k), b = replay.sample(k);
-      identical = identical && a.engaged == b.engaged && same_bits(a.time, b.time);
-      for (int c = 0; c < 3; ++c) identical = identical && same_bits(a.position[c], b.position[c]);
+      identical = identical && a.engaged == b.engaged && same_bits(a.t, b.t);
+      for (int c = 0; c < 3; ++c) identical = identical && same_bits(a.X_WD.p[c], b.X_WD.p[c]);
       for (int c = 0; c < 4; ++c) {
-        identical = identical && same_bits(a.orientation.coeffs()[c], b.orientation.coeffs()[c]);
+        identical = identical && same_bits(a.X_WD.R.coeffs()[c], b.X_WD.R.coeffs()[c]);
       }
     }
     CHECK(identical);

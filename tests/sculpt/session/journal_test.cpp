@@ -36,9 +36,9 @@ std::vector<DeviceSample> samples(long long first, int count, bool engaged) {
   for (int k = 0; k < count; ++k) {
     DeviceSample s;
     s.tick = first + k;
-    s.time = static_cast<double>(s.tick) / 1000.0;
-    s.position = Eigen::Vector3d(0.1 * k, -1.0 / 3.0, 1e-300 * k);
-    s.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.01 * k, Eigen::Vector3d::UnitY()));
+    s.t = static_cast<double>(s.tick) / 1000.0;
+    s.X_WD.p = Eigen::Vector3d(0.1 * k, -1.0 / 3.0, 1e-300 * k);
+    s.X_WD.R = Eigen::Quaterniond(Eigen::AngleAxisd(0.01 * k, Eigen::Vector3d::UnitY()));
     s.engaged = engaged;
     out.push_back(s);
   }
@@ -49,10 +49,10 @@ bool same_samples(const std::vector<DeviceSample>& a, const std::vector<DeviceSa
   if (a.size() != b.size()) return false;
   for (std::size_t k = 0; k < a.size(); ++k) {
     if (a[k].tick != b[k].tick || a[k].engaged != b[k].engaged ||
-        std::memcmp(&a[k].time, &b[k].time, sizeof(double)) != 0 ||
-        std::memcmp(a[k].position.data(), b[k].position.data(), 3 * sizeof(double)) != 0 ||
-        std::memcmp(a[k].orientation.coeffs().data(), b[k].orientation.coeffs().data(),
-                    4 * sizeof(double)) != 0) {
+        std::memcmp(&a[k].t, &b[k].t, sizeof(double)) != 0 ||
+        std::memcmp(a[k].X_WD.p.data(), b[k].X_WD.p.data(), 3 * sizeof(double)) != 0 ||
+        std::memcmp(a[k].X_WD.R.coeffs().data(), b[k].X_WD.R.coeffs().data(), 4 * sizeof(double)) !=
+            0) {
       return false;
     }
   }
@@ -210,15 +210,15 @@ void write_four_presses(const std::filesystem::path& path) {
   double t = 0.0;
   for (const double x : {50.0, 80.0, 120.0, 150.0}) {
     Keyframe above, engage, down, up;
-    above.time = t;
-    above.position = {x, 0, 10};
-    engage.time = t + 0.05;
-    engage.position = {x, 0, 1};
+    above.t = t;
+    above.X_WD.p = {x, 0, 10};
+    engage.t = t + 0.05;
+    engage.X_WD.p = {x, 0, 1};
     engage.event = ScriptEvent::engage;
-    down.time = t + 0.15;
-    down.position = {x, 10, -4};
-    up.time = t + 0.25;
-    up.position = {x, 20, 5};
+    down.t = t + 0.15;
+    down.X_WD.p = {x, 10, -4};
+    up.t = t + 0.25;
+    up.X_WD.p = {x, 20, 5};
     up.event = ScriptEvent::release;
     s.keyframes.insert(s.keyframes.end(), {above, engage, down, up});
     t += 0.3;

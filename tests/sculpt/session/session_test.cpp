@@ -87,15 +87,15 @@ Script three_presses() {
   double t = 0.0;
   for (const double x : {60.0, 100.0, 140.0}) {
     Keyframe above, engage, down, up;
-    above.time = t;
-    above.position = {x, 0, 10};
-    engage.time = t + 0.02;
-    engage.position = {x, 0, 1};
+    above.t = t;
+    above.X_WD.p = {x, 0, 10};
+    engage.t = t + 0.02;
+    engage.X_WD.p = {x, 0, 1};
     engage.event = ScriptEvent::engage;
-    down.time = t + 0.1;
-    down.position = {x, 0, -4};
-    up.time = t + 0.18;
-    up.position = {x, 0, 5};
+    down.t = t + 0.1;
+    down.X_WD.p = {x, 0, -4};
+    up.t = t + 0.18;
+    up.X_WD.p = {x, 0, 5};
     up.event = ScriptEvent::release;
     s.keyframes.insert(s.keyframes.end(), {above, engage, down, up});
     t += 0.25;

@@ -424,7 +424,7 @@ Result<FaceRecord> face_record(const TopoDS_Face& oriented_face) {
     }
   }
   record.surface = to_argil(clamped_copy(bspline));
-  const SurfaceValidation check = validate(record.surface);
+  const Status check = validate(record.surface);
   if (!check.ok()) return Status::error(StatusCode::invalid_surface, check.message);
   Result<std::vector<TrimLoop>> loops = face_loops(face);
   if (!loops.ok()) return loops.status();

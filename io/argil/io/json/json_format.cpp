@@ -170,7 +170,7 @@ class Reader {
     if (surface_json == nullptr || !surface(*surface_json, path + ".surface", out.surface)) {
       return false;
     }
-    const SurfaceValidation check = validate(out.surface);
+    const Status check = validate(out.surface);
     if (!check.ok()) return fail(path + ".surface", check.message);
     if (const Json* id = member(value, path, "source_id", false)) {
       if (!id->is_string()) return fail(path + ".source_id", "expected a string");

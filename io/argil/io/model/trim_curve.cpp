@@ -5,7 +5,7 @@
 namespace argil::io {
 
 Status validate_trim_curve(const TrimCurve& curve) {
-  const SurfaceValidation check = validate(curve);
+  const Status check = validate(curve);
   if (!check.ok())
     return Status::error(StatusCode::invalid_surface, "trim curve: " + check.message);
   if (curve.points.cols() != 2) {
@@ -55,7 +55,7 @@ bool inside_trim(const std::vector<std::vector<Eigen::Vector2d>>& polygons,
 
 Status validate_face(const FaceRecord& face, std::size_t face_index) {
   const std::string where = "face " + std::to_string(face_index);
-  const SurfaceValidation check = validate(face.surface);
+  const Status check = validate(face.surface);
   if (!check.ok()) {
     return Status::error(StatusCode::invalid_surface, where + " surface: " + check.message);
   }

@@ -34,7 +34,7 @@ struct RunOptions {
   std::optional<double> tolerance{};  // eps [mm], > 0, in place of the scene's
   bool fresh = false;                 // start afresh even if `out` holds an unfinished journal
   bool realtime = false;  // pace live ticks at the haptic rate, as a device delivers them
-  std::optional<OutputSpec> outputs{};  // files to write; empty: the scene's choice
+  std::optional<OutputOptions> outputs{};  // files to write; empty: the scene's choice
   /// Called after every `progress_every`-th live tick and after the last one.
   /// Returning stop ends the run as a kill would: the journal keeps the strokes
   /// finished so far and nothing else is written, so a later run resumes.

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "argil/core/base/number_text.hpp"
+#include "argil/core/deform/contact_response.hpp"
 #include "argil/io/base/text_file.hpp"
 #include "argil/sculpt/detail/json_reader.hpp"
 
@@ -50,39 +51,7 @@ class SceneReader {
     if (const Json* coupling = r_.member(root, "", "coupling", false)) {
       if (!this->coupling(*coupling, out.coupling)) return false;
     }
-    const Json* models = r_.member(root, "", "models");
-    if (models == nullptr) return false;
-    if (!models->is_array() || models->empty()) {
-      return r_.fail("models", "expected a non-empty array of models");
-    }
-    std::set<std::string> names;
-    bool any_deformable = false;
-    for (std::size_t k = 0; k < models->size(); ++k) {
-      ModelSpec model;
-      const std::string path = JsonReader::index("models", k);
-      if (!this->model((*models)[k], path, model)) return false;
-      if (!names.insert(model.name).second) {
-        return r_.fail(path + ".name", "\"" + model.name + "\" is used twice");
-      }
-      any_deformable = any_deformable || model.deformable;
-      out.models.push_back(std::move(model));
-    }
-    if (!any_deformable) return r_.fail("models", "no deformable model: nothing to sculpt");
-    const Json* tools = r_.member(root, "", "tools");
-    if (tools == nullptr) return false;
-    if (!tools->is_array() || tools->empty()) {
-      return r_.fail("tools", "expected a non-empty array of tools");
-    }
-    names.clear();
-    for (std::size_t k = 0; k < tools->size(); ++k) {
-      ToolSpec tool;
-      const std::string path = JsonReader::index("tools", k);
-      if (!this->tool((*tools)[k], path, tool)) return false;
-      if (!names.insert(tool.name).second) {
-        return r_.fail(path + ".name", "\"" + tool.name + "\" is used twice");
-      }
-      out.tools.push_back(std::move(tool));
-    }
+    if (!models(root, out.models) || !tools(root, out.tools)) return false;
     if (const Json* outputs = r_.member(root, "", "outputs", false)) {
       if (!this->outputs(*outputs, out.outputs)) return false;
     }
@@ -93,6 +62,48 @@ class SceneReader {
   }
 
  private:
+  /// "models": a non-empty array with unique names and at least one deformable model.
+  bool models(const Json& root, std::vector<ModelOptions>& out) {
+    const Json* models = r_.member(root, "", "models");
+    if (models == nullptr) return false;
+    if (!models->is_array() || models->empty()) {
+      return r_.fail("models", "expected a non-empty array of models");
+    }
+    std::set<std::string> names;
+    bool any_deformable = false;
+    for (std::size_t k = 0; k < models->size(); ++k) {
+      ModelOptions model;
+      const std::string path = JsonReader::index("models", k);
+      if (!this->model((*models)[k], path, model)) return false;
+      if (!names.insert(model.name).second) {
+        return r_.fail(path + ".name", "\"" + model.name + "\" is used twice");
+      }
+      any_deformable = any_deformable || model.deformable;
+      out.push_back(std::move(model));
+    }
+    return any_deformable || r_.fail("models", "no deformable model: nothing to sculpt");
+  }
+
+  /// "tools": a non-empty array with unique names.
+  bool tools(const Json& root, std::vector<ToolOptions>& out) {
+    const Json* tools = r_.member(root, "", "tools");
+    if (tools == nullptr) return false;
+    if (!tools->is_array() || tools->empty()) {
+      return r_.fail("tools", "expected a non-empty array of tools");
+    }
+    std::set<std::string> names;
+    for (std::size_t k = 0; k < tools->size(); ++k) {
+      ToolOptions tool;
+      const std::string path = JsonReader::index("tools", k);
+      if (!this->tool((*tools)[k], path, tool)) return false;
+      if (!names.insert(tool.name).second) {
+        return r_.fail(path + ".name", "\"" + tool.name + "\" is used twice");
+      }
+      out.push_back(std::move(tool));
+    }
+    return true;
+  }
+
   bool header(const Json& root) {
     return r_.format_header(root, kSceneFormatName, kSceneFormatVersion);
   }
@@ -115,7 +126,7 @@ class SceneReader {
     return true;
   }
 
-  bool coupling(const Json& value, CouplingSpec& out) {
+  bool coupling(const Json& value, CouplingOptions& out) {
     if (!r_.only_known(value, "coupling", {"stiffness", "damping", "max_force"})) return false;
     if (const Json* k = r_.member(value, "coupling", "stiffness", false)) {
       if (!r_.positive(*k, "coupling.stiffness", out.stiffness, {.unit = "N/mm"})) return false;
@@ -155,7 +166,7 @@ class SceneReader {
     return true;
   }
 
-  bool model(const Json& value, const std::string& path, ModelSpec& out) {
+  bool model(const Json& value, const std::string& path, ModelOptions& out) {
     if (!r_.only_known(value, path,
                        {"name", "file", "faces", "kind", "material", "boundary", "friction"})) {
       return false;
@@ -200,9 +211,7 @@ class SceneReader {
         return r_.fail(path + ".friction",
                        "only rigid models take a friction here (deformable: material.friction)");
       }
-      if (!r_.positive(*friction, path + ".friction", out.rigid_friction, {.allow_zero = true})) {
-        return false;
-      }
+      if (!this->friction(*friction, path + ".friction", out.friction)) return false;
     }
     if (!out.deformable && (material != nullptr || boundary != nullptr)) {
       return r_.fail(path + (material != nullptr ? ".material" : ".boundary"),
@@ -211,16 +220,23 @@ class SceneReader {
     if (out.deformable && material == nullptr) {
       return r_.fail(path + ".material", "missing field (a deformable model needs a material)");
     }
-    if (material != nullptr && !this->material(*material, path + ".material", out.material)) {
-      return false;
-    }
+    if (material != nullptr && !this->material(*material, path + ".material", out)) return false;
     if (boundary != nullptr && !this->boundary(*boundary, path + ".boundary", out.boundary)) {
       return false;
     }
     return true;
   }
 
-  bool material(const Json& value, const std::string& path, Material& out) {
+  /// The tool-body pair's Coulomb coefficient, in [0, kMaxFriction].
+  bool friction(const Json& value, const std::string& path, double& out) {
+    if (!r_.positive(value, path, out, {.allow_zero = true})) return false;
+    if (out <= kMaxFriction) return true;
+    return r_.fail(path, out_of_interval_text(out, Interval{0.0, kMaxFriction}, ""));
+  }
+
+  /// The material of `model`, and the tool's friction against it.
+  bool material(const Json& value, const std::string& path, ModelOptions& model) {
+    Material& out = model.material;
     if (!r_.only_known(
             value, path,
             {"density", "stiffness", "damping", "anchor_stiffness", "yield", "friction"})) {
@@ -240,8 +256,7 @@ class SceneReader {
       }
     }
     const Field optional[] = {{"damping", &out.damping, "s"},
-                              {"anchor_stiffness", &out.anchor_stiffness, "N/mm"},
-                              {"friction", &out.friction, ""}};
+                              {"anchor_stiffness", &out.anchor_stiffness, "N/mm"}};
     for (const auto& [key, field, unit] : optional) {
       if (const Json* v = r_.member(value, path, key, false)) {
         if (!r_.positive(*v, JsonReader::join(path, key), *field,
@@ -249,6 +264,9 @@ class SceneReader {
           return false;
         }
       }
+    }
+    if (const Json* friction = r_.member(value, path, "friction", false)) {
+      if (!this->friction(*friction, path + ".friction", model.friction)) return false;
     }
     if (const Json* v = r_.member(value, path, "yield", false)) {
       // JSON has no infinity: "none" (or absence) means purely elastic.
@@ -298,7 +316,7 @@ class SceneReader {
     return v != nullptr && r_.positive(*v, JsonReader::join(path, key), out, {.unit = "mm"});
   }
 
-  bool tool(const Json& value, const std::string& path, ToolSpec& out) {
+  bool tool(const Json& value, const std::string& path, ToolOptions& out) {
     if (!name(value, path, out.name)) return false;
     const Json* type = r_.member(value, path, "type");
     std::string text;
@@ -340,7 +358,7 @@ class SceneReader {
     return false;
   }
 
-  bool outputs(const Json& value, OutputSpec& out) {
+  bool outputs(const Json& value, OutputOptions& out) {
     if (!r_.only_known(value, "outputs",
                        {"surfaces", "forces", "contacts", "timing", "pictures"})) {
       return false;

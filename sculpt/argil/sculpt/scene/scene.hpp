@@ -10,8 +10,9 @@
 #include <string_view>
 #include <vector>
 
-#include "argil/core/deform/material.hpp"
 #include "argil/core/base/status.hpp"
+#include "argil/core/deform/material.hpp"
+#include "argil/core/haptic/virtual_coupling.hpp"
 
 namespace argil::sculpt {
 
@@ -20,23 +21,27 @@ inline constexpr std::string_view kSceneFormatName = "argil.scene";
 inline constexpr int kSceneFormatVersion = 1;
 
 /// One model: faces of a CAD or JSON file.
-struct ModelSpec {
+struct ModelOptions {
   std::string name;             // unique in the scene; names the output files
   std::filesystem::path file;   // resolved against the scene file's folder
   std::vector<int> faces;       // face indices in the file; empty: every face
   bool deformable = true;       // rigid models collide but never move
   Material material;            // deformable models only (units: material.hpp)
   BoundaryConditions boundary;  // deformable models only
-  double rigid_friction = 0.3;  // rigid models: Coulomb coefficient against the tool
+  /// Coulomb coefficient mu [-] of the tool against this model, in [0,
+  /// kMaxFriction]: the one friction setting (a property of the tool-body
+  /// pair). Read from "material.friction" of a deformable model or
+  /// "friction" of a rigid one.
+  double friction = 0.3;
 };
 
 enum class ToolType { sphere, bspline, point };
 const char* to_string(ToolType type);
 
 /// A tool, in its own frame T (origin at the device point); the device pose
-/// X_WT places it in the world. The haptic tick (argil/core/haptic/haptic_tick.hpp)
+/// X_WD places it in the world. The haptic tick (argil/core/haptic/haptic_tick.hpp)
 /// drives an implicit sphere, a rigid B-spline surface, or a point.
-struct ToolSpec {
+struct ToolOptions {
   std::string name;
   ToolType type = ToolType::sphere;
   double radius = 0.0;         // sphere [mm], centred on the tool frame origin
@@ -44,27 +49,20 @@ struct ToolSpec {
   int face = 0;                // bspline: face index in `file`
 };
 
-/// Spring-damper between the device and the tool proxy, and the device's force limit.
-struct CouplingSpec {
-  double stiffness = 1.0;   // [N/mm]
-  double damping = 0.002;   // [N s/mm]
-  double max_force = 10.0;  // [N]
-};
-
 /// Mesh and picture formats a run writes, and the logs.
-struct OutputSpec {
+struct OutputOptions {
   bool step = true, iges = true, json = true;
   bool forces = true, contacts = true, timing = true, pictures = true;
 };
 
 struct Scene {
-  std::filesystem::path source;   // the scene file (empty when parsed from text)
-  std::vector<ModelSpec> models;  // at least one deformable
-  std::vector<ToolSpec> tools;    // at least one
-  double tolerance = 0.0;         // eps [mm], > 0
-  double haptic_rate = 1000.0;    // [Hz]
-  CouplingSpec coupling;
-  OutputSpec outputs;
+  std::filesystem::path source;      // the scene file (empty when parsed from text)
+  std::vector<ModelOptions> models;  // at least one deformable
+  std::vector<ToolOptions> tools;    // at least one
+  double tolerance = 0.0;            // eps [mm], > 0
+  double haptic_rate = 1000.0;       // [Hz]
+  CouplingOptions coupling;          // read directly from "coupling"
+  OutputOptions outputs;
   std::filesystem::path script;  // default script, resolved; empty: none
 
   /// Index of the tool called `name` (the first tool when `name` is empty); -1 if none.

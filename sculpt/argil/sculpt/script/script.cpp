@@ -93,15 +93,15 @@ Status check_keyframes(const std::vector<Keyframe>& keyframes, const std::string
   bool engaged = false;
   for (std::size_t k = 0; k < keyframes.size(); ++k) {
     const Keyframe& f = keyframes[k];
-    if (!std::isfinite(f.time)) return error(k, "t", "time must be finite");
-    if (f.time < 0.0) return error(k, "t", "time must be >= 0, got " + number_text(f.time));
-    if (k > 0 && !(f.time > keyframes[k - 1].time)) {
+    if (!std::isfinite(f.t)) return error(k, "t", "time must be finite");
+    if (f.t < 0.0) return error(k, "t", "time must be >= 0, got " + number_text(f.t));
+    if (k > 0 && !(f.t > keyframes[k - 1].t)) {
       return error(k, "t",
-                   "time " + number_text(f.time) + " s is not after the previous keyframe's " +
-                       number_text(keyframes[k - 1].time) + " s (times must increase)");
+                   "time " + number_text(f.t) + " s is not after the previous keyframe's " +
+                       number_text(keyframes[k - 1].t) + " s (times must increase)");
     }
-    if (!f.position.allFinite()) return error(k, "position", "must be finite");
-    const double norm = f.orientation.norm();
+    if (!f.X_WD.p.allFinite()) return error(k, "position", "must be finite");
+    const double norm = f.X_WD.R.norm();
     if (!std::isfinite(norm) || std::abs(norm - 1.0) > kQuaternionNormTolerance) {
       return error(k, "orientation",
                    "not a unit quaternion (w, x, y, z): norm " + number_text(norm));
@@ -150,15 +150,15 @@ class ScriptJsonReader {
     const Json* t = r_.member(value, path, "t");
     const Json* position = r_.member(value, path, "position");
     if (t == nullptr || position == nullptr) return false;
-    if (!r_.number(*t, path + ".t", out.time) ||
-        !r_.numbers(*position, path + ".position", 3, out.position.data())) {
+    if (!r_.number(*t, path + ".t", out.t) ||
+        !r_.numbers(*position, path + ".position", 3, out.X_WD.p.data())) {
       return false;
     }
     if (const Json* q = r_.member(value, path, "orientation", false)) {
       double wxyz[4];
       if (!r_.numbers(*q, path + ".orientation", 4, wxyz)) return false;
-      out.orientation = Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
-      const std::string problem = normalise_quaternion(out.orientation);
+      out.X_WD.R = Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
+      const std::string problem = normalise_quaternion(out.X_WD.R);
       if (!problem.empty()) return r_.fail(path + ".orientation", problem);
     }
     if (const Json* event = r_.member(value, path, "event", false)) {
@@ -214,94 +214,115 @@ std::string parse_csv_number(const std::string& cell, double& out) {
   return "";
 }
 
-Result<Script> parse_csv(std::string_view text, const std::string& source) {
-  Script script;
-  std::vector<std::size_t> lines;  // line number of each keyframe
-  bool header_seen = false;
-  std::size_t line_number = 0;
-  std::size_t pos = 0;
-  auto error = [&](const std::string& what) -> Status {
-    return Status::error(StatusCode::parse_error,
-                         source + ": line " + std::to_string(line_number) + ": " + what);
-  };
-  if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
-    return Status::error(StatusCode::parse_error, source + ": empty file");
+/// Reads a CSV script line by line: "# ..." lines declare the schema or the
+/// tool, the first other line is the header, every later one a keyframe.
+class CsvScriptReader {
+ public:
+  explicit CsvScriptReader(std::string source) : source_(std::move(source)) {}
+
+  Result<Script> read(std::string_view text) {
+    if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
+      return Status::error(StatusCode::parse_error, source_ + ": empty file");
+    }
+    for (std::size_t pos = 0; pos <= text.size();) {
+      const std::size_t newline = text.find('\n', pos);
+      const std::string_view raw =
+          text.substr(pos, newline == std::string_view::npos ? text.npos : newline - pos);
+      pos = newline == std::string_view::npos ? text.size() + 1 : newline + 1;
+      ++line_number_;
+      if (const std::string problem = line(trim(raw)); !problem.empty()) return error(problem);
+    }
+    if (!header_seen_) {
+      return Status::error(StatusCode::parse_error,
+                           source_ + ": missing the header 't,x,y,z,qw,qx,qy,qz,event'");
+    }
+    const Status check =
+        check_keyframes(script_.keyframes, source_, [&](std::size_t k, const std::string& field) {
+          return "line " + std::to_string(lines_[k]) + ": " + field;
+        });
+    if (!check.ok()) return check;
+    return script_;
   }
-  while (pos <= text.size()) {
-    const std::size_t newline = text.find('\n', pos);
-    const std::string_view raw =
-        text.substr(pos, newline == std::string_view::npos ? text.npos : newline - pos);
-    pos = newline == std::string_view::npos ? text.size() + 1 : newline + 1;
-    ++line_number;
-    const std::string line = trim(raw);
-    if (line.empty()) continue;
-    if (line[0] == '#') {
-      // "# argil.script version N" declares the schema; "# tool: NAME" the tool.
-      std::istringstream words(line.substr(1));
-      std::string first, second;
-      words >> first >> second;
-      if (first == kScriptFormatName) {
-        long long version = -1;
-        if (second != "version" || !(words >> version)) {
-          return error("expected '# argil.script version 1'");
-        }
-        if (version != kScriptFormatVersion) {
-          return error("unknown schema version " + std::to_string(version) +
-                       " (this build reads version " + std::to_string(kScriptFormatVersion) + ")");
-        }
-      } else if (first == "tool:") {
-        if (second.empty()) return error("tool: missing name");
-        std::string rest;
-        if (words >> rest)
-          return error("tool: name must be one word, got more after '" + second + "'");
-        if (const std::string problem = tool_name_problem(second); !problem.empty())
-          return error("tool: " + problem);
-        script.tool = second;
+
+ private:
+  Status error(const std::string& what) const {
+    return Status::error(StatusCode::parse_error,
+                         source_ + ": line " + std::to_string(line_number_) + ": " + what);
+  }
+
+  /// One trimmed line; error text or "".
+  std::string line(const std::string& text) {
+    if (text.empty()) return "";
+    if (text[0] == '#') return comment(text);
+    const std::vector<std::string> cells = split_csv(text);
+    if (header_seen_) return keyframe(cells);
+    header_seen_ = true;
+    return header(cells, text);
+  }
+
+  /// "# argil.script version N" declares the schema; "# tool: NAME" the tool.
+  std::string comment(const std::string& text) {
+    std::istringstream words(text.substr(1));
+    std::string first, second;
+    words >> first >> second;
+    if (first == kScriptFormatName) {
+      long long version = -1;
+      if (second != "version" || !(words >> version)) return "expected '# argil.script version 1'";
+      if (version != kScriptFormatVersion) {
+        return "unknown schema version " + std::to_string(version) + " (this build reads version " +
+               std::to_string(kScriptFormatVersion) + ")";
       }
-      continue;
+    } else if (first == "tool:") {
+      if (second.empty()) return "tool: missing name";
+      std::string rest;
+      if (words >> rest) return "tool: name must be one word, got more after '" + second + "'";
+      if (const std::string problem = tool_name_problem(second); !problem.empty())
+        return "tool: " + problem;
+      script_.tool = second;
     }
-    const std::vector<std::string> cells = split_csv(line);
-    if (!header_seen) {
-      bool matches = cells.size() == kCsvColumnCount || cells.size() == kCsvColumnCount - 1;
-      for (std::size_t c = 0; matches && c < cells.size(); ++c)
-        matches = cells[c] == kCsvColumns[c];
-      if (!matches) {
-        return error("expected the header 't,x,y,z,qw,qx,qy,qz,event', got '" + line + "'");
-      }
-      header_seen = true;
-      continue;
-    }
+    return "";
+  }
+
+  static std::string header(const std::vector<std::string>& cells, const std::string& text) {
+    bool matches = cells.size() == kCsvColumnCount || cells.size() == kCsvColumnCount - 1;
+    for (std::size_t c = 0; matches && c < cells.size(); ++c) matches = cells[c] == kCsvColumns[c];
+    if (matches) return "";
+    return "expected the header 't,x,y,z,qw,qx,qy,qz,event', got '" + text + "'";
+  }
+
+  std::string keyframe(const std::vector<std::string>& cells) {
     if (cells.size() != kCsvColumnCount && cells.size() != kCsvColumnCount - 1) {
-      return error("expected 8 or 9 columns (t,x,y,z,qw,qx,qy,qz[,event]), got " +
-                   std::to_string(cells.size()));
+      return "expected 8 or 9 columns (t,x,y,z,qw,qx,qy,qz[,event]), got " +
+             std::to_string(cells.size());
     }
     Keyframe f;
     double values[8];
     for (std::size_t c = 0; c < 8; ++c) {
       const std::string problem = parse_csv_number(cells[c], values[c]);
-      if (!problem.empty()) return error(std::string(kCsvColumns[c]) + ": " + problem);
+      if (!problem.empty()) return std::string(kCsvColumns[c]) + ": " + problem;
     }
-    f.time = values[0];
-    f.position = Eigen::Vector3d(values[1], values[2], values[3]);
-    f.orientation = Eigen::Quaterniond(values[4], values[5], values[6], values[7]);
-    const std::string problem = normalise_quaternion(f.orientation);
-    if (!problem.empty()) return error("qw..qz: " + problem);
+    f.t = values[0];
+    f.X_WD.p = Eigen::Vector3d(values[1], values[2], values[3]);
+    f.X_WD.R = Eigen::Quaterniond(values[4], values[5], values[6], values[7]);
+    const std::string problem = normalise_quaternion(f.X_WD.R);
+    if (!problem.empty()) return "qw..qz: " + problem;
     if (cells.size() == kCsvColumnCount && !parse_event(cells[8], f.event)) {
-      return error("event: expected engage, release, none or nothing, got '" + cells[8] + "'");
+      return "event: expected engage, release, none or nothing, got '" + cells[8] + "'";
     }
-    script.keyframes.push_back(f);
-    lines.push_back(line_number);
+    script_.keyframes.push_back(f);
+    lines_.push_back(line_number_);
+    return "";
   }
-  if (!header_seen) {
-    return Status::error(StatusCode::parse_error,
-                         source + ": missing the header 't,x,y,z,qw,qx,qy,qz,event'");
-  }
-  const Status check =
-      check_keyframes(script.keyframes, source, [&](std::size_t k, const std::string& field) {
-        return "line " + std::to_string(lines[k]) + ": " + field;
-      });
-  if (!check.ok()) return check;
-  return script;
+
+  std::string source_;
+  Script script_;
+  std::vector<std::size_t> lines_;  // line number of each keyframe
+  std::size_t line_number_ = 0;
+  bool header_seen_ = false;
+};
+
+Result<Script> parse_csv(std::string_view text, const std::string& source) {
+  return CsvScriptReader(source).read(text);
 }
 
 std::string lower_extension(const std::filesystem::path& path) {
@@ -371,11 +392,11 @@ std::string script_to_json(const Script& script) {
   for (std::size_t k = 0; k < script.keyframes.size(); ++k) {
     const Keyframe& f = script.keyframes[k];
     out += k == 0 ? "\n" : ",\n";
-    out += "    {\"t\": " + number_text(f.time) + ", \"position\": [" +
-           number_text(f.position.x()) + ", " + number_text(f.position.y()) + ", " +
-           number_text(f.position.z()) + "], \"orientation\": [" + number_text(f.orientation.w()) +
-           ", " + number_text(f.orientation.x()) + ", " + number_text(f.orientation.y()) + ", " +
-           number_text(f.orientation.z()) + "]";
+    out += "    {\"t\": " + number_text(f.t) + ", \"position\": [" + number_text(f.X_WD.p.x()) +
+           ", " + number_text(f.X_WD.p.y()) + ", " + number_text(f.X_WD.p.z()) +
+           "], \"orientation\": [" + number_text(f.X_WD.R.w()) + ", " +
+           number_text(f.X_WD.R.x()) + ", " + number_text(f.X_WD.R.y()) + ", " +
+           number_text(f.X_WD.R.z()) + "]";
     if (f.event != ScriptEvent::none)
       out += ", \"event\": \"" + std::string(to_string(f.event)) + "\"";
     out += "}";
@@ -390,14 +411,8 @@ std::string script_to_csv(const Script& script) {
   if (!script.tool.empty()) out += "# tool: " + script.tool + "\n";
   out += "t,x,y,z,qw,qx,qy,qz,event\n";
   for (const Keyframe& f : script.keyframes) {
-    const double values[8] = {f.time,
-                              f.position.x(),
-                              f.position.y(),
-                              f.position.z(),
-                              f.orientation.w(),
-                              f.orientation.x(),
-                              f.orientation.y(),
-                              f.orientation.z()};
+    const double values[8] = {f.t,          f.X_WD.p.x(), f.X_WD.p.y(), f.X_WD.p.z(),
+                              f.X_WD.R.w(), f.X_WD.R.x(), f.X_WD.R.y(), f.X_WD.R.z()};
     for (const double v : values) out += number_text(v) + ",";
     if (f.event != ScriptEvent::none) out += to_string(f.event);
     out += "\n";
@@ -420,7 +435,7 @@ Status write_script(const Script& script, const std::filesystem::path& path) {
 ScriptSampler::ScriptSampler(Script script, double rate_hz)
     : script_(std::move(script)), rate_(rate_hz) {
   assert(validate(script_).ok() && rate_hz > 0.0);
-  const double last = script_.keyframes.back().time;
+  const double last = script_.keyframes.back().t;
   // The last tick is the first at or after the last keyframe, so its event is
   // seen even when k / rate lands a rounding error short of it (0.5 + 0.18 is
   // 0.67999999999999994, tick 680 is 0.68).
@@ -447,29 +462,29 @@ ScriptSampler::ScriptSampler(Script script, double rate_hz)
 DeviceSample ScriptSampler::sample(long long tick) const {
   DeviceSample s;
   s.tick = tick;
-  s.time = tick_time(tick, rate_);
+  s.t = tick_time(tick, rate_);
   const std::vector<Keyframe>& frames = script_.keyframes;
   // First keyframe after t; the segment is [next - 1, next].
-  const auto next = std::upper_bound(frames.begin(), frames.end(), s.time,
-                                     [](double t, const Keyframe& f) { return t < f.time; });
+  const auto next = std::upper_bound(frames.begin(), frames.end(), s.t,
+                                     [](double t, const Keyframe& f) { return t < f.t; });
   if (next == frames.begin()) {
-    s.position = frames.front().position;
-    s.orientation = frames.front().orientation;
+    s.X_WD.p = frames.front().X_WD.p;
+    s.X_WD.R = frames.front().X_WD.R;
     s.engaged = false;
     return s;
   }
   const std::size_t k = static_cast<std::size_t>(next - frames.begin()) - 1;
   const Keyframe& a = frames[k];
   s.engaged = engaged_after_[k];
-  if (next == frames.end() || s.time == a.time) {
-    s.position = a.position;
-    s.orientation = a.orientation;
+  if (next == frames.end() || s.t == a.t) {
+    s.X_WD.p = a.X_WD.p;
+    s.X_WD.R = a.X_WD.R;
     return s;
   }
   const Keyframe& b = *next;
-  const double alpha = (s.time - a.time) / (b.time - a.time);
-  s.position = a.position + alpha * (b.position - a.position);
-  s.orientation = a.orientation.slerp(alpha, b.orientation);
+  const double alpha = (s.t - a.t) / (b.t - a.t);
+  s.X_WD.p = a.X_WD.p + alpha * (b.X_WD.p - a.X_WD.p);
+  s.X_WD.R = a.X_WD.R.slerp(alpha, b.X_WD.R);
   return s;
 }
 
@@ -479,9 +494,9 @@ Script record_script(const std::vector<DeviceSample>& samples, const std::string
   bool engaged = false;
   for (const DeviceSample& s : samples) {
     Keyframe f;
-    f.time = s.time;
-    f.position = s.position;
-    f.orientation = s.orientation;
+    f.t = s.t;
+    f.X_WD.p = s.X_WD.p;
+    f.X_WD.R = s.X_WD.R;
     if (s.engaged != engaged) f.event = s.engaged ? ScriptEvent::engage : ScriptEvent::release;
     engaged = s.engaged;
     script.keyframes.push_back(f);

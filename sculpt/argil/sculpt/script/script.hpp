@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "argil/core/base/status.hpp"
+#include "argil/core/geometry/pose.hpp"
+#include "argil/core/haptic/device_sample.hpp"
 
 namespace argil::sculpt {
 
@@ -23,11 +25,13 @@ inline constexpr int kScriptFormatVersion = 1;
 enum class ScriptEvent { none, engage, release };
 const char* to_string(ScriptEvent event);
 
-/// A device pose at a time. The orientation is a unit quaternion (w, x, y, z).
+/// A device pose at a time: X_WD, the device handle D in the world [mm], a
+/// unit quaternion (w, x, y, z) for its rotation ("position" and
+/// "orientation" in the file formats). A script drives the device; where
+/// the tool ends up (the proxy X_WT) is the tick's answer.
 struct Keyframe {
-  double time = 0.0;                                                // [s], >= 0
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();               // p_WT [mm]
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // R_WT
+  double t = 0.0;  // [s], >= 0
+  Pose X_WD;
   ScriptEvent event = ScriptEvent::none;
 };
 
@@ -36,15 +40,6 @@ struct Keyframe {
 struct Script {
   std::string tool;
   std::vector<Keyframe> keyframes;
-};
-
-/// One haptic tick's input: the device pose X_WT and whether the tool acts.
-struct DeviceSample {
-  long long tick = 0;
-  double time = 0.0;  // tick / rate [s]
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  bool engaged = false;
 };
 
 /// Largest quaternion norm error accepted on input; within it the quaternion

@@ -48,14 +48,8 @@ bool parse_double(const std::string& text, double& out) {
 
 std::string sample_text(const DeviceSample& s) {
   std::string out = std::to_string(s.tick);
-  const double values[] = {s.time,
-                           s.position.x(),
-                           s.position.y(),
-                           s.position.z(),
-                           s.orientation.w(),
-                           s.orientation.x(),
-                           s.orientation.y(),
-                           s.orientation.z()};
+  const double values[] = {s.t,          s.X_WD.p.x(), s.X_WD.p.y(), s.X_WD.p.z(),
+                           s.X_WD.R.w(), s.X_WD.R.x(), s.X_WD.R.y(), s.X_WD.R.z()};
   for (const double v : values) {
     out += ' ';
     append_double(out, v);
@@ -89,9 +83,9 @@ bool parse_record(const std::string& body, JournalRecord& out) {
       }
       engaged = t[8] == "1" ? 1 : (t[8] == "0" ? 0 : -1);
       if (engaged < 0) return false;
-      s.time = v[0];
-      s.position = Eigen::Vector3d(v[1], v[2], v[3]);
-      s.orientation = Eigen::Quaterniond(v[4], v[5], v[6], v[7]);
+      s.t = v[0];
+      s.X_WD.p = Eigen::Vector3d(v[1], v[2], v[3]);
+      s.X_WD.R = Eigen::Quaterniond(v[4], v[5], v[6], v[7]);
       s.engaged = engaged == 1;
     }
     for (std::size_t k = 1; k < out.samples.size(); ++k) {
@@ -291,5 +285,6 @@ Status JournalWriter::write_line(const std::string& body) {
   }
   return Status::success();
 }
+
 
 }  // namespace argil::sculpt

@@ -21,6 +21,63 @@ void hash_bytes(std::uint64_t& h, const void* data, std::size_t size) {
   h = fnv1a64(std::string_view(static_cast<const char*>(data), size), h);
 }
 
+/// The tool's shape; a B-spline tool is read from its file. `field` names the
+/// scene's tool in errors ("tools[1]").
+Result<ToolShape> tool_shape(const ToolOptions& tool, const std::string& field) {
+  switch (tool.type) {
+    case ToolType::sphere:
+      return ToolShape{SphereToolShape{tool.radius}};
+    case ToolType::point:
+      return ToolShape{SphereToolShape{0.0}};
+    case ToolType::bspline:
+      break;
+  }
+  Result<io::Model> read = read_for(tool.file, field + ".file");
+  if (!read.ok()) return read.status();
+  const auto& faces = read.value().faces;
+  if (tool.face >= static_cast<int>(faces.size())) {
+    return Status::error(StatusCode::invalid_argument,
+                         field + ".face: face " + std::to_string(tool.face) +
+                             " is out of range: " + tool.file.string() + " has " +
+                             std::to_string(faces.size()) + " faces");
+  }
+  return ToolShape{SurfaceToolShape{faces[static_cast<std::size_t>(tool.face)].surface}};
+}
+
+/// Model m of the scene: the faces it names (all when none), as read.
+Result<LoadedModel> load_model(const Scene& scene, std::size_t m) {
+  const ModelOptions& spec = scene.models[m];
+  Result<io::Model> read = read_for(spec.file, model_path(m) + ".file");
+  if (!read.ok()) return read.status();
+  io::Model& file = read.value();
+  LoadedModel loaded;
+  loaded.spec = spec;
+  loaded.initial.source_unit = file.source_unit;
+  loaded.initial.metadata = file.metadata;
+  loaded.initial.metadata["sculpt_scene"] = scene.source.string();
+  loaded.initial.metadata["sculpt_model"] = spec.name;
+  std::vector<int> wanted = spec.faces;
+  if (wanted.empty()) {
+    for (std::size_t f = 0; f < file.faces.size(); ++f) wanted.push_back(static_cast<int>(f));
+  }
+  for (std::size_t k = 0; k < wanted.size(); ++k) {
+    const int f = wanted[k];
+    if (f >= static_cast<int>(file.faces.size())) {
+      return Status::error(StatusCode::invalid_argument,
+                           model_path(m) + ".faces[" + std::to_string(k) + "]: face " +
+                               std::to_string(f) + " is out of range: " + spec.file.string() +
+                               " has " + std::to_string(file.faces.size()) + " faces");
+    }
+    loaded.initial.faces.push_back(std::move(file.faces[static_cast<std::size_t>(f)]));
+    loaded.file_faces.push_back(f);
+  }
+  if (loaded.initial.faces.empty()) {
+    return Status::error(StatusCode::invalid_argument,
+                         model_path(m) + ".file: " + spec.file.string() + " has no faces");
+  }
+  return loaded;
+}
+
 }  // namespace
 
 Result<Session> Session::create(const Scene& scene, const std::string& tool_name) {
@@ -31,60 +88,14 @@ Result<Session> Session::create(const Scene& scene, const std::string& tool_name
     return Status::error(StatusCode::invalid_argument,
                          "tool \"" + tool_name + "\" is not in the scene's tools");
   }
-  const ToolSpec& tool = scene.tools[static_cast<std::size_t>(s.tool_index_)];
-  const std::string tool_field = "tools[" + std::to_string(s.tool_index_) + "]";
-  switch (tool.type) {
-    case ToolType::sphere:
-      s.tool_shape_ = SphereToolShape{tool.radius};
-      break;
-    case ToolType::point:
-      s.tool_shape_ = SphereToolShape{0.0};
-      break;
-    case ToolType::bspline: {
-      Result<io::Model> read = read_for(tool.file, tool_field + ".file");
-      if (!read.ok()) return read.status();
-      const auto& faces = read.value().faces;
-      if (tool.face >= static_cast<int>(faces.size())) {
-        return Status::error(StatusCode::invalid_argument,
-                             tool_field + ".face: face " + std::to_string(tool.face) +
-                                 " is out of range: " + tool.file.string() + " has " +
-                                 std::to_string(faces.size()) + " faces");
-      }
-      s.tool_shape_ = SurfaceToolShape{faces[static_cast<std::size_t>(tool.face)].surface};
-      break;
-    }
-  }
+  Result<ToolShape> shape = tool_shape(scene.tools[static_cast<std::size_t>(s.tool_index_)],
+                                       "tools[" + std::to_string(s.tool_index_) + "]");
+  if (!shape.ok()) return shape.status();
+  s.tool_shape_ = std::move(shape).value();
   for (std::size_t m = 0; m < scene.models.size(); ++m) {
-    const ModelSpec& spec = scene.models[m];
-    Result<io::Model> read = read_for(spec.file, model_path(m) + ".file");
-    if (!read.ok()) return read.status();
-    io::Model& file = read.value();
-    LoadedModel loaded;
-    loaded.spec = spec;
-    loaded.initial.source_unit = file.source_unit;
-    loaded.initial.metadata = file.metadata;
-    loaded.initial.metadata["sculpt_scene"] = scene.source.string();
-    loaded.initial.metadata["sculpt_model"] = spec.name;
-    std::vector<int> wanted = spec.faces;
-    if (wanted.empty()) {
-      for (std::size_t f = 0; f < file.faces.size(); ++f) wanted.push_back(static_cast<int>(f));
-    }
-    for (std::size_t k = 0; k < wanted.size(); ++k) {
-      const int f = wanted[k];
-      if (f >= static_cast<int>(file.faces.size())) {
-        return Status::error(StatusCode::invalid_argument,
-                             model_path(m) + ".faces[" + std::to_string(k) + "]: face " +
-                                 std::to_string(f) + " is out of range: " + spec.file.string() +
-                                 " has " + std::to_string(file.faces.size()) + " faces");
-      }
-      loaded.initial.faces.push_back(std::move(file.faces[static_cast<std::size_t>(f)]));
-      loaded.file_faces.push_back(f);
-    }
-    if (loaded.initial.faces.empty()) {
-      return Status::error(StatusCode::invalid_argument,
-                           model_path(m) + ".file: " + spec.file.string() + " has no faces");
-    }
-    s.models_.push_back(std::move(loaded));
+    Result<LoadedModel> loaded = load_model(scene, m);
+    if (!loaded.ok()) return loaded.status();
+    s.models_.push_back(std::move(loaded).value());
   }
   const Status built = s.rebuild_world();
   if (!built.ok()) return built;
@@ -94,9 +105,7 @@ Result<Session> Session::create(const Scene& scene, const std::string& tool_name
 Status Session::rebuild_world() {
   WorldOptions options;
   options.tolerance = scene_.tolerance;
-  options.coupling.stiffness = scene_.coupling.stiffness;
-  options.coupling.damping = scene_.coupling.damping;
-  options.coupling.max_force = scene_.coupling.max_force;
+  options.coupling = scene_.coupling;
   Result<HapticWorld> world = HapticWorld::create(tool_shape_, options);
   if (!world.ok()) {
     return Status::error(world.status().code, "tools[" + std::to_string(tool_index_) +
@@ -111,8 +120,9 @@ Status Session::rebuild_world() {
       const BSplineSurface& surface = loaded.initial.faces[f].surface;
       const Result<int> body =
           loaded.spec.deformable
-              ? world_->add_deformable(surface, loaded.spec.material, loaded.spec.boundary)
-              : world_->add_rigid(surface, loaded.spec.rigid_friction);
+              ? world_->add_deformable(surface, loaded.spec.material, loaded.spec.boundary,
+                                       loaded.spec.friction)
+              : world_->add_rigid(surface, loaded.spec.friction);
       if (!body.ok()) {
         return Status::error(body.status().code, model_path(m) + " face " +
                                                      std::to_string(loaded.file_faces[f]) + ": " +
@@ -126,21 +136,17 @@ Status Session::rebuild_world() {
 }
 
 Result<TickReport> Session::advance(const DeviceSample& sample) {
-  DevicePose pose;
-  pose.position = sample.position;
-  pose.orientation = sample.orientation;
-  pose.engaged = sample.engaged;
-  const TickResult r = world_->step(pose, time_step());
+  const TickResult r = world_->step(sample, time_step());
   if (!r.status.ok()) {
     return Status::error(r.status.code,
                          "tick " + std::to_string(sample.tick) + ": " + r.status.message);
   }
   TickReport report;
   report.tick = sample.tick;
-  report.time = sample.time;
+  report.time = sample.t;
   report.force = r.force;
   report.clamped = r.clamped;
-  report.proxy = r.proxy.position;
+  report.proxy = r.proxy.X_WT.p;
   report.max_depth = r.max_depth;
   for (std::size_t b = 0; b < r.body_contacts.size() && b < body_owner_.size(); ++b) {
     const auto [model, face] = body_owner_[b];
@@ -223,7 +229,7 @@ Status Session::replay_history() {
   return Status::success();
 }
 
-io::Model Session::current_model(int index) {
+io::Model Session::current_model(int index) const {
   const LoadedModel& loaded = models_[static_cast<std::size_t>(index)];
   io::Model model = loaded.initial;
   for (std::size_t f = 0; f < model.faces.size(); ++f) {
@@ -232,7 +238,7 @@ io::Model Session::current_model(int index) {
   return model;
 }
 
-std::uint64_t Session::state_hash() {
+std::uint64_t Session::state_hash() const {
   std::uint64_t h = fnv1a64("argil.session");
   for (int b = 0; b < world_->body_count(); ++b) {
     const ControlNet& points = world_->surface(b).control_points;
@@ -244,9 +250,9 @@ std::uint64_t Session::state_hash() {
                  static_cast<std::size_t>(body->velocities().size()) * sizeof(double));
     }
   }
-  const ToolState& proxy = world_->proxy();
-  hash_bytes(h, proxy.position.data(), 3 * sizeof(double));
-  hash_bytes(h, proxy.velocity.data(), 3 * sizeof(double));
+  const ProxyState& proxy = world_->proxy();
+  hash_bytes(h, proxy.X_WT.p.data(), 3 * sizeof(double));
+  hash_bytes(h, proxy.v_WT.data(), 3 * sizeof(double));
   return h;
 }
 

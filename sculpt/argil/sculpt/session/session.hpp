@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "argil/core/haptic/haptic_tick.hpp"
 #include "argil/core/base/status.hpp"
+#include "argil/core/haptic/haptic_tick.hpp"
 #include "argil/io/model/model.hpp"
 #include "argil/sculpt/scene/scene.hpp"
 #include "argil/sculpt/script/script.hpp"
@@ -36,7 +36,7 @@ struct TickReport {
   double time = 0.0;                                // [s]
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // on the device [N], clamped
   bool clamped = false;
-  Eigen::Vector3d proxy = Eigen::Vector3d::Zero();  // tool proxy position [mm]
+  Eigen::Vector3d proxy = Eigen::Vector3d::Zero();  // p_WT, the tool proxy's position [mm]
   double max_depth = 0.0;                           // [mm]
   std::vector<ContactRecord> contacts;
   bool stroke_finished = false;  // this sample released the tool
@@ -45,7 +45,7 @@ struct TickReport {
 /// One scene model as loaded: the faces the scene names (with their trims,
 /// in the scene's order) and their bodies in the world.
 struct LoadedModel {
-  ModelSpec spec;
+  ModelOptions spec;
   io::Model initial;            // the named faces only, as read
   std::vector<int> file_faces;  // face index in the file of each loaded face
   std::vector<int> bodies;      // world body of each loaded face
@@ -82,12 +82,12 @@ class Session {
   const Scene& scene() const { return scene_; }
   const std::vector<LoadedModel>& models() const { return models_; }
   /// Model `index` with every face's current (sculpted) surface.
-  io::Model current_model(int index);
+  io::Model current_model(int index) const;
   /// The tool the device holds.
-  const ToolSpec& tool() const { return scene_.tools[static_cast<std::size_t>(tool_index_)]; }
+  const ToolOptions& tool() const { return scene_.tools[static_cast<std::size_t>(tool_index_)]; }
   /// FNV-1a hash of every body's control points and the proxy state: equal
   /// hashes mean (with overwhelming probability) bit-identical states.
-  std::uint64_t state_hash();
+  std::uint64_t state_hash() const;
   double time_step() const { return 1.0 / scene_.haptic_rate; }
 
  private:

@@ -29,7 +29,7 @@ const char* to_string(StatusCode code);
 
 /// Outcome of an operation: ok, or a code and a message that names the file,
 /// entity or field at fault and what is wrong with it.
-struct Status {
+struct [[nodiscard]] Status {
   StatusCode code = StatusCode::ok;
   std::string message;
 
@@ -40,7 +40,7 @@ struct Status {
 
 /// A value, or the Status that explains why there is none.
 template <class T>
-class Result {
+class [[nodiscard]] Result {
  public:
   Result(T value) : data_(std::move(value)) {}        // NOLINT: implicit by design
   Result(Status status) : data_(std::move(status)) {  // NOLINT: implicit by design

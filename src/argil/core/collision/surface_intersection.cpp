@@ -157,8 +157,10 @@ void add_penetration_contacts(const BSplineSurface& a, const BSplineSurface& b,
       ++end;
     }
     const std::span<const Contact> region(contacts.data() + begin, end - begin);
-    const Penetration deepest = crossing ? deepest_penetration(a, b, region) : Penetration{};
-    if (deepest.found) {
+    const std::optional<Penetration> found =
+        crossing ? deepest_penetration(a, b, region) : std::nullopt;
+    if (found) {
+      const Penetration& deepest = *found;
       const SurfaceDerivatives d = evaluate_derivatives(a, deepest.uv_a[0], deepest.uv_a[1], 1);
       Contact c = contact_at(a, deepest.uv_a, d, deepest.depth);
       c.uv_b = deepest.uv_b;

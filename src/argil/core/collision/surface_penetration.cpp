@@ -60,9 +60,9 @@ PatchMinimum lowest_below_plane(const BSplineSurface& b, const ParamRect& box,
 
 }  // namespace
 
-Penetration deepest_penetration(const BSplineSurface& a, const BSplineSurface& b,
-                                std::span<const Contact> region) {
-  Penetration out;
+std::optional<Penetration> deepest_penetration(const BSplineSurface& a, const BSplineSurface& b,
+                                               std::span<const Contact> region) {
+  std::optional<Penetration> out;
   if (region.empty()) return out;
   const ParamRect box_a = grown_box(a, region, true);
   const ParamRect box_b = grown_box(b, region, false);
@@ -82,8 +82,8 @@ Penetration deepest_penetration(const BSplineSurface& a, const BSplineSurface& b
     const Eigen::Vector3d offset = x - df.point;
     if (n_foot.isZero() || offset.dot(n_foot) >= 0.0) return out;  // b's point is in front
     const double depth = offset.norm();
-    const bool settled = out.found && std::abs(depth - out.depth) <= 1e-12 * (1.0 + depth);
-    out = {true, depth, foot.uv, low.uv};
+    const bool settled = out && std::abs(depth - out->depth) <= 1e-12 * (1.0 + depth);
+    out = Penetration{depth, foot.uv, low.uv};
     if (settled) break;
     uv_a = foot.uv;
   }

@@ -3,17 +3,17 @@
 // surface a inside one contact region.
 
 #include <Eigen/Core>
+#include <optional>
 #include <span>
 
-#include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/collision/contact.hpp"
+#include "argil/core/geometry/bspline_surface.hpp"
 
 namespace argil {
 
 /// The deepest point of b behind a (on the side opposite a's normal
 /// S_u x S_v, which points out of a's material) near one contact region.
 struct Penetration {
-  bool found = false;  // false when no point of b near the region is behind a
   double depth = 0.0;  // distance from the b point to its foot on a [mm], > 0
   Eigen::Vector2d uv_a = Eigen::Vector2d::Zero();  // the foot on a
   Eigen::Vector2d uv_b = Eigen::Vector2d::Zero();  // the deepest point of b
@@ -26,7 +26,9 @@ struct Penetration {
 /// current foot (split into 2x2 starts), then the foot again, alternating
 /// until the depth settles. A local search: exact for a planar a, and
 /// converges to the deepest point where a bends less than b over the region.
-Penetration deepest_penetration(const BSplineSurface& a, const BSplineSurface& b,
-                                std::span<const Contact> region);
+/// Empty when no point of b near the region is behind a (or the region is
+/// empty, or a is degenerate at the start): not an error, so no Status.
+std::optional<Penetration> deepest_penetration(const BSplineSurface& a, const BSplineSurface& b,
+                                               std::span<const Contact> region);
 
 }  // namespace argil

@@ -26,6 +26,10 @@ Eigen::VectorXd contact_load_pattern(const BSplineSurface& surface, const Surfac
                                      const std::vector<Contact>& contacts,
                                      const std::vector<double>& shares);
 
+/// Largest Coulomb coefficient mu [-] of a tool-body pair (rubber on rubber
+/// is about 1; beyond 10 the stick cone is a wall).
+inline constexpr double kMaxFriction = 10.0;
+
 /// Coulomb friction for a proxy held by a spring (stiffness k [N/mm]) at its
 /// stick point on a surface with outward unit normal n (from the surface
 /// towards the proxy): the spring force F = k (device - stick point) [N]

@@ -7,11 +7,11 @@
 #include <optional>
 #include <vector>
 
-#include "argil/core/linalg/banded_cholesky.hpp"
-#include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/deform/mass_spring.hpp"
 #include "argil/core/deform/material.hpp"
+#include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
+#include "argil/core/linalg/banded_cholesky.hpp"
 
 namespace argil {
 
@@ -46,6 +46,8 @@ class DeformableBody {
 
   /// Current surface (control points fitted to the nodes; weights unchanged).
   const BSplineSurface& surface() const { return hierarchy_.surface(); }
+  const SurfaceHierarchy& hierarchy() const { return hierarchy_; }
+  /// For queries, which refine the hierarchy's lazy bounds.
   SurfaceHierarchy& hierarchy() { return hierarchy_; }
   const SurfaceOperators& operators() const { return hierarchy_.operators(); }
   const Material& material() const { return material_; }

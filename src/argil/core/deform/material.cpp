@@ -34,8 +34,6 @@ Status validate(const Material& m) {
   if (!(m.yield >= r.yield_min))  // +infinity is valid (elastic); NaN is not
     return out_of_range("yield", m.yield, r.yield_min, std::numeric_limits<double>::infinity(),
                         "mm");
-  if (!within(m.friction, 0.0, r.friction_max))
-    return out_of_range("friction", m.friction, 0.0, r.friction_max, "");
   return Status::success();
 }
 

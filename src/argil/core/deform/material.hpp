@@ -32,8 +32,8 @@ struct Material {
   /// elastic. Beyond it the rest position follows the node so the stretch is
   /// exactly `yield`. +infinity = purely elastic.
   double yield = std::numeric_limits<double>::infinity();
-  /// Coulomb friction coefficient mu against tools [-].
-  double friction = 0.3;
+  // Friction is not a material property here: it belongs to the tool-body
+  // pair (HapticWorld::add_deformable, contact_response.hpp).
 };
 
 /// Documented closed range of each Material field (yield: (min, +inf]).
@@ -43,7 +43,6 @@ struct MaterialRange {
   double damping_max = 1.0;                       // [s]
   double anchor_stiffness_max = 1e9;              // [N/mm]
   double yield_min = 1e-9;                        // [mm]
-  double friction_max = 10.0;                     // [-]
   /// Node masses a body accepts [kg] (density times node area): outside it the
   /// implicit system's conditioning (mass against dt^2 stiffness) is not
   /// guaranteed; DeformableBody::create reports it.

@@ -11,17 +11,17 @@ namespace argil {
 
 using detail::defect;
 
-SurfaceValidation validate(const BSplineCurve& c) {
-  const SurfaceValidation knots = validate_knots(c.degree, c.knots);
+Status validate(const BSplineCurve& c) {
+  const Status knots = validate_knots(c.degree, c.knots);
   if (!knots.ok()) return knots;
   const Eigen::Index n = c.count();
   if (c.points.rows() != n) {
-    return defect(SurfaceDefect::control_point_count, "points has ", c.points.rows(),
+    return defect("points has ", c.points.rows(),
                   " rows, the knots need ", n);
   }
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!c.points.row(i).allFinite()) {
-      return defect(SurfaceDefect::non_finite_control_point, "points[", i, "] is not finite");
+      return defect("points[", i, "] is not finite");
     }
   }
   return detail::validate_weights(c.weights, n);

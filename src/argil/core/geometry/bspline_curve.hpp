@@ -36,7 +36,7 @@ struct BSplineCurve {
 /// positive, in the range surfaces allow). Point coordinates have no magnitude limit: curves carry
 /// parameters, whose range the knots of the surface bound. The message names
 /// the first problem's field, index and value.
-SurfaceValidation validate(const BSplineCurve& curve);
+Status validate(const BSplineCurve& curve);
 
 /// Point of the curve at t, clamped to the domain. Precondition:
 /// validate(curve).ok(). The NURBS Book A4.1.

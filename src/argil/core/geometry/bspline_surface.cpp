@@ -11,72 +11,30 @@ namespace argil {
 
 const char* to_string(Direction d) { return d == Direction::u ? "u" : "v"; }
 
-const char* to_string(SurfaceDefect defect) {
-  switch (defect) {
-    case SurfaceDefect::none:
-      return "none";
-    case SurfaceDefect::degree_out_of_range:
-      return "degree_out_of_range";
-    case SurfaceDefect::too_few_knots:
-      return "too_few_knots";
-    case SurfaceDefect::non_finite_knot:
-      return "non_finite_knot";
-    case SurfaceDefect::knots_decreasing:
-      return "knots_decreasing";
-    case SurfaceDefect::knots_not_clamped:
-      return "knots_not_clamped";
-    case SurfaceDefect::multiplicity_too_high:
-      return "multiplicity_too_high";
-    case SurfaceDefect::empty_domain:
-      return "empty_domain";
-    case SurfaceDefect::knot_out_of_range:
-      return "knot_out_of_range";
-    case SurfaceDefect::span_too_short:
-      return "span_too_short";
-    case SurfaceDefect::control_point_count:
-      return "control_point_count";
-    case SurfaceDefect::non_finite_control_point:
-      return "non_finite_control_point";
-    case SurfaceDefect::control_point_out_of_range:
-      return "control_point_out_of_range";
-    case SurfaceDefect::weight_count:
-      return "weight_count";
-    case SurfaceDefect::non_finite_weight:
-      return "non_finite_weight";
-    case SurfaceDefect::non_positive_weight:
-      return "non_positive_weight";
-    case SurfaceDefect::weight_out_of_range:
-      return "weight_out_of_range";
-  }
-  return "unknown";
-}
-
 using detail::defect;
 
-SurfaceValidation validate(const BSplineSurface& s) {
+Status validate(const BSplineSurface& s) {
   for (Direction d : kDirections) {
     const std::string degree_field = std::string("degree_") + to_string(d);
     const std::string knots_field = std::string("knots_") + to_string(d);
-    SurfaceValidation v =
+    Status v =
         validate_knots(s.degree_in(d), s.knots_in(d), {degree_field, knots_field});
     if (!v.ok()) return v;
   }
   const Eigen::Index n = static_cast<Eigen::Index>(s.count(Direction::u)) * s.count(Direction::v);
   if (s.control_points.rows() != n) {
-    return defect(SurfaceDefect::control_point_count, "control_points has ",
-                  s.control_points.rows(), " rows, the knots need ", s.count(Direction::u), " x ",
-                  s.count(Direction::v), " = ", n);
+    return defect("control_points has ", s.control_points.rows(), " rows, the knots need ",
+                  s.count(Direction::u), " x ", s.count(Direction::v), " = ", n);
   }
   for (Eigen::Index r = 0; r < n; ++r) {
     if (!s.control_points.row(r).allFinite()) {
-      return defect(SurfaceDefect::non_finite_control_point, "control_points[", r,
-                    "] (i = ", r / s.count(Direction::v), ", j = ", r % s.count(Direction::v),
-                    ") is not finite");
+      return defect("control_points[", r, "] (i = ", r / s.count(Direction::v),
+                    ", j = ", r % s.count(Direction::v), ") is not finite");
     }
     if (s.control_points.row(r).cwiseAbs().maxCoeff() > kMaxCoordinate) {
-      return defect(SurfaceDefect::control_point_out_of_range, "control_points[", r,
-                    "] (i = ", r / s.count(Direction::v), ", j = ", r % s.count(Direction::v),
-                    ") has a coordinate beyond the supported ", kMaxCoordinate, " mm");
+      return defect("control_points[", r, "] (i = ", r / s.count(Direction::v),
+                    ", j = ", r % s.count(Direction::v), ") has a coordinate beyond the supported ",
+                    kMaxCoordinate, " mm");
     }
   }
   return detail::validate_weights(s.weights, n);

@@ -12,51 +12,51 @@ namespace {
 using detail::defect;
 
 /// Degree range and knot count.
-SurfaceValidation check_size(int p, Eigen::Index m, const KnotFieldNames& f) {
+Status check_size(int p, Eigen::Index m, const KnotFieldNames& f) {
   if (p < 1 || p > kMaxDegree) {
-    return defect(SurfaceDefect::degree_out_of_range, f.degree, " is ", p, ", expected 1 to ",
+    return defect(f.degree, " is ", p, ", expected 1 to ",
                   kMaxDegree);
   }
   if (m < 2 * (p + 1)) {
-    return defect(SurfaceDefect::too_few_knots, f.knots, " has ", m, " values, degree ", p,
+    return defect(f.knots, " has ", m, " values, degree ", p,
                   " needs at least ", 2 * (p + 1));
   }
-  return {};
+  return Status::success();
 }
 
 /// Each value finite and in range, the sequence non-decreasing.
-SurfaceValidation check_values(const Eigen::VectorXd& t, const KnotFieldNames& f) {
+Status check_values(const Eigen::VectorXd& t, const KnotFieldNames& f) {
   const Eigen::Index m = t.size();
   for (Eigen::Index k = 0; k < m; ++k) {
     if (!std::isfinite(t[k])) {
-      return defect(SurfaceDefect::non_finite_knot, f.knots, "[", k, "] is ", t[k]);
+      return defect(f.knots, "[", k, "] is ", t[k]);
     }
     if (std::abs(t[k]) > kMaxKnotMagnitude) {
-      return defect(SurfaceDefect::knot_out_of_range, f.knots, "[", k, "] is ", t[k],
+      return defect(f.knots, "[", k, "] is ", t[k],
                     ", beyond the supported magnitude ", kMaxKnotMagnitude);
     }
   }
   for (Eigen::Index k = 1; k < m; ++k) {
     if (t[k] < t[k - 1]) {
-      return defect(SurfaceDefect::knots_decreasing, f.knots, "[", k, "] = ", t[k], " is below ",
+      return defect(f.knots, "[", k, "] = ", t[k], " is below ",
                     f.knots, "[", k - 1, "] = ", t[k - 1]);
     }
   }
-  return {};
+  return Status::success();
 }
 
 /// Clamped ends, a non-empty domain, interior multiplicity at most p.
-SurfaceValidation check_multiplicities(int p, const Eigen::VectorXd& t, const KnotFieldNames& f) {
+Status check_multiplicities(int p, const Eigen::VectorXd& t, const KnotFieldNames& f) {
   const Eigen::Index m = t.size();
   for (int k = 1; k <= p; ++k) {
     if (t[k] != t[0] || t[m - 1 - k] != t[m - 1]) {
-      return defect(SurfaceDefect::knots_not_clamped, f.knots,
+      return defect(f.knots,
                     " is not clamped: the first and last values must each repeat ", p + 1,
                     " times for degree ", p);
     }
   }
   if (!(t[0] < t[m - 1])) {
-    return defect(SurfaceDefect::empty_domain, f.knots, " spans an empty domain [", t[0], ", ",
+    return defect(f.knots, " spans an empty domain [", t[0], ", ",
                   t[m - 1], "]");
   }
   // Interior runs: indices p+1 .. m-p-2 hold the interior knots of a clamped vector.
@@ -64,38 +64,38 @@ SurfaceValidation check_multiplicities(int p, const Eigen::VectorXd& t, const Kn
     Eigen::Index run = 1;
     while (k + run < m - p - 1 && t[k + run] == t[k]) ++run;
     if (run > p) {
-      return defect(SurfaceDefect::multiplicity_too_high, f.knots, " value ", t[k], " at index ", k,
+      return defect(f.knots, " value ", t[k], " at index ", k,
                     " repeats ", run, " times, degree ", p, " allows at most ", p);
     }
     k += run;
   }
-  return {};
+  return Status::success();
 }
 
 /// The domain and every non-empty span long enough to resolve.
-SurfaceValidation check_spans(const Eigen::VectorXd& t, const KnotFieldNames& f) {
+Status check_spans(const Eigen::VectorXd& t, const KnotFieldNames& f) {
   const Eigen::Index m = t.size();
   const double domain = t[m - 1] - t[0];
   const double largest = std::max({1.0, std::abs(t[0]), std::abs(t[m - 1])});
   if (domain < kMinSpanRatio * largest) {
-    return defect(SurfaceDefect::span_too_short, f.knots, " domain [", t[0], ", ", t[m - 1],
+    return defect(f.knots, " domain [", t[0], ", ", t[m - 1],
                   "] is shorter than ", kMinSpanRatio, " of its knots' magnitude ", largest);
   }
   for (Eigen::Index k = 1; k < m; ++k) {
     if (t[k] > t[k - 1] && t[k] - t[k - 1] < kMinSpanRatio * domain) {
-      return defect(SurfaceDefect::span_too_short, f.knots, " span [", t[k - 1], ", ", t[k],
+      return defect(f.knots, " span [", t[k - 1], ", ", t[k],
                     "] (index ", k - 1, ") is shorter than ", kMinSpanRatio,
                     " of the domain length ", domain, ": merge the two knots");
     }
   }
-  return {};
+  return Status::success();
 }
 
 }  // namespace
 
-SurfaceValidation validate_knots(int degree, const Eigen::VectorXd& knots,
+Status validate_knots(int degree, const Eigen::VectorXd& knots,
                                  const KnotFieldNames& names) {
-  SurfaceValidation v = check_size(degree, knots.size(), names);
+  Status v = check_size(degree, knots.size(), names);
   if (v.ok()) v = check_values(knots, names);
   if (v.ok()) v = check_multiplicities(degree, knots, names);
   if (v.ok()) v = check_spans(knots, names);

@@ -6,14 +6,13 @@
 #include <string>
 
 #include "argil/core/base/number_text.hpp"
-
-#include "argil/core/collision/implicit_contact.hpp"
 #include "argil/core/deform/contact_response.hpp"
-#include "argil/core/geometry/implicit_tool.hpp"
 
 namespace argil {
 
-Result<HapticWorld> HapticWorld::create(const ToolShape& tool, const WorldOptions& options) {
+namespace {
+
+Status check_options(const WorldOptions& options) {
   if (Status s = validate(options.coupling); !s.ok()) return s;
   if (!(options.tolerance > 0.0 && std::isfinite(options.tolerance))) {
     return Status::error(
@@ -22,6 +21,47 @@ Result<HapticWorld> HapticWorld::create(const ToolShape& tool, const WorldOption
   }
   if (options.max_contacts < 1)
     return Status::error(StatusCode::invalid_argument, "world.max_contacts must be at least 1");
+  return Status::success();
+}
+
+Status check_friction(double friction) {
+  if (const Interval range{0.0, kMaxFriction}; !range.contains(friction)) {
+    return Status::error(StatusCode::invalid_argument,
+                         "body friction " + out_of_interval_text(friction, range, ""));
+  }
+  return Status::success();
+}
+
+/// How the contacts of one tick are spread over the bodies.
+struct ContactSummary {
+  std::vector<double> weight;  // per body: sum of max(depth + eps, 1e-3 eps)
+  int contacts = 0;
+  int regions = 0;
+  double max_depth = 0.0;  // [mm], 0 without contacts
+};
+
+ContactSummary summarize(const std::vector<std::vector<Contact>>& body_contacts, double eps) {
+  ContactSummary s;
+  s.weight.assign(body_contacts.size(), 0.0);
+  s.max_depth = -std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < body_contacts.size(); ++b) {
+    for (const Contact& c : body_contacts[b]) {
+      s.weight[b] += std::max(c.depth + eps, 1e-3 * eps);
+      s.max_depth = std::max(s.max_depth, c.depth);
+      s.regions = std::max(s.regions, c.region + 1);
+    }
+    s.contacts += static_cast<int>(body_contacts[b].size());
+  }
+  if (s.contacts == 0) s.max_depth = 0.0;
+  return s;
+}
+
+ProxyState at_device(const DeviceSample& device) { return {device.X_WD, {0, 0, 0}, false, false}; }
+
+}  // namespace
+
+Result<HapticWorld> HapticWorld::create(const ToolShape& tool, const WorldOptions& options) {
+  if (Status s = check_options(options); !s.ok()) return s;
   HapticWorld world;
   world.options_ = options;
   world.cache_ = std::make_unique<OperatorCache>();
@@ -32,28 +72,44 @@ Result<HapticWorld> HapticWorld::create(const ToolShape& tool, const WorldOption
           "tool.radius " + number_text(sphere->radius) + " mm must be finite and at least 0 mm");
     }
     world.sphere_.emplace(sphere->radius, options.tolerance);
-  } else {
-    Result<SurfaceToolProxy> proxy = SurfaceToolProxy::create(
-        std::get<SurfaceToolShape>(tool).surface, options.tolerance, *world.cache_);
-    if (!proxy.ok()) {
-      Status s = proxy.status();
-      s.message = "tool surface: " + s.message;
-      return s;
-    }
-    world.surface_tool_.emplace(std::move(proxy).value());
+    return world;
   }
+  Result<SurfaceToolProxy> proxy = SurfaceToolProxy::create(
+      std::get<SurfaceToolShape>(tool).surface, options.tolerance, *world.cache_);
+  if (!proxy.ok()) {
+    Status s = proxy.status();
+    s.message = "tool surface: " + s.message;
+    return s;
+  }
+  world.surface_tool_.emplace(std::move(proxy).value());
   return world;
 }
 
 Result<int> HapticWorld::add_deformable(const BSplineSurface& surface, const Material& material,
-                                        const BoundaryConditions& conditions) {
+                                        const BoundaryConditions& conditions, double friction) {
+  if (Status s = check_friction(friction); !s.ok()) return s;
   Result<DeformableBody> body = DeformableBody::create(surface, material, conditions, *cache_);
   if (!body.ok()) return body.status();
   if (Status s = check_tolerance(body.value().hierarchy()); !s.ok()) return s;
   Body b;
-  b.friction = material.friction;
+  b.friction = friction;
   b.deformable.emplace(std::move(body).value());
-  bodies_.push_back(std::move(b));
+  return add_body(std::move(b));
+}
+
+Result<int> HapticWorld::add_rigid(const BSplineSurface& surface, double friction) {
+  if (Status s = check_friction(friction); !s.ok()) return s;
+  Result<SurfaceHierarchy> h = SurfaceHierarchy::build(surface, *cache_);
+  if (!h.ok()) return h.status();
+  if (Status s = check_tolerance(h.value()); !s.ok()) return s;
+  Body b;
+  b.friction = friction;
+  b.rigid.emplace(std::move(h).value());
+  return add_body(std::move(b));
+}
+
+int HapticWorld::add_body(Body body) {
+  bodies_.push_back(std::move(body));
   return body_count() - 1;
 }
 
@@ -69,36 +125,24 @@ Status HapticWorld::check_tolerance(SurfaceHierarchy& surface) const {
   return Status::success();
 }
 
-Result<int> HapticWorld::add_rigid(const BSplineSurface& surface, double friction) {
-  if (const Interval range{0.0, kMaterialRange.friction_max}; !range.contains(friction)) {
-    return Status::error(StatusCode::invalid_argument,
-                         "rigid body friction " + out_of_interval_text(friction, range, ""));
-  }
-  Result<SurfaceHierarchy> h = SurfaceHierarchy::build(surface, *cache_);
-  if (!h.ok()) return h.status();
-  if (Status s = check_tolerance(h.value()); !s.ok()) return s;
-  Body b;
-  b.friction = friction;
-  b.rigid.emplace(std::move(h).value());
-  bodies_.push_back(std::move(b));
-  return body_count() - 1;
-}
-
 const DeformableBody* HapticWorld::deformable(int body) const {
   const Body& b = bodies_[static_cast<std::size_t>(body)];
   return b.deformable ? &*b.deformable : nullptr;
 }
 
-SurfaceHierarchy& HapticWorld::hierarchy(int body) {
+const SurfaceHierarchy& HapticWorld::hierarchy(int body) const {
+  const Body& b = bodies_[static_cast<std::size_t>(body)];
+  return b.deformable ? b.deformable->hierarchy() : *b.rigid;
+}
+
+SurfaceHierarchy& HapticWorld::mutable_hierarchy(int body) {
   Body& b = bodies_[static_cast<std::size_t>(body)];
   return b.deformable ? b.deformable->hierarchy() : *b.rigid;
 }
 
-const BSplineSurface& HapticWorld::surface(int body) { return hierarchy(body).surface(); }
-
 std::vector<SurfaceHierarchy*> HapticWorld::surfaces() {
   std::vector<SurfaceHierarchy*> out;
-  for (int b = 0; b < body_count(); ++b) out.push_back(&hierarchy(b));
+  for (int b = 0; b < body_count(); ++b) out.push_back(&mutable_hierarchy(b));
   return out;
 }
 
@@ -109,130 +153,84 @@ Status HapticWorld::relax(double dt) {
   return Status::success();
 }
 
-TickResult HapticWorld::step(const DevicePose& device, double dt) {
+TickResult HapticWorld::step(const DeviceSample& device, double dt) {
   TickResult r;
   r.body_contacts.resize(bodies_.size());
+  r.proxy = proxy_;
   if (const Interval range{0.0, kMaxTimeStep, IntervalEnds::open_low}; !range.contains(dt)) {
     r.status = Status::error(StatusCode::invalid_argument,
                              "time step dt " + out_of_interval_text(dt, range, "s"));
-    r.proxy = proxy_;
     return r;
   }
-  const CouplingParams& coupling = options_.coupling;
-  const double eps = options_.tolerance;
-  const Eigen::Vector3d device_velocity =
-      engaged_ ? Eigen::Vector3d((device.position - last_device_) / dt) : Eigen::Vector3d::Zero();
-  last_device_ = device.position;
+  const Eigen::Vector3d v_WD =
+      engaged_ ? Eigen::Vector3d((device.X_WD.p - last_device_) / dt) : Eigen::Vector3d::Zero();
+  last_device_ = device.X_WD.p;
   if (!device.engaged) {
     engaged_ = false;
-    proxy_ = {device.position, device.orientation, Eigen::Vector3d::Zero(), false, false};
+    proxy_ = at_device(device);
     r.status = relax(dt);
     r.proxy = proxy_;
     return r;
   }
-  ToolState previous = proxy_;
+  ProxyState previous = proxy_;
   if (!engaged_) {  // engaging: the proxy starts at the device
-    previous = {device.position, device.orientation, Eigen::Vector3d::Zero(), false, false};
-    if (sphere_) sphere_.emplace(sphere_->radius(), eps);  // forget the sides
+    previous = at_device(device);
+    if (sphere_) sphere_.emplace(sphere_->radius(), options_.tolerance);  // forget the sides
   }
   engaged_ = true;
-  const std::vector<SurfaceHierarchy*> surfs = surfaces();
-  const double k = coupling.stiffness;
 
   // 1-2. Proxy: frictionless target, then stick or slip from the last pose.
-  ToolState next;
-  next.orientation = device.orientation;
-  Eigen::Vector3d outward = Eigen::Vector3d::Zero();
-  if (sphere_) {
-    next.position = sphere_->move(surfs, previous.position, device.position);
-    if (previous.in_contact) {
-      const Eigen::Vector3d stick = sphere_->project(surfs, previous.position);
-      const ProxyContact at = sphere_->nearest(surfs, stick);
-      if (at.body >= 0 && at.clearance <= eps) {
-        const FrictionOutcome fr =
-            coulomb_friction(k * (device.position - stick), at.outward_normal,
-                             bodies_[static_cast<std::size_t>(at.body)].friction, k);
-        if (fr.normal_force > 0.0) {
-          next.stuck = fr.stick;
-          next.position = fr.stick ? stick : sphere_->move(surfs, stick, stick + fr.slide);
-        }
-      }
-    }
-    const auto tool = make_sphere(next.position, sphere_->radius());
-    for (std::size_t b = 0; b < bodies_.size(); ++b) {
-      CollisionResult hit =
-          collide(*surfs[b], *tool, {.tolerance = eps, .max_contacts = options_.max_contacts});
-      if (!hit.status.ok() && r.status.ok()) r.status = hit.status;
-      r.body_contacts[b] = std::move(hit.contacts);
-    }
-    outward = sphere_->nearest(surfs, next.position).outward_normal;
-  } else {
-    const ToolPose target{device.position, device.orientation};
-    ToolPose pose = surface_tool_->move(surfs, {previous.position, previous.orientation}, target);
-    if (previous.in_contact) {
-      const ToolPose stick{previous.position, device.orientation};
-      const ToolContacts at = surface_tool_->contacts(surfs, stick);
-      double mu = -1.0;
-      for (std::size_t b = 0; b < bodies_.size() && mu < 0.0; ++b)
-        if (!at.per_surface[b].empty()) mu = bodies_[b].friction;
-      if (!at.crosses && mu >= 0.0) {
-        const FrictionOutcome fr =
-            coulomb_friction(k * (device.position - stick.position), at.outward_normal, mu, k);
-        if (fr.normal_force > 0.0) {
-          next.stuck = fr.stick;
-          if (fr.stick) {
-            pose = stick;
-          } else {
-            ToolPose slid = stick;
-            slid.position += fr.slide;
-            pose = surface_tool_->move(surfs, stick, slid);
-          }
-        }
-      }
-    }
-    next.position = pose.position;
-    ToolContacts at = surface_tool_->contacts(surfs, pose);
-    r.body_contacts = std::move(at.per_surface);
-    outward = at.outward_normal;
+  ProxyMove move = sphere_ ? move_sphere(previous, device) : move_surface_tool(previous, device);
+  if (!move.status.ok()) {
+    r.status = std::move(move.status);
+    return r;
   }
-  next.velocity = (next.position - previous.position) / dt;
+  ProxyState& next = move.next;
+  next.v_WT = (next.X_WT.p - previous.X_WT.p) / dt;
 
-  // 3. Contacts and the coupling force.
-  double total_weight = 0.0;
-  std::vector<double> weight(bodies_.size(), 0.0);
-  r.max_depth = -std::numeric_limits<double>::infinity();
-  for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    for (const Contact& c : r.body_contacts[b]) {
-      weight[b] += std::max(c.depth + eps, 1e-3 * eps);
-      r.max_depth = std::max(r.max_depth, c.depth);
-      r.regions = std::max(r.regions, c.region + 1);
-    }
-    r.contacts += static_cast<int>(r.body_contacts[b].size());
-    total_weight += weight[b];
-  }
-  if (r.contacts == 0) r.max_depth = 0.0;
-  next.in_contact = r.contacts > 0;
+  // 3. Contacts and the coupling force; 4. the bodies stepped under it.
+  const ContactSummary summary = summarize(move.body_contacts, options_.tolerance);
+  next.in_contact = summary.contacts > 0;
+  const CouplingOptions& coupling = options_.coupling;
   const Eigen::Vector3d spring =
-      k * (device.position - next.position) + coupling.damping * (device_velocity - next.velocity);
-  const bool pressing = next.in_contact && spring.dot(outward) < 0.0;
+      coupling.stiffness * (device.X_WD.p - next.X_WT.p) + coupling.damping * (v_WD - next.v_WT);
+  const bool pressing = next.in_contact && spring.dot(move.outward_normal) < 0.0;
+  Coupling load = step_bodies(move.body_contacts, summary.weight, spring, pressing, dt);
+  if (!load.status.ok()) {
+    r.status = std::move(load.status);
+    return r;
+  }
+  r.force = load.force;
+  r.body_force = load.body_force;
+  r.clamped = load.clamped;
+  r.contacts = summary.contacts;
+  r.regions = summary.regions;
+  r.max_depth = summary.max_depth;
+  r.body_contacts = std::move(move.body_contacts);
+  proxy_ = next;
+  r.proxy = next;
+  return r;
+}
 
-  // 4. Step the bodies, the tool load solved backwards in time.
+HapticWorld::Coupling HapticWorld::step_bodies(
+    const std::vector<std::vector<Contact>>& body_contacts, const std::vector<double>& weight,
+    const Eigen::Vector3d& spring, bool pressing, double dt) {
+  const double eps = options_.tolerance;
   std::vector<LoadPreview> previews(bodies_.size());
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     if (!bodies_[b].deformable) continue;
     DeformableBody& body = *bodies_[b].deformable;
     Eigen::VectorXd pattern;
-    if (pressing && !r.body_contacts[b].empty())
-      pattern = contact_load_pattern(body.surface(), body.operators(), r.body_contacts[b],
-                                     contact_shares(r.body_contacts[b], eps));
+    if (pressing && !body_contacts[b].empty())
+      pattern = contact_load_pattern(body.surface(), body.operators(), body_contacts[b],
+                                     contact_shares(body_contacts[b], eps));
     Result<LoadPreview> p = body.begin_step(dt, {}, pattern);
-    if (!p.ok()) {
-      r.status = p.status();
-      r.proxy = proxy_;
-      return r;
-    }
+    if (!p.ok()) return {p.status(), {0, 0, 0}, {0, 0, 0}, false};
     previews[b] = p.value();
   }
+  double total_weight = 0.0;
+  for (const double w : weight) total_weight += w;
+  Coupling out;
   Eigen::Vector3d load = Eigen::Vector3d::Zero();
   if (pressing && spring.norm() > 0.0) {
     const Eigen::Vector3d direction = spring.normalized();
@@ -242,22 +240,22 @@ TickResult HapticWorld::step(const DevicePose& device, double dt) {
       free_motion += share * direction.dot(previews[b].free_motion);
       compliance += share * share * previews[b].compliance;
     }
-    load =
+    const double k = options_.coupling.stiffness;
+    const ClampedForce f =
         clamp_force(implicit_coupling_force(spring.norm(), k, free_motion, compliance) * direction,
-                    coupling.max_force, r.clamped);
-    r.body_force = load;
-    r.force = -load;
+                    options_.coupling.max_force);
+    load = f.force;
+    out = {Status::success(), -load, load, f.clamped};
   } else {
-    r.force = clamp_force(-spring, coupling.max_force, r.clamped);
+    const ClampedForce f = clamp_force(-spring, options_.coupling.max_force);
+    out = {Status::success(), f.force, {0, 0, 0}, f.clamped};
   }
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     if (bodies_[b].deformable)
       bodies_[b].deformable->finish_step(total_weight > 0.0
                                              ? Eigen::Vector3d(load * (weight[b] / total_weight))
                                              : Eigen::Vector3d::Zero());
-  proxy_ = next;
-  r.proxy = next;
-  return r;
+  return out;
 }
 
 }  // namespace argil

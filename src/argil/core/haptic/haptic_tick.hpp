@@ -17,6 +17,8 @@
 #include "argil/core/collision/contact.hpp"
 #include "argil/core/deform/deformable_body.hpp"
 #include "argil/core/deform/material.hpp"
+#include "argil/core/geometry/pose.hpp"
+#include "argil/core/haptic/device_sample.hpp"
 #include "argil/core/haptic/sphere_proxy.hpp"
 #include "argil/core/haptic/surface_tool_proxy.hpp"
 #include "argil/core/haptic/virtual_coupling.hpp"
@@ -34,26 +36,22 @@ struct SurfaceToolShape {
 };
 using ToolShape = std::variant<SphereToolShape, SurfaceToolShape>;
 
-/// One device sample: the pose X_WD of the device handle [mm] and whether the
-/// tool is engaged (disengaged: the proxy follows the device and touches nothing).
-struct DevicePose {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  bool engaged = true;
-};
-
-/// The proxy after a tick.
-struct ToolState {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // p_WT [mm]
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // [mm/s]
+/// The tool proxy after a tick: where the tool is (X_WT), not where the hand is.
+struct ProxyState {
+  Pose X_WT;
+  Eigen::Vector3d v_WT = Eigen::Vector3d::Zero();  // velocity of T's origin in W [mm/s]
   bool in_contact = false;
   bool stuck = false;  // held by static friction this tick
 };
 
 struct TickResult {
+  /// Not ok when the tick did not run: an invalid dt, a collision query that
+  /// failed (its status, naming the request and the limit) or a deformable
+  /// body that could not step. The proxy then keeps its state from the last
+  /// good tick (`proxy` repeats it) and no force is rendered.
+  Status status;
   /// Force to render on the device [N]: the coupling pulls the hand towards the
-  /// proxy; clamped to CouplingParams::max_force.
+  /// proxy; clamped to CouplingOptions::max_force.
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   /// Force the tool applies to the bodies this tick [N] (equal and opposite
   /// to `force` while in contact, zero otherwise).
@@ -64,17 +62,15 @@ struct TickResult {
   /// this tick's deformation [mm] (at most eps for a sphere tool).
   double max_depth = 0.0;
   bool clamped = false;
-  ToolState proxy;
+  ProxyState proxy;
   /// One entry per body: its contacts at the proxy pose.
   std::vector<std::vector<Contact>> body_contacts;
-  /// Not ok when a deformable body could not step (invalid dt).
-  Status status;
 };
 
 struct WorldOptions {
   /// eps [mm]: collision tolerance; the proxy never sinks deeper.
   double tolerance = 0.01;
-  CouplingParams coupling;
+  CouplingOptions coupling;
   int max_contacts = 64;  // per body and tick
 };
 
@@ -84,34 +80,47 @@ class HapticWorld {
   /// Validates the options and the tool (radius >= 0, a valid tool surface).
   static Result<HapticWorld> create(const ToolShape& tool, const WorldOptions& options);
 
-  /// Adds a deformable body; returns its index. Fails when the world's
-  /// tolerance is outside the documented range for it (check_request()).
+  /// Adds a deformable body; returns its index. `friction` is the Coulomb
+  /// coefficient mu [-] of the world's tool against this body, in [0,
+  /// kMaxFriction]: friction belongs to the tool-body pair, so it is given
+  /// here and nowhere else (not in Material). Fails when mu is out of range or
+  /// the world's tolerance is outside the documented range for the surface
+  /// (check_request()).
   Result<int> add_deformable(const BSplineSurface& surface, const Material& material,
-                             const BoundaryConditions& conditions);
-  /// Adds a rigid body (collides, never deforms) with tool friction mu in [0, 10].
+                             const BoundaryConditions& conditions, double friction);
+  /// Adds a rigid body (collides, never deforms); `friction` as for add_deformable.
   Result<int> add_rigid(const BSplineSurface& surface, double friction);
 
-  /// One tick of dt [s] with the device at `device`.
+  /// One tick of dt [s] with the device at `device.X_WD` (its tick and time
+  /// are not read: the world keeps no clock).
   ///  1. The proxy moves from its last pose towards the device (god-object,
   ///     never sinking more than eps, never passing through a surface).
   ///  2. Friction: while in contact the proxy stays at its stick point unless
   ///     the coupling's tangential pull exceeds mu N; then it slides until the
   ///     pull is mu N (contact_response.hpp).
   ///  3. Contacts of the proxy with every body (collide); the coupling force
-  ///     F = k (device - proxy) + b (v_device - v_proxy) is shared among them
+  ///     F = k (p_WD - p_WT) + b (v_WD - v_WT) is shared among them
   ///     (contact_shares), solved backwards in time against the bodies'
   ///     compliance (implicit_coupling_force), clamped, and applied through
   ///     exact node load patterns (contact_load_pattern).
   ///  4. Every deformable body steps (DeformableBody) and refits its surface.
-  TickResult step(const DevicePose& device, double dt);
+  ///  Strategies: sphere_tool_step.cpp (god-object sphere), surface_tool_step.cpp
+  ///  (B-spline tool, conservative advancement).
+  TickResult step(const DeviceSample& device, double dt);
 
   int body_count() const { return static_cast<int>(bodies_.size()); }
   bool is_rigid(int body) const { return !bodies_[static_cast<std::size_t>(body)].deformable; }
   /// The deformable body, or nullptr for a rigid one.
   const DeformableBody* deformable(int body) const;
-  SurfaceHierarchy& hierarchy(int body);
-  const BSplineSurface& surface(int body);
-  const ToolState& proxy() const { return proxy_; }
+  const SurfaceHierarchy& hierarchy(int body) const;
+  const BSplineSurface& surface(int body) const { return hierarchy(body).surface(); }
+  /// Coulomb coefficient of the tool against `body` [-].
+  double friction(int body) const { return bodies_[static_cast<std::size_t>(body)].friction; }
+  /// Largest node count of body `body`'s lazy hierarchy (SurfaceHierarchy::set_node_budget).
+  void set_node_budget(int body, std::size_t nodes) {
+    mutable_hierarchy(body).set_node_budget(nodes);
+  }
+  const ProxyState& proxy() const { return proxy_; }
   const WorldOptions& options() const { return options_; }
 
  private:
@@ -120,19 +129,44 @@ class HapticWorld {
     std::optional<SurfaceHierarchy> rigid;
     double friction = 0.0;
   };
+  /// The proxy's move this tick (steps 1-2) and its contacts with every body.
+  struct ProxyMove {
+    Status status;
+    ProxyState next;  // v_WT is filled in by step()
+    std::vector<std::vector<Contact>> body_contacts;
+    /// Unit normal from the surfaces towards the proxy (zero without contacts).
+    Eigen::Vector3d outward_normal = Eigen::Vector3d::Zero();
+  };
+  /// The tool load on the bodies and the force on the device (steps 3-4).
+  struct Coupling {
+    Status status;
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();       // on the device [N]
+    Eigen::Vector3d body_force = Eigen::Vector3d::Zero();  // on the bodies [N]
+    bool clamped = false;
+  };
   HapticWorld() = default;
+  SurfaceHierarchy& mutable_hierarchy(int body);
   std::vector<SurfaceHierarchy*> surfaces();
   /// The world's tolerance checked against the documented range for a body.
   Status check_tolerance(SurfaceHierarchy& surface) const;
+  int add_body(Body body);
   /// Steps every deformable body without tool load.
   Status relax(double dt);
+  ProxyMove move_sphere(const ProxyState& previous, const DeviceSample& device);
+  ProxyMove move_surface_tool(const ProxyState& previous, const DeviceSample& device);
+  /// Shares `spring` (the coupling force on the device side, pressing when
+  /// `pressing`) among the bodies by `weight`, solves it backwards in time and
+  /// steps every deformable body.
+  Coupling step_bodies(const std::vector<std::vector<Contact>>& body_contacts,
+                       const std::vector<double>& weight, const Eigen::Vector3d& spring,
+                       bool pressing, double dt);
 
   WorldOptions options_;
   std::unique_ptr<OperatorCache> cache_;
   std::vector<Body> bodies_;
   std::optional<SphereProxy> sphere_;
   std::optional<SurfaceToolProxy> surface_tool_;
-  ToolState proxy_;
+  ProxyState proxy_;
   bool engaged_ = false;
   Eigen::Vector3d last_device_ = Eigen::Vector3d::Zero();
 };

@@ -23,8 +23,10 @@ int& SphereProxy::side(std::size_t index) {
   return sides_[index];
 }
 
-bool SphereProxy::push_out(SurfaceHierarchy& surface, std::size_t index, Eigen::Vector3d& c) {
-  const ClosestPoint cp = closest_point(surface, c, {.tolerance = 0.25 * eps_});
+SphereProxy::Push SphereProxy::push_out(SurfaceHierarchy& surface, std::size_t index,
+                                        const Eigen::Vector3d& c) {
+  ClosestPoint cp = closest_point(surface, c, {.tolerance = 0.25 * eps_});
+  if (!cp.status.ok()) return {std::move(cp.status), c, false};
   int& s = side(index);
   const double tiny = 1e-3 * eps_;  // below it the sign of a distance is noise
   if (s == 0) s = cp.signed_distance < 0.0 ? -1 : 1;
@@ -33,43 +35,49 @@ bool SphereProxy::push_out(SurfaceHierarchy& surface, std::size_t index, Eigen::
     if (cp.distance > radius_ + tiny && std::abs(cp.signed_distance) > tiny &&
         on_boundary(surface.surface(), cp.uv))
       s = cp.signed_distance < 0.0 ? -1 : 1;  // went round the edge
-    return false;
+    return {Status::success(), c, false};
   }
   Eigen::Vector3d direction = s * cp.normal;
   if (!crossed && cp.distance > tiny) direction = (c - cp.point) / cp.distance;
-  if (direction.squaredNorm() == 0.0) return false;  // degenerate normal and no offset
+  // A degenerate normal and no offset: nowhere to push.
+  if (direction.squaredNorm() == 0.0) return {Status::success(), c, false};
   // A point tool stays a hair off the surface so its side stays readable.
-  c = cp.point + direction * std::max(radius_, 2.0 * tiny);
-  return true;
+  return {Status::success(), cp.point + direction * std::max(radius_, 2.0 * tiny), true};
 }
 
-Eigen::Vector3d SphereProxy::project(const std::vector<SurfaceHierarchy*>& surfaces,
-                                     Eigen::Vector3d centre) {
+SphereMove SphereProxy::project(const std::vector<SurfaceHierarchy*>& surfaces,
+                                const Eigen::Vector3d& start) {
+  Eigen::Vector3d centre = start;
   for (int round = 0; round < 8; ++round) {
     bool moved = false;
-    for (std::size_t b = 0; b < surfaces.size(); ++b)
-      moved = push_out(*surfaces[b], b, centre) || moved;
+    for (std::size_t b = 0; b < surfaces.size(); ++b) {
+      Push push = push_out(*surfaces[b], b, centre);
+      if (!push.status.ok()) return {std::move(push.status), centre};
+      centre = push.centre;
+      moved = push.moved || moved;
+    }
     if (!moved) break;
   }
-  return centre;
+  return {Status::success(), centre};
 }
 
-Eigen::Vector3d SphereProxy::move(const std::vector<SurfaceHierarchy*>& surfaces,
-                                  const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+SphereMove SphereProxy::move(const std::vector<SurfaceHierarchy*>& surfaces,
+                             const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
   const double step = std::max(0.5 * radius_, 10.0 * eps_);
   const int count =
       std::clamp(static_cast<int>(std::ceil((to - from).norm() / step)), 1, kMaxSubsteps);
   const Eigen::Vector3d increment = (to - from) / count;
-  Eigen::Vector3d centre = project(surfaces, from);
-  for (int k = 0; k < count; ++k) centre = project(surfaces, centre + increment);
-  return centre;
+  SphereMove at = project(surfaces, from);
+  for (int k = 0; k < count && at.status.ok(); ++k) at = project(surfaces, at.p_WT + increment);
+  return at;
 }
 
 ProxyContact SphereProxy::nearest(const std::vector<SurfaceHierarchy*>& surfaces,
                                   const Eigen::Vector3d& centre) {
   ProxyContact best;
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
-    const ClosestPoint cp = closest_point(*surfaces[b], centre, {.tolerance = 0.25 * eps_});
+    ClosestPoint cp = closest_point(*surfaces[b], centre, {.tolerance = 0.25 * eps_});
+    if (!cp.status.ok()) return {std::move(cp.status)};
     const double clearance = cp.distance - radius_;
     if (best.body >= 0 && clearance >= best.clearance) continue;
     best.body = static_cast<int>(b);

@@ -12,6 +12,8 @@ namespace argil {
 
 /// The surface nearest to a proxy.
 struct ProxyContact {
+  /// Not ok when a closest-point query failed (its status; nothing else is set).
+  Status status;
   int body = -1;           // index into the surfaces, -1 when there are none
   double clearance = 0.0;  // distance from the centre minus the radius [mm]; < 0 when sinking
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // closest surface point [mm]
@@ -26,16 +28,23 @@ struct ProxyContact {
 /// sphere's depth is at most eps / 4 after a move, and a surface the centre
 /// crossed (the closest point is interior and on the other side) pushes it back
 /// to the side it came from. Sides change only around a surface's boundary.
+/// Where a move or projection left the centre. Not ok when a closest-point
+/// query failed: the centre is then the last one reached before it.
+struct SphereMove {
+  Status status;
+  Eigen::Vector3d p_WT = Eigen::Vector3d::Zero();  // the centre [mm]
+};
+
 class SphereProxy {
  public:
   SphereProxy(double radius, double eps) : radius_(radius), eps_(eps) {}
   double radius() const { return radius_; }
 
   /// Moves the centre from `from` towards `to` and returns where it stops.
-  Eigen::Vector3d move(const std::vector<SurfaceHierarchy*>& surfaces, const Eigen::Vector3d& from,
-                       const Eigen::Vector3d& to);
+  SphereMove move(const std::vector<SurfaceHierarchy*>& surfaces, const Eigen::Vector3d& from,
+                  const Eigen::Vector3d& to);
   /// The centre pushed out of every surface (at most 8 rounds over all surfaces).
-  Eigen::Vector3d project(const std::vector<SurfaceHierarchy*>& surfaces, Eigen::Vector3d centre);
+  SphereMove project(const std::vector<SurfaceHierarchy*>& surfaces, const Eigen::Vector3d& centre);
   /// The nearest surface to `centre` (and updates the side record far from surfaces).
   ProxyContact nearest(const std::vector<SurfaceHierarchy*>& surfaces,
                        const Eigen::Vector3d& centre);
@@ -43,8 +52,13 @@ class SphereProxy {
   static constexpr int kMaxSubsteps = 256;
 
  private:
-  /// Pushes the centre out of one surface; true when it moved.
-  bool push_out(SurfaceHierarchy& surface, std::size_t index, Eigen::Vector3d& centre);
+  /// The centre pushed out of one surface, and whether it moved.
+  struct Push {
+    Status status;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    bool moved = false;
+  };
+  Push push_out(SurfaceHierarchy& surface, std::size_t index, const Eigen::Vector3d& centre);
   int& side(std::size_t index);
 
   double radius_;

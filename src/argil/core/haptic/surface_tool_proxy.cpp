@@ -7,14 +7,6 @@
 
 namespace argil {
 
-namespace {
-
-ToolPose interpolate(const ToolPose& a, const ToolPose& b, double t) {
-  return {a.position + t * (b.position - a.position), a.orientation.slerp(t, b.orientation)};
-}
-
-}  // namespace
-
 SurfaceToolProxy::SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy posed, double eps)
     : tool_points_(tool.control_points),
       posed_(std::move(posed)),
@@ -28,17 +20,17 @@ Result<SurfaceToolProxy> SurfaceToolProxy::create(const BSplineSurface& tool, do
   return SurfaceToolProxy(tool, std::move(h).value(), eps);
 }
 
-void SurfaceToolProxy::place(const ToolPose& pose) {
-  const Eigen::Matrix3d r = pose.orientation.normalized().toRotationMatrix();
+void SurfaceToolProxy::place(const Pose& X_WT) {
+  const Eigen::Matrix3d R_WT = X_WT.R.normalized().toRotationMatrix();
   ControlNet world(tool_points_.rows(), 3);
   for (Eigen::Index k = 0; k < world.rows(); ++k)
-    world.row(k) = (r * tool_points_.row(k).transpose() + pose.position).transpose();
+    world.row(k) = (R_WT * tool_points_.row(k).transpose() + X_WT.p).transpose();
   posed_.set_control_points(world);
 }
 
 ToolContacts SurfaceToolProxy::contacts(const std::vector<SurfaceHierarchy*>& surfaces,
-                                        const ToolPose& pose) {
-  place(pose);
+                                        const Pose& X_WT) {
+  place(X_WT);
   const Eigen::Vector3d centre = posed_.surface().control_points.colwise().mean().transpose();
   ToolContacts out;
   out.per_surface.resize(surfaces.size());
@@ -46,6 +38,10 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<SurfaceHierarchy*>& su
     CollisionResult r =
         collide(*surfaces[b], posed_,
                 {.tolerance = eps_, .max_contacts = 64, .refine = false, .compute_depth = false});
+    if (!r.status.ok()) {
+      out.status = std::move(r.status);
+      break;
+    }
     out.crosses = out.crosses || !r.curves.empty();
     for (const Contact& c : r.contacts) {
       out.crosses = out.crosses || c.depth >= 0.0;
@@ -58,9 +54,9 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<SurfaceHierarchy*>& su
   return out;
 }
 
-bool SurfaceToolProxy::crosses(const std::vector<SurfaceHierarchy*>& surfaces,
-                               const ToolPose& pose) {
-  place(pose);
+SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
+    const std::vector<SurfaceHierarchy*>& surfaces, const Pose& X_WT) {
+  place(X_WT);
   // A yes/no test: the descent stops at the first crossing leaf pair.
   const CollisionRequest request{.tolerance = eps_,
                                  .max_contacts = 1,
@@ -68,68 +64,81 @@ bool SurfaceToolProxy::crosses(const std::vector<SurfaceHierarchy*>& surfaces,
                                  .compute_depth = false,
                                  .first_crossing_only = true};
   for (SurfaceHierarchy* surface : surfaces) {
-    const CollisionResult r = collide(*surface, posed_, request);
-    if (!r.contacts.empty() || !r.curves.empty()) return true;
+    CollisionResult r = collide(*surface, posed_, request);
+    // A failed query counts as crossing: the proxy must not move where it
+    // cannot prove it is clear.
+    if (!r.status.ok()) return {std::move(r.status), true};
+    if (!r.contacts.empty() || !r.curves.empty()) return {Status::success(), true};
   }
-  return false;
+  return {Status::success(), false};
 }
 
-ToolPose SurfaceToolProxy::advance(const std::vector<SurfaceHierarchy*>& surfaces,
-                                   const ToolPose& from, const ToolPose& to, bool& blocked) {
-  blocked = false;
-  const double length = (to.position - from.position).norm();
+SurfaceToolProxy::Advance SurfaceToolProxy::bisect(const std::vector<SurfaceHierarchy*>& surfaces,
+                                                   const Pose& clear, const Pose& crossing_pose) {
+  double lo = 0.0, hi = 1.0;
+  const double span = (crossing_pose.p - clear.p).norm();
+  for (int i = 0; i < kMaxBisections && (hi - lo) * span > 0.5 * eps_; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    Crossing c = crossing(surfaces, interpolate(clear, crossing_pose, mid));
+    if (!c.status.ok()) return {std::move(c.status), interpolate(clear, crossing_pose, lo), true};
+    (c.crosses ? hi : lo) = mid;
+  }
+  return {Status::success(), interpolate(clear, crossing_pose, lo), true};
+}
+
+SurfaceToolProxy::Advance SurfaceToolProxy::advance(const std::vector<SurfaceHierarchy*>& surfaces,
+                                                    const Pose& from, const Pose& to) {
+  const double length = (to.p - from.p).norm();
   const double step = std::max(0.25 * size_, 10.0 * eps_);
   const int count = std::clamp(static_cast<int>(std::ceil(length / step)), 1, 256);
-  ToolPose good = from;
+  Pose good = from;
   for (int k = 1; k <= count; ++k) {
-    const ToolPose next = interpolate(from, to, static_cast<double>(k) / count);
-    if (!crosses(surfaces, next)) {
+    const Pose next = interpolate(from, to, static_cast<double>(k) / count);
+    Crossing c = crossing(surfaces, next);
+    if (!c.status.ok()) return {std::move(c.status), good, true};
+    if (!c.crosses) {
       good = next;
       continue;
     }
-    // Bisect between `good` (clear) and `next` (crossing).
-    double lo = 0.0, hi = 1.0;
-    const ToolPose start = good;
-    const double span = (next.position - start.position).norm();
-    for (int i = 0; i < kMaxBisections && (hi - lo) * span > 0.5 * eps_; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      if (crosses(surfaces, interpolate(start, next, mid)))
-        hi = mid;
-      else
-        lo = mid;
-    }
-    good = interpolate(start, next, lo);
-    blocked = true;
-    return good;
+    return bisect(surfaces, good, next);
   }
-  return good;
+  return {Status::success(), good, false};
 }
 
-ToolPose SurfaceToolProxy::move(const std::vector<SurfaceHierarchy*>& surfaces,
-                                const ToolPose& from, const ToolPose& to) {
-  ToolPose start = from;
+ToolMove SurfaceToolProxy::push_out(const std::vector<SurfaceHierarchy*>& surfaces,
+                                    const Pose& from, const Pose& to) {
+  Pose start = from;
   ToolContacts at_start = contacts(surfaces, start);
   // Pushed out along the contact normal by doubling distances when the start crosses.
-  for (double push = eps_; at_start.crosses && push < 4.0 * size_; push *= 2.0) {
+  for (double push = eps_; at_start.status.ok() && at_start.crosses && push < 4.0 * size_;
+       push *= 2.0) {
     const Eigen::Vector3d n = at_start.outward_normal.squaredNorm() > 0.0
                                   ? at_start.outward_normal
-                                  : Eigen::Vector3d((from.position - to.position).normalized());
-    ToolPose out = start;
-    out.position += push * n;
+                                  : Eigen::Vector3d((from.p - to.p).normalized());
+    Pose out = start;
+    out.p += push * n;
     at_start = contacts(surfaces, out);
-    if (!at_start.crosses) start = out;
+    if (at_start.status.ok() && !at_start.crosses) start = out;
   }
-  bool blocked = false;
-  const ToolPose stop = advance(surfaces, start, to, blocked);
-  if (!blocked) return stop;
+  return {std::move(at_start.status), start};
+}
+
+ToolMove SurfaceToolProxy::move(const std::vector<SurfaceHierarchy*>& surfaces,
+                                const Pose& X_WT_from, const Pose& X_WT_to) {
+  ToolMove start = push_out(surfaces, X_WT_from, X_WT_to);
+  if (!start.status.ok()) return start;
+  Advance stop = advance(surfaces, start.X_WT, X_WT_to);
+  if (!stop.status.ok() || !stop.blocked) return {std::move(stop.status), stop.X_WT};
   // Slide: the rest of the move without its component into the surface.
-  const ToolContacts touch = contacts(surfaces, stop);
-  Eigen::Vector3d rest = to.position - stop.position;
+  ToolContacts touch = contacts(surfaces, stop.X_WT);
+  if (!touch.status.ok()) return {std::move(touch.status), stop.X_WT};
+  Eigen::Vector3d rest = X_WT_to.p - stop.X_WT.p;
   const double into = rest.dot(touch.outward_normal);
   if (into < 0.0) rest -= into * touch.outward_normal;
-  ToolPose slide_to = to;
-  slide_to.position = stop.position + rest;
-  return advance(surfaces, stop, slide_to, blocked);
+  Pose slide_to = X_WT_to;
+  slide_to.p = stop.X_WT.p + rest;
+  Advance slid = advance(surfaces, stop.X_WT, slide_to);
+  return {std::move(slid.status), slid.X_WT};
 }
 
 }  // namespace argil

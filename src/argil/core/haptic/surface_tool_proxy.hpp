@@ -5,27 +5,31 @@
 // along the surface after it stops.
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <vector>
 
 #include "argil/core/collision/contact.hpp"
+#include "argil/core/geometry/pose.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
 
 namespace argil {
 
-/// A rigid pose X_WT: p_W = orientation * p_T + position [mm].
-struct ToolPose {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-};
-
 /// Contacts of the posed tool with every surface, and whether any crosses.
 struct ToolContacts {
+  /// Not ok when a collision query failed (its status; the contacts of the
+  /// surfaces before it are kept).
+  Status status;
   std::vector<std::vector<Contact>> per_surface;  // contacts of surface b (its side a)
   bool crosses = false;
   /// Mean unit normal of the contacts, oriented from the surfaces towards the
   /// tool's control-point centre (zero without contacts).
   Eigen::Vector3d outward_normal = Eigen::Vector3d::Zero();
+};
+
+/// Where a move stopped. Not ok when a collision query failed: the proxy then
+/// stops at the last pose known not to cross.
+struct ToolMove {
+  Status status;
+  Pose X_WT;
 };
 
 /// Conservative advancement: a move from a pose that crosses nothing goes in
@@ -43,22 +47,39 @@ class SurfaceToolProxy {
                                          OperatorCache& cache);
 
   /// The tool posed at X_WT, collided with every surface.
-  ToolContacts contacts(const std::vector<SurfaceHierarchy*>& surfaces, const ToolPose& pose);
-  /// Moves from `from` towards `to` (orientation interpolated by slerp).
-  ToolPose move(const std::vector<SurfaceHierarchy*>& surfaces, const ToolPose& from,
-                const ToolPose& to);
+  ToolContacts contacts(const std::vector<SurfaceHierarchy*>& surfaces, const Pose& X_WT);
+  /// Moves from X_WT_from towards X_WT_to (rotation interpolated by slerp).
+  ToolMove move(const std::vector<SurfaceHierarchy*>& surfaces, const Pose& X_WT_from,
+                const Pose& X_WT_to);
   /// The tool's hierarchy at the last pose used.
-  SurfaceHierarchy& hierarchy() { return posed_; }
+  const SurfaceHierarchy& hierarchy() const { return posed_; }
+  /// Diagonal of the tool's control-point box [mm].
   double size() const { return size_; }
   static constexpr int kMaxBisections = 12;
 
  private:
+  /// Whether the tool at a pose crosses any surface.
+  struct Crossing {
+    Status status;
+    bool crosses = false;
+  };
+  /// The end of one conservative advance.
+  struct Advance {
+    Status status;
+    Pose X_WT;
+    bool blocked = false;
+  };
   SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy posed, double eps);
-  void place(const ToolPose& pose);
-  bool crosses(const std::vector<SurfaceHierarchy*>& surfaces, const ToolPose& pose);
+  void place(const Pose& X_WT);
+  Crossing crossing(const std::vector<SurfaceHierarchy*>& surfaces, const Pose& X_WT);
   /// From a pose that does not cross towards `to`: the last pose that does not.
-  ToolPose advance(const std::vector<SurfaceHierarchy*>& surfaces, const ToolPose& from,
-                   const ToolPose& to, bool& blocked);
+  Advance advance(const std::vector<SurfaceHierarchy*>& surfaces, const Pose& from, const Pose& to);
+  /// Bisects between `clear` (no crossing) and `crossing_pose`.
+  Advance bisect(const std::vector<SurfaceHierarchy*>& surfaces, const Pose& clear,
+                 const Pose& crossing_pose);
+  /// A start pose that crosses pushed out along the contact normal.
+  ToolMove push_out(const std::vector<SurfaceHierarchy*>& surfaces, const Pose& from,
+                    const Pose& to);
 
   ControlNet tool_points_;  // in T
   SurfaceHierarchy posed_;

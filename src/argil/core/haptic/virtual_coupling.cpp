@@ -20,7 +20,7 @@ Status coupling_error(const char* field, double value, const Interval& range, co
 
 }  // namespace
 
-Status validate(const CouplingParams& c) {
+Status validate(const CouplingOptions& c) {
   if (!kStiffnessRange.contains(c.stiffness))
     return coupling_error("stiffness", c.stiffness, kStiffnessRange, "N/mm");
   if (!kDampingRange.contains(c.damping))
@@ -35,10 +35,10 @@ double implicit_coupling_force(double explicit_force, double stiffness, double f
   return std::max(0.0, (explicit_force - stiffness * free_motion) / (1.0 + stiffness * compliance));
 }
 
-Eigen::Vector3d clamp_force(const Eigen::Vector3d& force, double max_force, bool& clamped) {
+ClampedForce clamp_force(const Eigen::Vector3d& force, double max_force) {
   const double size = force.norm();
-  clamped = size > max_force;
-  return clamped ? Eigen::Vector3d(force * (max_force / size)) : force;
+  if (!(size > max_force)) return {force, false};
+  return {force * (max_force / size), true};
 }
 
 }  // namespace argil

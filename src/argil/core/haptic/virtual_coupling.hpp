@@ -8,14 +8,17 @@
 
 namespace argil {
 
-struct CouplingParams {
-  double stiffness = 1.0;  // [N/mm], (0, 1e6]
-  double damping = 0.0;    // [N s/mm], [0, 1e3]
-  double max_force = 8.0;  // the device's maximum force [N], (0, 1e4]
+/// Spring-damper between the device and the tool proxy, and the device's force
+/// limit. The scene loader reads it directly ("coupling" in a scene file);
+/// these are the defaults of both.
+struct CouplingOptions {
+  double stiffness = 1.0;   // k [N/mm], (0, 1e6]
+  double damping = 0.002;   // b [N s/mm], [0, 1e3]
+  double max_force = 10.0;  // the device's maximum force [N], (0, 1e4]
 };
 
 /// ok, or invalid_argument naming the field outside its range.
-Status validate(const CouplingParams& coupling);
+Status validate(const CouplingOptions& coupling);
 
 /// The coupling force on a compliant surface, solved backwards in time.
 /// The proxy rests on the loaded point, so when the surface gives way by s
@@ -28,8 +31,12 @@ Status validate(const CouplingParams& coupling);
 double implicit_coupling_force(double explicit_force, double stiffness, double free_motion,
                                double compliance);
 
-/// `force` scaled to at most max_force [N] in magnitude; `clamped` tells
-/// whether it was.
-Eigen::Vector3d clamp_force(const Eigen::Vector3d& force, double max_force, bool& clamped);
+/// A force limited to the device's maximum.
+struct ClampedForce {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // [N], |force| <= max_force
+  bool clamped = false;                             // the input was longer
+};
+/// `force` scaled to at most max_force [N] in magnitude.
+ClampedForce clamp_force(const Eigen::Vector3d& force, double max_force);
 
 }  // namespace argil

@@ -8,8 +8,7 @@
 namespace argil {
 
 Result<SurfaceOperators> surface_operators(const BSplineSurface& surface, OperatorCache& cache) {
-  const SurfaceValidation check = validate(surface);
-  if (!check.ok()) return check.status();
+  if (Status check = validate(surface); !check.ok()) return check;
   SurfaceOperators ops;
   for (Direction d : kDirections) {
     Result<std::shared_ptr<const CurveOperators>> built =

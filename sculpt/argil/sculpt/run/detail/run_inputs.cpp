@@ -19,12 +19,12 @@ Status check_script_fits(const RunInputs& in) {
                                                            in.script.tool + "\" is not a tool of " +
                                                            in.scene_path.string());
   }
-  const double ticks = in.script.keyframes.back().time * in.scene.haptic_rate;
+  const double ticks = in.script.keyframes.back().t * in.scene.haptic_rate;
   if (ticks > kMaxTicks) {
     return Status::error(
         StatusCode::invalid_argument,
         in.script_path.string() + ": keyframes[" + std::to_string(in.script.keyframes.size() - 1) +
-            "].t: the script lasts " + number_text(in.script.keyframes.back().time) + " s, " +
+            "].t: the script lasts " + number_text(in.script.keyframes.back().t) + " s, " +
             number_text(ticks) + " ticks at " + number_text(in.scene.haptic_rate) +
             " Hz (at most " + number_text(kMaxTicks) + " ticks)");
   }

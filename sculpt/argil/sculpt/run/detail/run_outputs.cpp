@@ -65,7 +65,7 @@ Status write_pictures(const RunInputs& in, const std::vector<io::Model>& before,
   }
   ToolPath path;
   for (const DeviceSample& s : state.received) {
-    path.positions.push_back(s.position);
+    path.positions.push_back(s.X_WD.p);
     path.engaged.push_back(s.engaged);
   }
   const Status s = write_session_pictures(all_before, all_after, path, state.log.times(),

@@ -25,38 +25,38 @@ void append_part(std::ostringstream& text, const Part& part) {
 /// The defect with its message: the parts streamed in order, numbers in their
 /// shortest exact form so the message reproduces the input.
 template <class... Parts>
-SurfaceValidation defect(SurfaceDefect d, const Parts&... parts) {
+Status defect(const Parts&... parts) {
   std::ostringstream text;
   (append_part(text, parts), ...);
-  return {d, text.str()};
+  return Status::error(StatusCode::invalid_surface, text.str());
 }
 
 /// Weights of n control points: empty (polynomial) or n values, each finite,
 /// positive and in [1 / kMaxWeight, kMaxWeight], the largest at most
 /// kMaxWeightRatio times the smallest. The same rules for surfaces and curves.
-inline SurfaceValidation validate_weights(const Eigen::VectorXd& w, Eigen::Index n) {
+inline Status validate_weights(const Eigen::VectorXd& w, Eigen::Index n) {
   if (w.size() != 0 && w.size() != n) {
-    return defect(SurfaceDefect::weight_count, "weights has ", w.size(), " values, expected 0 or ",
+    return defect("weights has ", w.size(), " values, expected 0 or ",
                   n);
   }
   for (Eigen::Index r = 0; r < w.size(); ++r) {
     if (!std::isfinite(w[r])) {
-      return defect(SurfaceDefect::non_finite_weight, "weights[", r, "] is ", w[r]);
+      return defect("weights[", r, "] is ", w[r]);
     }
     if (!(w[r] > 0.0)) {
-      return defect(SurfaceDefect::non_positive_weight, "weights[", r, "] is ", w[r],
+      return defect("weights[", r, "] is ", w[r],
                     ", weights must be positive");
     }
     if (w[r] > kMaxWeight || w[r] < 1.0 / kMaxWeight) {
-      return defect(SurfaceDefect::weight_out_of_range, "weights[", r, "] is ", w[r],
+      return defect("weights[", r, "] is ", w[r],
                     ", outside the supported [", 1.0 / kMaxWeight, ", ", kMaxWeight, "]");
     }
   }
   if (w.size() > 0 && w.maxCoeff() > kMaxWeightRatio * w.minCoeff()) {
-    return defect(SurfaceDefect::weight_out_of_range, "weights range from ", w.minCoeff(), " to ",
+    return defect("weights range from ", w.minCoeff(), " to ",
                   w.maxCoeff(), ", a ratio above the supported ", kMaxWeightRatio);
   }
-  return {};
+  return Status::success();
 }
 
 }  // namespace argil::detail

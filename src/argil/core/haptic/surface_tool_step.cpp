@@ -1,0 +1,48 @@
+// The B-spline tool's part of HapticWorld::step: the tool proxy advances
+// conservatively, sticks or slips, and its contacts with every body.
+#include "argil/core/deform/contact_response.hpp"
+#include "argil/core/haptic/haptic_tick.hpp"
+
+namespace argil {
+
+HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous,
+                                                      const DeviceSample& device) {
+  const std::vector<SurfaceHierarchy*> surfs = surfaces();
+  const double k = options_.coupling.stiffness;
+  ProxyMove out;
+  ToolMove moved = surface_tool_->move(surfs, previous.X_WT, device.X_WD);
+  if (!moved.status.ok()) return {std::move(moved.status), {}, {}, {0, 0, 0}};
+  if (previous.in_contact) {
+    // Friction: the stick point keeps the last position with the new rotation.
+    const Pose stick{device.X_WD.R, previous.X_WT.p};
+    ToolContacts at = surface_tool_->contacts(surfs, stick);
+    if (!at.status.ok()) return {std::move(at.status), {}, {}, {0, 0, 0}};
+    double mu = -1.0;  // of the first body touched
+    for (int b = 0; b < body_count() && mu < 0.0; ++b)
+      if (!at.per_surface[static_cast<std::size_t>(b)].empty()) mu = friction(b);
+    if (!at.crosses && mu >= 0.0) {
+      const FrictionOutcome fr =
+          coulomb_friction(k * (device.X_WD.p - stick.p), at.outward_normal, mu, k);
+      if (fr.normal_force > 0.0) {
+        out.next.stuck = fr.stick;
+        if (fr.stick) {
+          moved.X_WT = stick;
+        } else {
+          Pose slid = stick;
+          slid.p += fr.slide;
+          moved = surface_tool_->move(surfs, stick, slid);
+          if (!moved.status.ok()) return {std::move(moved.status), {}, {}, {0, 0, 0}};
+        }
+      }
+    }
+  }
+  // The proxy keeps the device's rotation; its position is where the move stopped.
+  out.next.X_WT = {device.X_WD.R, moved.X_WT.p};
+  ToolContacts at = surface_tool_->contacts(surfs, moved.X_WT);
+  if (!at.status.ok()) return {std::move(at.status), {}, {}, {0, 0, 0}};
+  out.body_contacts = std::move(at.per_surface);
+  out.outward_normal = at.outward_normal;
+  return out;
+}
+
+}  // namespace argil
