@@ -37,7 +37,7 @@ foreach(c RANGE ${last})
     foreach(side uv_a uv_b)
       foreach(k 0 1)
         string(JSON t GET "${json}" curves ${c} ${end} ${side} ${k})
-        # Parameters are plain decimal numbers in [0, 1] (17 digits may add an exponent).
+        # Parameters are plain decimal numbers in [0, 1] (shortest round-trip text may add an exponent).
         if(NOT t MATCHES "^-?[0-9.]+(e[-+]?[0-9]+)?$")
           message(FATAL_ERROR "curve ${c} ${end} ${side}[${k}] is not a number: ${t}")
         endif()

@@ -59,12 +59,12 @@ fs::path three_presses(const fs::path& out) {
 RunOptions options_for(const fs::path& out, bool fresh, int stop_after = 0) {
   RunOptions o{.scene = kScene, .script = three_presses(out), .out = out, .fresh = fresh};
   o.outputs = OutputOptions{.step = false,
-                         .iges = false,
-                         .json = true,
-                         .forces = true,
-                         .contacts = false,
-                         .timing = false,
-                         .pictures = false};
+                            .iges = false,
+                            .json = true,
+                            .forces = true,
+                            .contacts = false,
+                            .timing = false,
+                            .pictures = false};
   if (stop_after > 0) {
     o.on_progress = [stop_after](const RunProgress& p) {
       return p.strokes >= stop_after ? RunControl::stop : RunControl::proceed;

@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "argil/core/base/status.hpp"
-#include "argil/io/model/model.hpp"
 #include "argil/io/mesh/tessellate.hpp"
+#include "argil/io/model/model.hpp"
 
 namespace argil::io {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/base/status.hpp"
+#include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/io/mesh/tessellate.hpp"
 
 namespace argil::sculpt {

@@ -1,6 +1,7 @@
 #pragma once
 // What a run logs per tick, and the files it becomes: forces.csv, contacts.csv
-// and the per-tick timing summary (timing.json). Numbers carry 17 digits.
+// and the per-tick timing summary (timing.json). Numbers are exact
+// (shortest round-trip text, number_text).
 
 #include <string>
 #include <vector>

@@ -384,7 +384,8 @@ Status validate(const Script& script, const std::string& source_name) {
 }
 
 std::string script_to_json(const Script& script) {
-  // Written by hand (not through nlohmann) to control the number format: 17 digits.
+  // Written by hand (not through nlohmann) to control the number format: shortest
+  // round-trip text (number_text).
   std::string out = "{\n  \"format\": \"" + std::string(kScriptFormatName) +
                     "\",\n  \"version\": " + std::to_string(kScriptFormatVersion) + ",\n";
   if (!script.tool.empty()) out += "  \"tool\": " + Json(script.tool).dump() + ",\n";
@@ -394,9 +395,8 @@ std::string script_to_json(const Script& script) {
     out += k == 0 ? "\n" : ",\n";
     out += "    {\"t\": " + number_text(f.t) + ", \"position\": [" + number_text(f.X_WD.p.x()) +
            ", " + number_text(f.X_WD.p.y()) + ", " + number_text(f.X_WD.p.z()) +
-           "], \"orientation\": [" + number_text(f.X_WD.R.w()) + ", " +
-           number_text(f.X_WD.R.x()) + ", " + number_text(f.X_WD.R.y()) + ", " +
-           number_text(f.X_WD.R.z()) + "]";
+           "], \"orientation\": [" + number_text(f.X_WD.R.w()) + ", " + number_text(f.X_WD.R.x()) +
+           ", " + number_text(f.X_WD.R.y()) + ", " + number_text(f.X_WD.R.z()) + "]";
     if (f.event != ScriptEvent::none)
       out += ", \"event\": \"" + std::string(to_string(f.event)) + "\"";
     out += "}";

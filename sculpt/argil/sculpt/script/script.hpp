@@ -54,7 +54,7 @@ Result<Script> parse_script_csv(std::string_view text, const std::string& source
 /// Reads .json or .csv (by extension, case-insensitive).
 Result<Script> read_script(const std::filesystem::path& path);
 
-/// Writers: every number with 17 significant digits, so reading gives the same bits.
+/// Writers: every number in its shortest round-trip text, so reading gives the same bits.
 std::string script_to_json(const Script& script);
 std::string script_to_csv(const Script& script);
 /// Writes .json or .csv atomically.

@@ -286,5 +286,4 @@ Status JournalWriter::write_line(const std::string& body) {
   return Status::success();
 }
 
-
 }  // namespace argil::sculpt

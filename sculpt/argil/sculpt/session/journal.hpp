@@ -20,7 +20,6 @@
 
 namespace argil::sculpt {
 
-
 /// What a journal was written for: a run resumes only with the same inputs.
 struct JournalHeader {
   std::uint64_t scene_hash = 0;   // of the scene file's bytes

@@ -6,10 +6,10 @@
 #include <span>
 #include <vector>
 
+#include "argil/core/base/status.hpp"
 #include "argil/core/collision/broad_phase.hpp"
 #include "argil/core/collision/contact.hpp"
 #include "argil/core/geometry/implicit_tool.hpp"
-#include "argil/core/base/status.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
 
 namespace argil {

@@ -13,9 +13,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "argil/core/linalg/banded_cholesky.hpp"
-#include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/deform/material.hpp"
+#include "argil/core/geometry/bspline_surface.hpp"
+#include "argil/core/linalg/banded_cholesky.hpp"
 #include "argil/core/operators/surface_operators.hpp"
 
 namespace argil {

@@ -51,7 +51,7 @@ struct MaterialRange {
 inline constexpr MaterialRange kMaterialRange{};
 
 /// ok, or invalid_argument naming the first field outside its range (in
-/// declaration order), its value (17 digits) and the range. NaN is out of range.
+/// declaration order), its value and the range in the field's unit. NaN is out of range.
 Status validate(const Material& material);
 
 /// Which boundaries of a deformable surface are held at their rest position.

@@ -16,8 +16,7 @@ Status validate(const BSplineCurve& c) {
   if (!knots.ok()) return knots;
   const Eigen::Index n = c.count();
   if (c.points.rows() != n) {
-    return defect("points has ", c.points.rows(),
-                  " rows, the knots need ", n);
+    return defect("points has ", c.points.rows(), " rows, the knots need ", n);
   }
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!c.points.row(i).allFinite()) {

@@ -17,8 +17,7 @@ Status validate(const BSplineSurface& s) {
   for (Direction d : kDirections) {
     const std::string degree_field = std::string("degree_") + to_string(d);
     const std::string knots_field = std::string("knots_") + to_string(d);
-    Status v =
-        validate_knots(s.degree_in(d), s.knots_in(d), {degree_field, knots_field});
+    Status v = validate_knots(s.degree_in(d), s.knots_in(d), {degree_field, knots_field});
     if (!v.ok()) return v;
   }
   const Eigen::Index n = static_cast<Eigen::Index>(s.count(Direction::u)) * s.count(Direction::v);

@@ -23,7 +23,6 @@ struct KnotFieldNames {
 /// and every non-empty span at least kMinSpanRatio long (relative to the
 /// knots' magnitude and to the domain). Knot comparisons are exact. The
 /// result's message names the field, the index and the value.
-Status validate_knots(int degree, const Eigen::VectorXd& knots,
-                                 const KnotFieldNames& names = {});
+Status validate_knots(int degree, const Eigen::VectorXd& knots, const KnotFieldNames& names = {});
 
 }  // namespace argil

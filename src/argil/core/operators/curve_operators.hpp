@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "argil/core/linalg/banded_lu.hpp"
-#include "argil/core/geometry/bezier.hpp"
 #include "argil/core/base/status.hpp"
+#include "argil/core/geometry/bezier.hpp"
+#include "argil/core/linalg/banded_lu.hpp"
 
 namespace argil {
 

@@ -6,10 +6,10 @@
 #include <Eigen/Core>
 #include <memory>
 
+#include "argil/core/base/status.hpp"
 #include "argil/core/geometry/bezier.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/operators/curve_operators.hpp"
-#include "argil/core/base/status.hpp"
 
 namespace argil {
 

@@ -19,7 +19,7 @@ struct RunInputs {
   std::string scene_bytes, script_bytes;  // hashed into the journal header
   std::string scene_name;     // the scene file's stem, or its folder's name for scene.json
   std::filesystem::path out;  // the output folder
-  OutputOptions outputs;         // what to write
+  OutputOptions outputs;      // what to write
 };
 
 /// Reads the scene and the script and checks that they fit together: the

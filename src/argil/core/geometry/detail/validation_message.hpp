@@ -36,25 +36,23 @@ Status defect(const Parts&... parts) {
 /// kMaxWeightRatio times the smallest. The same rules for surfaces and curves.
 inline Status validate_weights(const Eigen::VectorXd& w, Eigen::Index n) {
   if (w.size() != 0 && w.size() != n) {
-    return defect("weights has ", w.size(), " values, expected 0 or ",
-                  n);
+    return defect("weights has ", w.size(), " values, expected 0 or ", n);
   }
   for (Eigen::Index r = 0; r < w.size(); ++r) {
     if (!std::isfinite(w[r])) {
       return defect("weights[", r, "] is ", w[r]);
     }
     if (!(w[r] > 0.0)) {
-      return defect("weights[", r, "] is ", w[r],
-                    ", weights must be positive");
+      return defect("weights[", r, "] is ", w[r], ", weights must be positive");
     }
     if (w[r] > kMaxWeight || w[r] < 1.0 / kMaxWeight) {
-      return defect("weights[", r, "] is ", w[r],
-                    ", outside the supported [", 1.0 / kMaxWeight, ", ", kMaxWeight, "]");
+      return defect("weights[", r, "] is ", w[r], ", outside the supported [", 1.0 / kMaxWeight,
+                    ", ", kMaxWeight, "]");
     }
   }
   if (w.size() > 0 && w.maxCoeff() > kMaxWeightRatio * w.minCoeff()) {
-    return defect("weights range from ", w.minCoeff(), " to ",
-                  w.maxCoeff(), ", a ratio above the supported ", kMaxWeightRatio);
+    return defect("weights range from ", w.minCoeff(), " to ", w.maxCoeff(),
+                  ", a ratio above the supported ", kMaxWeightRatio);
   }
   return Status::success();
 }
