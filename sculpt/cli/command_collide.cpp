@@ -201,8 +201,8 @@ void print_json(const Options& o, double eps, const CollisionResult& r) {
 
 }  // namespace
 
-const CommandSpec& collide_command() {
-  static const CommandSpec spec{
+const CommandDeclaration& collide_command() {
+  static const CommandDeclaration spec{
       .name = "collide",
       .operands = {"A", "B"},
       .summary = "intersection curves and contact regions between a face of A and one of B",

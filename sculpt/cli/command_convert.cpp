@@ -15,8 +15,8 @@ constexpr double kDefaultRelativeChordTolerance = 1e-3;
 
 }  // namespace
 
-const CommandSpec& convert_command() {
-  static const CommandSpec spec{
+const CommandDeclaration& convert_command() {
+  static const CommandDeclaration spec{
       .name = "convert",
       .operands = {"IN", "OUT"},
       .summary = "convert a model between STEP, IGES, JSON and meshes",

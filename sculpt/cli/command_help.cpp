@@ -8,8 +8,8 @@
 
 namespace argil::cli {
 
-const CommandSpec& help_command() {
-  static const CommandSpec spec{
+const CommandDeclaration& help_command() {
+  static const CommandDeclaration spec{
       .name = "help",
       .operands = {"COMMAND"},
       .last_operand_optional = true,
@@ -40,7 +40,7 @@ std::string program_usage() {
       "       argil help COMMAND, or argil COMMAND --help, for a command's options\n"
       "\ncommands:\n";
   for (const Command& c : all_commands()) {
-    const CommandSpec& spec = c.spec();
+    const CommandDeclaration& spec = c.spec();
     out += "  " + spec.name + std::string(10 - spec.name.size(), ' ') + spec.summary + "\n";
   }
   out +=

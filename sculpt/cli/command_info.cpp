@@ -18,8 +18,8 @@ void print_vector(const char* label, const Eigen::Vector3d& p) {
 
 }  // namespace
 
-const CommandSpec& info_command() {
-  static const CommandSpec spec{
+const CommandDeclaration& info_command() {
+  static const CommandDeclaration spec{
       .name = "info",
       .operands = {"FILE"},
       .summary = "faces, degrees, control nets, trims, units and bounding box of a model",

@@ -102,8 +102,8 @@ void print_report(const Options& o, const RunReport& report) {
 
 }  // namespace
 
-const CommandSpec& sculpt_command() {
-  static const CommandSpec spec{
+const CommandDeclaration& sculpt_command() {
+  static const CommandDeclaration spec{
       .name = "sculpt",
       .operands = {"SCENE"},
       .summary = "run a sculpting session: a scene's tool driven by a script",

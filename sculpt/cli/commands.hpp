@@ -1,6 +1,6 @@
 #pragma once
 // The argil program's sub-commands. Each declares its command line once (a
-// CommandSpec), takes the arguments after its name, prints results to stdout
+// CommandDeclaration), takes the arguments after its name, prints results to stdout
 // and errors to stderr, and returns the exit status.
 
 #include <string>
@@ -11,28 +11,28 @@
 namespace argil::cli {
 
 /// argil info FILE
-const CommandSpec& info_command();
+const CommandDeclaration& info_command();
 int run_info(const std::vector<std::string>& args);
 
 /// argil convert IN OUT [--tolerance T]
-const CommandSpec& convert_command();
+const CommandDeclaration& convert_command();
 int run_convert(const std::vector<std::string>& args);
 
 /// argil collide A B [--face-a I] [--face-b J] [--tolerance E] [--refine] [--json]
-const CommandSpec& collide_command();
+const CommandDeclaration& collide_command();
 int run_collide(const std::vector<std::string>& args);
 
 /// argil sculpt SCENE [--script S] [--out DIR] [--tolerance E] [--fresh] [--realtime]
-const CommandSpec& sculpt_command();
+const CommandDeclaration& sculpt_command();
 int run_sculpt(const std::vector<std::string>& args);
 
 /// argil help [COMMAND]
-const CommandSpec& help_command();
+const CommandDeclaration& help_command();
 int run_help(const std::vector<std::string>& args);
 
 /// A command the program dispatches to.
 struct Command {
-  const CommandSpec& (*spec)();
+  const CommandDeclaration& (*spec)();
   int (*run)(const std::vector<std::string>& args);
 };
 

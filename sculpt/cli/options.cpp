@@ -16,8 +16,8 @@ bool is_help(const std::string& word) { return word == "-h" || word == "--help";
 /// the usual name of stdin/stdout).
 bool looks_like_option(const std::string& word) { return word.size() > 1 && word[0] == '-'; }
 
-const OptionSpec* find_option(const CommandSpec& spec, const std::string& name) {
-  for (const OptionSpec& o : spec.options)
+const OptionDeclaration* find_option(const CommandDeclaration& spec, const std::string& name) {
+  for (const OptionDeclaration& o : spec.options)
     if (o.name == name) return &o;
   return nullptr;
 }
@@ -41,7 +41,7 @@ std::optional<long> read_long(const std::string& text) {
 
 /// What is wrong with `value` for `option` ("" when nothing), ranges and
 /// values in the option's unit.
-std::string value_problem(const OptionSpec& option, const std::string& value) {
+std::string value_problem(const OptionDeclaration& option, const std::string& value) {
   const std::string name = option.name + " " + option.argument;
   switch (option.kind) {
     case ValueKind::none:
@@ -63,7 +63,7 @@ std::string value_problem(const OptionSpec& option, const std::string& value) {
   return "";
 }
 
-std::string operand_list(const CommandSpec& spec) {
+std::string operand_list(const CommandDeclaration& spec) {
   std::string out;
   for (std::size_t k = 0; k < spec.operands.size(); ++k) {
     const bool optional = spec.last_operand_optional && k + 1 == spec.operands.size();
@@ -72,7 +72,7 @@ std::string operand_list(const CommandSpec& spec) {
   return out;
 }
 
-std::string count_problem(const CommandSpec& spec, std::size_t got) {
+std::string count_problem(const CommandDeclaration& spec, std::size_t got) {
   const std::size_t most = spec.operands.size();
   const std::size_t least = spec.last_operand_optional ? most - 1 : most;
   if (got >= least && got <= most) return "";
@@ -132,7 +132,7 @@ std::optional<long> Arguments::index(std::string_view name) const {
   return t ? read_long(*t) : std::nullopt;
 }
 
-ParseResult parse_arguments(const CommandSpec& spec, const std::vector<std::string>& args) {
+ParseResult parse_arguments(const CommandDeclaration& spec, const std::vector<std::string>& args) {
   Arguments out;
   for (std::size_t k = 0; k < args.size(); ++k) {
     const std::string& word = args[k];
@@ -144,7 +144,7 @@ ParseResult parse_arguments(const CommandSpec& spec, const std::vector<std::stri
       out.operands.push_back(word);
       continue;
     }
-    const OptionSpec* option = find_option(spec, word);
+    const OptionDeclaration* option = find_option(spec, word);
     if (option == nullptr)
       return {std::nullopt, usage_error(spec, "unknown option '" + word + "'")};
     if (option->kind == ValueKind::none) {
@@ -164,14 +164,14 @@ ParseResult parse_arguments(const CommandSpec& spec, const std::vector<std::stri
   return {std::move(out), kExitOk};
 }
 
-std::string usage_text(const CommandSpec& spec) {
+std::string usage_text(const CommandDeclaration& spec) {
   std::string out = "usage: argil " + spec.name;
   if (!spec.operands.empty()) out += " " + operand_list(spec);
   if (!spec.options.empty()) out += " [options]";
   out += "\n" + spec.summary + "\n";
   if (!spec.description.empty()) out += "\n" + spec.description + "\n";
   std::vector<std::pair<std::string, std::string>> rows;
-  for (const OptionSpec& o : spec.options) {
+  for (const OptionDeclaration& o : spec.options) {
     std::string text = o.description;
     if (o.kind == ValueKind::number)
       text += "; " + o.argument + " in " + interval_text(o.range, o.unit);
@@ -189,7 +189,7 @@ std::string usage_text(const CommandSpec& spec) {
   return out;
 }
 
-int usage_error(const CommandSpec& spec, const std::string& message) {
+int usage_error(const CommandDeclaration& spec, const std::string& message) {
   std::fprintf(stderr, "argil %s: %s\n\n%s", spec.name.c_str(), message.c_str(),
                usage_text(spec).c_str());
   return kExitUsage;

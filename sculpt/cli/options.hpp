@@ -24,10 +24,10 @@ enum class ValueKind {
   none,    // a flag
   text,    // any non-empty word (a path)
   index,   // an integer >= 0
-  number,  // a number inside OptionSpec::range, in OptionSpec::unit
+  number,  // a number inside OptionDeclaration::range, in OptionDeclaration::unit
 };
 
-struct OptionSpec {
+struct OptionDeclaration {
   std::string name{};      // "--tolerance"
   std::string argument{};  // "E"; empty for a flag
   ValueKind kind = ValueKind::none;
@@ -37,16 +37,16 @@ struct OptionSpec {
   std::string default_text{};  // "1e-4 of the faces' size"; empty when none
 };
 
-struct CommandSpec {
+struct CommandDeclaration {
   std::string name;                   // "collide"
   std::vector<std::string> operands;  // {"A", "B"}
   bool last_operand_optional = false;
   std::string summary;      // one line, for the program's usage
   std::string description;  // a few lines for the command's usage, '\n'-separated
-  std::vector<OptionSpec> options;
+  std::vector<OptionDeclaration> options;
 };
 
-/// Arguments that passed every check of their CommandSpec.
+/// Arguments that passed every check of their CommandDeclaration.
 struct Arguments {
   std::vector<std::string> operands;
   std::vector<std::pair<std::string, std::string>> values;  // (option, value); "" for flags
@@ -67,13 +67,13 @@ struct ParseResult {
 };
 
 /// Checks `args` (the words after the command's name) against `spec`.
-ParseResult parse_arguments(const CommandSpec& spec, const std::vector<std::string>& args);
+ParseResult parse_arguments(const CommandDeclaration& spec, const std::vector<std::string>& args);
 
 /// The command's usage: synopsis, description, and one line per option naming
 /// its argument, range with unit, and default.
-std::string usage_text(const CommandSpec& spec);
+std::string usage_text(const CommandDeclaration& spec);
 
 /// Prints "argil NAME: message", then the usage, to stderr; returns kExitUsage.
-int usage_error(const CommandSpec& spec, const std::string& message);
+int usage_error(const CommandDeclaration& spec, const std::string& message);
 
 }  // namespace argil::cli
