@@ -23,8 +23,9 @@ struct RandomSurfaceOptions {
 /// repeated interior knots, a wavy control net and optional random weights.
 BSplineSurface random_surface(std::mt19937_64& rng, const RandomSurfaceOptions& options = {});
 
-/// STYLE.md point 2: degree 3x2, 7x5 control points, non-uniform knots, one
-/// double interior knot in u, non-unit weights when `rational`.
+/// The asymmetric test surface (docs/conventions.md, Testing): degree 3x2, 7x5
+/// control points, non-uniform knots, one double interior knot in u, non-unit
+/// weights when `rational`.
 BSplineSurface asymmetric_surface(bool rational = true);
 
 }  // namespace argil::test

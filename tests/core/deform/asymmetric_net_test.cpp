@@ -1,4 +1,4 @@
-// Deformation on the asymmetric net of STYLE.md point 2 (degree 3 x 2, 7 x 5
+// Deformation on the asymmetric test net (docs/conventions.md; degree 3 x 2, 7 x 5
 // rational poles, non-uniform knots with a double knot in u): a u/v swap bug
 // in the load pattern, the body step, the refit or the sphere contacts shows
 // up as a mismatch against the transposed surface or as a load acting at the
@@ -84,7 +84,10 @@ constexpr int kCountV = 5;
 
 }  // namespace
 
-TEST_CASE("the asymmetric test net is what STYLE.md prescribes", "[deformation][asymmetric]") {
+TEST_CASE(
+    "the asymmetric test net has degree 3x2, 7x5 poles, non-uniform knots, a double knot, non-unit "
+    "weights",
+    "[deformation][asymmetric]") {
   const BSplineSurface s = argil::test::asymmetric_surface();
   REQUIRE(argil::validate(s).ok());
   CHECK(s.degree == std::array<int, 2>{3, 2});

@@ -1,5 +1,5 @@
 // Properties of the surface kernel, in both u and v on the asymmetric surface
-// (STYLE.md point 2) and on generated surfaces.
+// (docs/conventions.md, Testing) and on generated surfaces.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-// The haptic tick on the asymmetric net of STYLE.md point 2 (degree 3 x 2,
+// The haptic tick on the asymmetric test net (docs/conventions.md; degree 3 x 2,
 // 7 x 5 rational poles, non-uniform knots with a double knot in u): a
 // scripted press gives the same forces and proxy on the u/v-transposed
 // surface, replays bit-identically, stays finite and pushes the hand out.
