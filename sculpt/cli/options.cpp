@@ -22,12 +22,20 @@ const OptionDeclaration* find_option(const CommandDeclaration& spec, const std::
   return nullptr;
 }
 
-std::optional<double> read_double(const std::string& text) {
+/// A number as typed on the command line, and whether a double can hold it:
+/// "1e-400" reads as 0 and "1e400" as inf, so messages echo the text instead.
+struct TypedNumber {
+  double value = 0.0;
+  bool beyond_double = false;
+};
+
+std::optional<TypedNumber> read_double(const std::string& text) {
   if (text.empty()) return std::nullopt;
   char* end = nullptr;
+  errno = 0;
   const double x = std::strtod(text.c_str(), &end);
   if (*end != '\0') return std::nullopt;
-  return x;
+  return TypedNumber{x, errno == ERANGE};
 }
 
 std::optional<long> read_long(const std::string& text) {
@@ -53,11 +61,14 @@ std::string value_problem(const OptionDeclaration& option, const std::string& va
       return i && *i >= 0 ? "" : name + " must be an integer >= 0, got '" + value + "'";
     }
     case ValueKind::number: {
-      const std::optional<double> x = read_double(value);
+      const std::optional<TypedNumber> x = read_double(value);
       if (!x) return name + " needs a number, got '" + value + "'";
-      return option.range.contains(*x)
-                 ? ""
-                 : name + " " + out_of_interval_text(*x, option.range, option.unit);
+      if (option.range.contains(x->value)) return "";
+      if (!x->beyond_double)
+        return name + " " + out_of_interval_text(x->value, option.range, option.unit);
+      const std::string unit = option.unit.empty() ? "" : " " + std::string(option.unit);
+      return name + " must be in " + interval_text(option.range, option.unit) + ", got " + value +
+             unit;
     }
   }
   return "";
@@ -124,7 +135,9 @@ std::optional<std::string> Arguments::text(std::string_view name) const {
 
 std::optional<double> Arguments::number(std::string_view name) const {
   const std::optional<std::string> t = text(name);
-  return t ? read_double(*t) : std::nullopt;
+  if (!t) return std::nullopt;
+  const std::optional<TypedNumber> x = read_double(*t);
+  return x ? std::optional<double>(x->value) : std::nullopt;
 }
 
 std::optional<long> Arguments::index(std::string_view name) const {

@@ -169,3 +169,57 @@ TEST_CASE("number_text does not spell large integers out beyond their shortest d
   CHECK(number_text(1e15) == "1e+15");
   CHECK(number_text(1234.0) == "1234");
 }
+
+TEST_CASE("limit_text prints a bound that is itself allowed, in at most 3 significant digits",
+          "[number_text]") {
+  using argil::LimitSide;
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<double> exponent(-300.0, 300.0), mantissa(-10.0, 10.0);
+  for (int k = 0; k < 50000; ++k) {
+    const double x = mantissa(random) * std::pow(10.0, exponent(random));
+    const std::string lower = argil::limit_text(x, LimitSide::lower);
+    const std::string upper = argil::limit_text(x, LimitSide::upper);
+    INFO("x " << number_text(x) << " lower " << lower << " upper " << upper);
+    REQUIRE(significant_digits(lower) <= 3);
+    REQUIRE(significant_digits(upper) <= 3);
+    REQUIRE(read_back(lower) >= x);
+    REQUIRE(read_back(upper) <= x);
+    // Within one unit of the third digit: 1% of the magnitude at most.
+    const double unit = std::abs(x) * 1e-2;
+    REQUIRE(read_back(lower) - x <= unit);
+    REQUIRE(x - read_back(upper) <= unit);
+  }
+}
+
+TEST_CASE("limit_text rounds a lower bound up and an upper bound down", "[number_text]") {
+  using argil::LimitSide;
+  CHECK(argil::limit_text(1.6248076809271923e-11, LimitSide::lower) == "1.63e-11");
+  CHECK(argil::limit_text(1.6248076809271923e-11, LimitSide::upper) == "1.62e-11");
+  CHECK(argil::limit_text(0.00020050441990140765, LimitSide::lower) == "0.000201");
+  CHECK(argil::limit_text(2005.0441990140766, LimitSide::upper) == "2000");
+  CHECK(argil::limit_text(-2005.0441990140766, LimitSide::lower) == "-2000");
+  CHECK(argil::limit_text(9.9951, LimitSide::lower) == "10");
+  CHECK(argil::limit_text(0.1, LimitSide::lower) == "0.1");
+  CHECK(argil::limit_text(0.1, LimitSide::upper) == "0.1");
+  CHECK(argil::limit_text(0.0, LimitSide::lower) == "0");
+  CHECK(argil::limit_text(Limits::infinity(), LimitSide::upper) == "inf");
+  CHECK(argil::limit_text(Limits::max(), LimitSide::lower) == "1.7976931348623157e+308");
+  CHECK(argil::limit_text(Limits::max(), LimitSide::upper) == "1.79e+308");
+}
+
+TEST_CASE("approx_text rounds to the nearest 3 significant digits", "[number_text]") {
+  CHECK(argil::approx_text(16.24807680927192) == "16.2");
+  CHECK(argil::approx_text(2005.0441990140766) == "2010");
+  CHECK(argil::approx_text(-0.0012349) == "-0.00123");
+  CHECK(argil::approx_text(120.0) == "120");
+  CHECK(argil::approx_text(Limits::quiet_NaN()) == "nan");
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> exponent(-300.0, 300.0), mantissa(1.0, 10.0);
+  for (int k = 0; k < 20000; ++k) {
+    const double x = mantissa(random) * std::pow(10.0, exponent(random));
+    const std::string text = argil::approx_text(x);
+    INFO("x " << number_text(x) << " text " << text);
+    REQUIRE(significant_digits(text) <= 3);
+    REQUIRE(std::abs(read_back(text) - x) <= x * 5e-3 * (1.0 + 1e-12));
+  }
+}

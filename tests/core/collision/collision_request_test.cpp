@@ -33,9 +33,21 @@ TEST_CASE("a tolerance below the surface's bound names the bound in mm, in short
   INFO(status.message);
   CHECK_THAT(status.message,
              Catch::Contains("tolerance 1e-20 mm is below the smallest this surface allows, " +
-                             number_text(kMinRelativeTolerance * size) + " mm (1e-12 of its " +
-                             number_text(size) + " mm size)"));
+                             limit_text(kMinRelativeTolerance * size, LimitSide::lower) +
+                             " mm (1e-12 of its " + approx_text(size) + " mm size)"));
   CHECK_FALSE(has_digit_noise(status.message));
+}
+
+TEST_CASE("the printed tolerance bounds are themselves accepted", "[collision][request]") {
+  OperatorCache cache;
+  Result<SurfaceHierarchy> h = SurfaceHierarchy::build(asymmetric_surface(), cache);
+  REQUIRE(h.ok());
+  const double size = h.value().block(0).bound.box.diagonal();
+  const std::string lowest = limit_text(kMinRelativeTolerance * size, LimitSide::lower);
+  const std::string highest = limit_text(size, LimitSide::upper);
+  INFO(lowest << " " << highest);
+  CHECK(check_request({.tolerance = std::stod(lowest)}, h.value()).ok());
+  CHECK(check_request({.tolerance = std::stod(highest)}, h.value()).ok());
 }
 
 TEST_CASE("a tolerance above the surface's size names the size in mm", "[collision][request]") {
@@ -48,7 +60,7 @@ TEST_CASE("a tolerance above the surface's size names the size in mm", "[collisi
   CHECK_THAT(status.message,
              Catch::Contains("tolerance 1e+05 mm is above the largest this surface allows, its "
                              "size " +
-                             number_text(size) + " mm"));
+                             limit_text(size, LimitSide::upper) + " mm"));
 }
 
 TEST_CASE("a non-positive or NaN tolerance is rejected with its value in mm",

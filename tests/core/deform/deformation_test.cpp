@@ -96,7 +96,7 @@ TEST_CASE("validate(Material) states the range and the value in the field's unit
   m = {};
   m.damping = -0.1;
   CHECK(argil::validate(m).message == "material.damping must be in [0, " +
-                                          argil::number_text(argil::kMaterialRange.damping_max) +
+                                          argil::number_text(argil::kMaterialRange.damping.high) +
                                           "] s, got -0.1 s");
 }
 

@@ -272,3 +272,11 @@ TEST_CASE("a collision query that fails makes the tick fail and leaves the proxy
   CHECK(r.status.message.find("tolerance") != std::string::npos);
   CHECK(w.proxy().X_WT.p == before.X_WT.p);
 }
+
+TEST_CASE("world options name the rejected max_contacts value", "[haptic]") {
+  argil::WorldOptions o;
+  o.max_contacts = -2;
+  const auto w = argil::HapticWorld::create(argil::SphereToolShape{1.0}, o);
+  REQUIRE_FALSE(w.ok());
+  CHECK(w.status().message == "world.max_contacts must be at least 1, got -2");
+}

@@ -112,6 +112,23 @@ TEST_CASE("a bad trim curve's message names the face, loop, curve and knot field
   }
 }
 
+TEST_CASE("validate_face without an index gives the same message without the face prefix",
+          "[io][trim]") {
+  FaceRecord no_curves = face_with(curve_with(bad_knot_cases().front()));
+  no_curves.loops.front().curves.clear();
+  FaceRecord bad_surface = no_curves;
+  bad_surface.surface.degree = {5, 1};  // more than the knots allow
+  for (const FaceRecord& face :
+       {face_with(curve_with(bad_knot_cases().front())), no_curves, bad_surface}) {
+    const Status bare = validate_face(face);
+    const Status named = validate_face(face, 12);
+    REQUIRE_FALSE(bare.ok());
+    CHECK(bare.code == named.code);
+    CHECK(named.message == "face 12 " + bare.message);
+    CHECK_THAT(bare.message, !Catch::StartsWith("face"));
+  }
+}
+
 TEST_CASE("trim curve points and weights are checked by field and index", "[io][trim]") {
   TrimCurve line;
   line.degree = 1;

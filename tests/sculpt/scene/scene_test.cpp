@@ -111,9 +111,21 @@ TEST_CASE("bad scenes give an error naming the field", "[scene][bad-input]") {
        "haptic_rate: must be at most 1e+05 Hz, got 1e+09 Hz"},
       {edited("\"length\": \"mm\"", "\"length\": \"inch\""), "units.length: must be \"mm\""},
       {edited("\"max_force\": 8", "\"max_force\": 0"),
-       "coupling.max_force: must be > 0 N, got 0 N"},
+       "coupling.max_force: must be in (0, 10000] N, got 0 N"},
+      {edited("\"max_force\": 8", "\"max_force\": 2e4"),
+       "coupling.max_force: must be in (0, 10000] N, got 20000 N"},
+      {edited("\"stiffness\": 2", "\"stiffness\": 1e7"),
+       "coupling.stiffness: must be in (0, 1e+06] N/mm, got 1e+07 N/mm"},
+      {edited("\"damping\": 0.001", "\"damping\": -1"),
+       "coupling.damping: must be in [0, 1000] N s/mm, got -1 N s/mm"},
       {edited("\"stiffness\": 3", "\"stiffness\": -3"),
-       "models[0].material.stiffness: must be > 0 N/mm, got -3 N/mm"},
+       "models[0].material.stiffness: must be in [0, 1e+09] N/mm, got -3 N/mm"},
+      {edited("\"stiffness\": 3", "\"stiffness\": 2e9"),
+       "models[0].material.stiffness: must be in [0, 1e+09] N/mm, got 2e+09 N/mm"},
+      {edited("\"density\": 2e-6", "\"density\": 0"),
+       "models[0].material.density: must be in [1e-15, 1000] kg/mm^2, got 0 kg/mm^2"},
+      {edited("\"yield\": 0.1", "\"yield\": 0"),
+       "models[0].material.yield: must be in [1e-09, inf] mm, got 0 mm"},
       {edited("\"density\": 2e-6, ", ""), "models[0].material.density: missing field"},
       {edited("\"friction\": 0.45", "\"friction\": -0.3"),
        "models[0].material.friction: must be >= 0, got -0.3"},
@@ -163,6 +175,26 @@ TEST_CASE("bad scenes give an error naming the field", "[scene][bad-input]") {
     INFO(r.status().message);
     CHECK(r.status().message.rfind("scene.json: ", 0) == 0);
     CHECK(r.status().message.find(expected) != std::string::npos);
+  }
+}
+
+TEST_CASE("the scene reader accepts exactly the material and coupling values validate() accepts",
+          "[scene][bad-input]") {
+  // Material::stiffness 0 means no springs; the upper ends are inclusive.
+  const std::pair<std::string, std::string> edges[] = {
+      {"\"stiffness\": 3", "\"stiffness\": 0"},
+      {"\"stiffness\": 3", "\"stiffness\": 1e9"},
+      {"\"anchor_stiffness\": 0.5", "\"anchor_stiffness\": 0"},
+      {"\"damping\": 0.02", "\"damping\": 1"},
+      {"\"max_force\": 8", "\"max_force\": 1e4"},
+      {"\"damping\": 0.001", "\"damping\": 0"},
+  };
+  for (const auto& [from, to] : edges) {
+    const Result<Scene> r = parse_scene(edited(from, to), "scene.json", ".");
+    INFO(to);
+    REQUIRE(r.ok());
+    CHECK(validate(r.value().models[0].material).ok());
+    CHECK(validate(r.value().coupling).ok());
   }
 }
 

@@ -430,11 +430,8 @@ Result<FaceRecord> face_record(const TopoDS_Face& oriented_face) {
   if (!loops.ok()) return loops.status();
   record.loops = std::move(loops).value();
   if (is_natural_boundary(record.loops, record.surface)) record.loops.clear();
-  const Status valid = validate_face(record, 0);
-  if (!valid.ok()) {
-    // Drop validate_face's "face 0" prefix: the caller names the face.
-    return Status::error(valid.code, valid.message.substr(valid.message.find(' ', 5) + 1));
-  }
+  // Unprefixed: the caller names the face.
+  if (const Status valid = validate_face(record); !valid.ok()) return valid;
   return record;
 }
 

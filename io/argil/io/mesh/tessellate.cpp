@@ -297,9 +297,9 @@ Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& o
     return Status::error(StatusCode::invalid_argument,
                          "chord tolerance " + number_text(options.chord_tolerance_mm) +
                              " mm is below the smallest this model allows, " +
-                             number_text(kFinestRelativeTolerance * size) + " mm (" +
-                             number_text(kFinestRelativeTolerance) + " of its " +
-                             number_text(size) +
+                             limit_text(kFinestRelativeTolerance * size, LimitSide::lower) +
+                             " mm (" + number_text(kFinestRelativeTolerance) + " of its " +
+                             approx_text(size) +
                              " mm size): finer than float32 mesh files can store");
   }
   TriangleMesh all;

@@ -53,26 +53,29 @@ bool inside_trim(const std::vector<std::vector<Eigen::Vector2d>>& polygons,
   return inside;
 }
 
-Status validate_face(const FaceRecord& face, std::size_t face_index) {
-  const std::string where = "face " + std::to_string(face_index);
+Status validate_face(const FaceRecord& face) {
   const Status check = validate(face.surface);
-  if (!check.ok()) {
-    return Status::error(StatusCode::invalid_surface, where + " surface: " + check.message);
-  }
+  if (!check.ok()) return Status::error(StatusCode::invalid_surface, "surface: " + check.message);
   for (std::size_t l = 0; l < face.loops.size(); ++l) {
+    const std::string loop = "loop " + std::to_string(l);
     if (face.loops[l].curves.empty()) {
-      return Status::error(StatusCode::invalid_surface,
-                           where + " loop " + std::to_string(l) + " has no curves");
+      return Status::error(StatusCode::invalid_surface, loop + " has no curves");
     }
     for (std::size_t c = 0; c < face.loops[l].curves.size(); ++c) {
       const Status status = validate_trim_curve(face.loops[l].curves[c]);
       if (!status.ok()) {
-        return Status::error(status.code, where + " loop " + std::to_string(l) + " curve " +
-                                              std::to_string(c) + ": " + status.message);
+        return Status::error(status.code,
+                             loop + " curve " + std::to_string(c) + ": " + status.message);
       }
     }
   }
   return Status::success();
+}
+
+Status validate_face(const FaceRecord& face, std::size_t face_index) {
+  const Status check = validate_face(face);
+  if (check.ok()) return check;
+  return Status::error(check.code, "face " + std::to_string(face_index) + " " + check.message);
 }
 
 }  // namespace argil::io

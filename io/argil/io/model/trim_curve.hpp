@@ -31,8 +31,13 @@ std::vector<Eigen::Vector2d> loop_polygon(const TrimLoop& loop, int samples_per_
 bool inside_trim(const std::vector<std::vector<Eigen::Vector2d>>& polygons,
                  const Eigen::Vector2d& uv);
 
-/// Checks every surface and trim curve of a face; the message names the face
-/// index, the loop and curve, and the defect.
+/// Checks the surface and every trim curve of a face; the message names the
+/// loop and curve and the defect ("loop 0 curve 2: ..."), not the face, for
+/// callers that name the face themselves.
+Status validate_face(const FaceRecord& face);
+
+/// validate_face(face) with the message prefixed by the face index
+/// ("face 3 loop 0 curve 2: ...").
 Status validate_face(const FaceRecord& face, std::size_t face_index);
 
 }  // namespace argil::io

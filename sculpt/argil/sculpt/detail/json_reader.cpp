@@ -101,6 +101,12 @@ bool JsonReader::positive(const Json& value, const std::string& path, double& ou
   return true;
 }
 
+bool JsonReader::within(const Json& value, const std::string& path, double& out,
+                        const Interval& range, std::string_view unit) {
+  if (!number(value, path, out)) return false;
+  return range.contains(out) || fail(path, out_of_interval_text(out, range, unit));
+}
+
 bool JsonReader::integer(const Json& value, const std::string& path, long long& out) {
   if (!value.is_number_integer()) return fail(path, "expected an integer, got " + shown(value));
   if (value.is_number_unsigned() && value.get<unsigned long long>() > 1000000000000ULL) {

@@ -1,13 +1,14 @@
 #pragma once
 // Private to argil::sculpt (included by .cpp files only): reading nlohmann-json
 // values with errors that name the source and the field path, e.g.
-// "scene.json: models[1].material.stiffness: must be > 0, got -3".
+// "scene.json: models[1].material.stiffness: must be in [0, 1e+09] N/mm, got -3 N/mm".
 
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/core/base/status.hpp"
 
 namespace argil::sculpt::internal {
@@ -44,6 +45,10 @@ class JsonReader {
     bool allow_zero = false;
   };
   bool positive(const Json& value, const std::string& path, double& out, const Quantity& q);
+  /// A number inside `range`; a rejection states the range and the value in
+  /// `unit` (empty for pure numbers).
+  bool within(const Json& value, const std::string& path, double& out, const Interval& range,
+              std::string_view unit);
   bool integer(const Json& value, const std::string& path, long long& out);
   bool boolean(const Json& value, const std::string& path, bool& out);
   bool string(const Json& value, const std::string& path, std::string& out);

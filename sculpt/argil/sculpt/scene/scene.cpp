@@ -126,17 +126,36 @@ class SceneReader {
     return true;
   }
 
+  /// "coupling": each field against kCouplingRange, the range validate() uses.
   bool coupling(const Json& value, CouplingOptions& out) {
     if (!r_.only_known(value, "coupling", {"stiffness", "damping", "max_force"})) return false;
-    if (const Json* k = r_.member(value, "coupling", "stiffness", false)) {
-      if (!r_.positive(*k, "coupling.stiffness", out.stiffness, {.unit = "N/mm"})) return false;
-    }
-    if (const Json* c = r_.member(value, "coupling", "damping", false)) {
-      if (!r_.positive(*c, "coupling.damping", out.damping, {.unit = "N s/mm", .allow_zero = true}))
-        return false;
-    }
-    if (const Json* f = r_.member(value, "coupling", "max_force", false)) {
-      if (!r_.positive(*f, "coupling.max_force", out.max_force, {.unit = "N"})) return false;
+    const CouplingRange& range = kCouplingRange;
+    const RangedField fields[] = {{"stiffness", &out.stiffness, range.stiffness, "N/mm"},
+                                  {"damping", &out.damping, range.damping, "N s/mm"},
+                                  {"max_force", &out.max_force, range.max_force, "N"}};
+    return ranged_fields(value, "coupling", fields, false);
+  }
+
+  /// A number field of a physics struct and the range its validator uses.
+  struct RangedField {
+    const char* key;
+    double* value;
+    Interval range;
+    const char* unit;
+  };
+
+  /// Reads each of `fields` present in `object` (all of them when `required`),
+  /// each error naming its own path.
+  template <std::size_t N>
+  bool ranged_fields(const Json& object, const std::string& path, const RangedField (&fields)[N],
+                     bool required) {
+    for (const auto& [key, field, range, unit] : fields) {
+      const Json* v = r_.member(object, path, key, required);
+      if (v == nullptr) {
+        if (required) return false;
+        continue;
+      }
+      if (!r_.within(*v, JsonReader::join(path, key), *field, range, unit)) return false;
     }
     return true;
   }
@@ -242,28 +261,15 @@ class SceneReader {
             {"density", "stiffness", "damping", "anchor_stiffness", "yield", "friction"})) {
       return false;
     }
-    struct Field {
-      const char* key;
-      double* value;
-      const char* unit;
-    };
-    const Field required[] = {{"density", &out.density, "kg/mm^2"},
-                              {"stiffness", &out.stiffness, "N/mm"}};
-    for (const auto& [key, field, unit] : required) {
-      const Json* v = r_.member(value, path, key);
-      if (v == nullptr || !r_.positive(*v, JsonReader::join(path, key), *field, {.unit = unit})) {
-        return false;
-      }
-    }
-    const Field optional[] = {{"damping", &out.damping, "s"},
-                              {"anchor_stiffness", &out.anchor_stiffness, "N/mm"}};
-    for (const auto& [key, field, unit] : optional) {
-      if (const Json* v = r_.member(value, path, key, false)) {
-        if (!r_.positive(*v, JsonReader::join(path, key), *field,
-                         {.unit = unit, .allow_zero = true})) {
-          return false;
-        }
-      }
+    const MaterialRange& range = kMaterialRange;
+    const RangedField required[] = {{"density", &out.density, range.density, "kg/mm^2"},
+                                    {"stiffness", &out.stiffness, range.stiffness, "N/mm"}};
+    const RangedField optional[] = {
+        {"damping", &out.damping, range.damping, "s"},
+        {"anchor_stiffness", &out.anchor_stiffness, range.anchor_stiffness, "N/mm"}};
+    if (!ranged_fields(value, path, required, true) ||
+        !ranged_fields(value, path, optional, false)) {
+      return false;
     }
     if (const Json* friction = r_.member(value, path, "friction", false)) {
       if (!this->friction(*friction, path + ".friction", model.friction)) return false;
@@ -272,13 +278,11 @@ class SceneReader {
       // JSON has no infinity: "none" (or absence) means purely elastic.
       if (v->is_string() && v->get<std::string>() == "none") {
         out.yield = std::numeric_limits<double>::infinity();
-      } else if (!r_.positive(*v, path + ".yield", out.yield, {.unit = "mm", .allow_zero = true})) {
+      } else if (!r_.within(*v, path + ".yield", out.yield, range.yield, "mm")) {
         return false;
       }
     }
-    // The physics' own documented ranges (upper bounds, minimum yield).
-    const Status range = validate(out);
-    return range.ok() || r_.fail(path, range.message);
+    return true;
   }
 
   bool boundary(const Json& value, const std::string& path, BoundaryConditions& out) {

@@ -28,7 +28,7 @@ struct JournalHeader {
 };
 
 /// One journal entry: the samples of ticks first_tick .. first_tick + n - 1
-/// (consecutive), then, if `command` is undo or redo, that session command.
+/// (consecutive), then, if `kind` is undo or redo, that session command.
 struct JournalRecord {
   enum class Kind { stroke, undo, redo };
   Kind kind = Kind::stroke;

@@ -3,6 +3,8 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <optional>
 
 namespace argil {
@@ -21,6 +23,31 @@ std::string to_text(double x, std::optional<std::chars_format> format) {
   return std::string(buffer.data(), r.ptr);
 }
 
+/// x as m * 10^k with |m| in [100, 999]: the 3-digit decimal nearest to x.
+struct ThreeDigits {
+  long long m = 0;
+  int k = 0;
+
+  double value() const {
+    const std::string text = std::to_string(m) + "e" + std::to_string(k);
+    return std::strtod(text.c_str(), nullptr);
+  }
+};
+
+ThreeDigits nearest_three_digits(double x) {
+  // %.2e rounds correctly to 3 significant digits: "1.62e-11".
+  std::array<char, 40> text{};
+  std::snprintf(text.data(), text.size(), "%.2e", x);
+  const std::string s(text.data());
+  const std::size_t e = s.find('e');
+  std::string digits;
+  for (std::size_t i = 0; i < e; ++i)
+    if (s[i] == '-' || (s[i] >= '0' && s[i] <= '9')) digits += s[i];
+  return {std::stoll(digits), std::stoi(s.substr(e + 1)) - 2};
+}
+
+bool is_special(double x) { return x == 0.0 || !std::isfinite(x); }
+
 }  // namespace
 
 std::string number_text(double x) {
@@ -37,6 +64,24 @@ std::string number_text(double x) {
   const std::size_t digits = mantissa_end - sign - (scientific.find('.') < mantissa_end ? 1 : 0);
   const bool padded_with_zeros = plain.find_first_not_of('0', sign + digits) == std::string::npos;
   return padded_with_zeros ? plain : scientific;
+}
+
+std::string limit_text(double bound, LimitSide side) {
+  if (is_special(bound)) return number_text(bound);
+  ThreeDigits t = nearest_three_digits(bound);
+  // One step of the last digit moves the decimal past the bound when the
+  // nearest one fell on the forbidden side; |m| stays within 3 digits or
+  // becomes 1000 / 99, both at most 3 significant digits.
+  if (side == LimitSide::lower && t.value() < bound) ++t.m;
+  if (side == LimitSide::upper && t.value() > bound) --t.m;
+  const double printed = t.value();
+  return std::isfinite(printed) ? number_text(printed) : number_text(bound);
+}
+
+std::string approx_text(double x) {
+  if (is_special(x)) return number_text(x);
+  const double printed = nearest_three_digits(x).value();
+  return std::isfinite(printed) ? number_text(printed) : number_text(x);
 }
 
 bool Interval::contains(double x) const {

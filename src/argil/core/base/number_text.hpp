@@ -15,6 +15,21 @@ namespace argil {
 /// NaN prints as "nan", infinities as "inf" and "-inf".
 std::string number_text(double x);
 
+/// Which side of a limit the allowed values lie on: a lower bound allows
+/// values at or above it, an upper bound values at or below it.
+enum class LimitSide { lower, upper };
+
+/// A derived limit (a bound computed from a model's size, say) in 3
+/// significant digits, rounded towards the allowed side so that the printed
+/// text, read back, is itself allowed: a lower bound rounds up ("1.63e-11" for
+/// 1.6248e-11), an upper bound rounds down. Zero, infinities and NaN print as
+/// number_text; a bound whose rounding would overflow also prints exactly.
+std::string limit_text(double bound, LimitSide side);
+
+/// A derived quantity (a model's size) in 3 significant digits, rounded to
+/// nearest: "16.2" for 16.248. For reading, not for pasting back.
+std::string approx_text(double x);
+
 /// "(x, y, z)" for any vector with size() and operator[] (Eigen vectors,
 /// std::array), each coordinate as number_text.
 template <class Vector>

@@ -12,8 +12,15 @@ Status out_of_range(const std::string& what) {
   return Status::error(StatusCode::invalid_argument, "collision request: " + what);
 }
 
-/// "1e-20 mm": a length as the caller gave it, in mm.
+/// "1e-20 mm": a length as the caller gave it, in mm, exactly.
 std::string mm(double x) { return number_text(x) + " mm"; }
+
+/// "1.63e-11 mm": a bound derived from the surface, rounded so that the
+/// printed value is itself allowed.
+std::string limit_mm(double x, LimitSide side) { return limit_text(x, side) + " mm"; }
+
+/// "16.2 mm": a size for reading, 3 significant digits.
+std::string approx_mm(double x) { return approx_text(x) + " mm"; }
 
 }  // namespace
 
@@ -37,19 +44,21 @@ Status check_request(const CollisionRequest& request, const SurfaceHierarchy& su
   const double magnitude = box.min.cwiseAbs().cwiseMax(box.max.cwiseAbs()).maxCoeff();
   if (eps > size) {
     return out_of_range("tolerance " + mm(eps) +
-                        " is above the largest this surface allows, its size " + mm(size));
+                        " is above the largest this surface allows, its size " +
+                        limit_mm(size, LimitSide::upper));
   }
   if (eps < kMinRelativeTolerance * size) {
     return out_of_range("tolerance " + mm(eps) + " is below the smallest this surface allows, " +
-                        mm(kMinRelativeTolerance * size) + " (" +
-                        number_text(kMinRelativeTolerance) + " of its " + mm(size) + " size)");
+                        limit_mm(kMinRelativeTolerance * size, LimitSide::lower) + " (" +
+                        number_text(kMinRelativeTolerance) + " of its " + approx_mm(size) +
+                        " size)");
   }
   if (eps < kMinRelativeTolerance * magnitude) {
     return out_of_range(
         "tolerance " + mm(eps) + " is below the smallest this surface's position allows, " +
-        mm(kMinRelativeTolerance * magnitude) + " (" + number_text(kMinRelativeTolerance) +
-        " of its coordinates' magnitude " + mm(magnitude) +
-        ", which rounding alone exceeds; move the model nearer the origin)");
+        limit_mm(kMinRelativeTolerance * magnitude, LimitSide::lower) + " (" +
+        number_text(kMinRelativeTolerance) + " of its coordinates' magnitude " +
+        approx_mm(magnitude) + ", which rounding alone exceeds; move the model nearer the origin)");
   }
   return Status::success();
 }

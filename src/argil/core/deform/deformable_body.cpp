@@ -26,12 +26,15 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   const MaterialRange& r = kMaterialRange;
   for (Eigen::Index i = 0; i < body.masses_.size(); ++i) {
     const double m = body.masses_[i];
-    if (!(m >= r.node_mass_min && m <= r.node_mass_max)) {
+    if (!r.node_mass.contains(m)) {
+      // The derived mass rounds away from the range, so the printed value
+      // still lies outside it.
+      const LimitSide away = m > r.node_mass.high ? LimitSide::lower : LimitSide::upper;
       return Status::error(StatusCode::invalid_argument,
                            "material.density " + number_text(material.density) +
                                " kg/mm^2 gives node " + std::to_string(i) + " a mass of " +
-                               number_text(m) + " kg; node masses " +
-                               out_of_interval_text(m, {r.node_mass_min, r.node_mass_max}, "kg"));
+                               limit_text(m, away) + " kg; node masses must be in " +
+                               interval_text(r.node_mass, "kg"));
     }
   }
   body.rest_ = evaluate_nodes(surface, body.operators());

@@ -7,6 +7,7 @@
 
 #include <limits>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/core/base/status.hpp"
 
 namespace argil {
@@ -36,17 +37,19 @@ struct Material {
   // pair (HapticWorld::add_deformable, contact_response.hpp).
 };
 
-/// Documented closed range of each Material field (yield: (min, +inf]).
+/// Documented range of each Material field, in the field's unit. validate()
+/// and the scene reader both check against these, so they agree.
 struct MaterialRange {
-  double density_min = 1e-15, density_max = 1e3;  // [kg/mm^2]
-  double stiffness_max = 1e9;                     // [N/mm]
-  double damping_max = 1.0;                       // [s]
-  double anchor_stiffness_max = 1e9;              // [N/mm]
-  double yield_min = 1e-9;                        // [mm]
+  Interval density{1e-15, 1e3};         // [kg/mm^2]
+  Interval stiffness{0.0, 1e9};         // [N/mm], 0 = no springs
+  Interval damping{0.0, 1.0};           // [s]
+  Interval anchor_stiffness{0.0, 1e9};  // [N/mm], 0 = no anchors
+  /// [mm]; the closed upper end is +infinity, purely elastic.
+  Interval yield{1e-9, std::numeric_limits<double>::infinity()};
   /// Node masses a body accepts [kg] (density times node area): outside it the
   /// implicit system's conditioning (mass against dt^2 stiffness) is not
   /// guaranteed; DeformableBody::create reports it.
-  double node_mass_min = 1e-6, node_mass_max = 1e3;
+  Interval node_mass{1e-6, 1e3};
 };
 inline constexpr MaterialRange kMaterialRange{};
 

@@ -20,7 +20,9 @@ Status check_options(const WorldOptions& options) {
         "world.tolerance " + number_text(options.tolerance) + " mm must be positive and finite");
   }
   if (options.max_contacts < 1)
-    return Status::error(StatusCode::invalid_argument, "world.max_contacts must be at least 1");
+    return Status::error(
+        StatusCode::invalid_argument,
+        "world.max_contacts must be at least 1, got " + std::to_string(options.max_contacts));
   return Status::success();
 }
 

@@ -8,11 +8,6 @@ namespace argil {
 
 namespace {
 
-// Bounds of the coupling parameters; the force clamp caps what a device feels.
-constexpr Interval kStiffnessRange{0.0, 1e6, IntervalEnds::open_low};  // [N/mm]
-constexpr Interval kDampingRange{0.0, 1e3};                            // [N s/mm]
-constexpr Interval kMaxForceRange{0.0, 1e4, IntervalEnds::open_low};   // [N]
-
 Status coupling_error(const char* field, double value, const Interval& range, const char* unit) {
   return Status::error(StatusCode::invalid_argument, std::string("coupling.") + field + " " +
                                                          out_of_interval_text(value, range, unit));
@@ -21,12 +16,13 @@ Status coupling_error(const char* field, double value, const Interval& range, co
 }  // namespace
 
 Status validate(const CouplingOptions& c) {
-  if (!kStiffnessRange.contains(c.stiffness))
-    return coupling_error("stiffness", c.stiffness, kStiffnessRange, "N/mm");
-  if (!kDampingRange.contains(c.damping))
-    return coupling_error("damping", c.damping, kDampingRange, "N s/mm");
-  if (!kMaxForceRange.contains(c.max_force))
-    return coupling_error("max_force", c.max_force, kMaxForceRange, "N");
+  const CouplingRange& r = kCouplingRange;
+  if (!r.stiffness.contains(c.stiffness))
+    return coupling_error("stiffness", c.stiffness, r.stiffness, "N/mm");
+  if (!r.damping.contains(c.damping))
+    return coupling_error("damping", c.damping, r.damping, "N s/mm");
+  if (!r.max_force.contains(c.max_force))
+    return coupling_error("max_force", c.max_force, r.max_force, "N");
   return Status::success();
 }
 

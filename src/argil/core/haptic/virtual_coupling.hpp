@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/core/base/status.hpp"
 
 namespace argil {
@@ -16,6 +17,16 @@ struct CouplingOptions {
   double damping = 0.002;   // b [N s/mm], [0, 1e3]
   double max_force = 10.0;  // the device's maximum force [N], (0, 1e4]
 };
+
+/// Documented range of each CouplingOptions field, in the field's unit.
+/// validate() and the scene reader both check against these, so they agree.
+struct CouplingRange {
+  Interval stiffness{0.0, 1e6, IntervalEnds::open_low};  // [N/mm]
+  Interval damping{0.0, 1e3};                            // [N s/mm]
+  /// [N]; the force clamp caps what a device feels.
+  Interval max_force{0.0, 1e4, IntervalEnds::open_low};
+};
+inline constexpr CouplingRange kCouplingRange{};
 
 /// ok, or invalid_argument naming the field outside its range.
 Status validate(const CouplingOptions& coupling);

@@ -25,7 +25,7 @@ Status check_script_fits(const RunInputs& in) {
         StatusCode::invalid_argument,
         in.script_path.string() + ": keyframes[" + std::to_string(in.script.keyframes.size() - 1) +
             "].t: the script lasts " + number_text(in.script.keyframes.back().t) + " s, " +
-            number_text(ticks) + " ticks at " + number_text(in.scene.haptic_rate) +
+            limit_text(ticks, LimitSide::lower) + " ticks at " + number_text(in.scene.haptic_rate) +
             " Hz (at most " + number_text(kMaxTicks) + " ticks)");
   }
   return Status::success();
