@@ -33,13 +33,10 @@
 // collision
 #include "argil/core/collision/broad_phase.hpp"            // IWYU pragma: export
 #include "argil/core/collision/contact.hpp"                // IWYU pragma: export
-#include "argil/core/collision/contact_regions.hpp"        // IWYU pragma: export
 #include "argil/core/collision/implicit_contact.hpp"       // IWYU pragma: export
-#include "argil/core/collision/patch_minimize.hpp"         // IWYU pragma: export
 #include "argil/core/collision/scene_collision.hpp"        // IWYU pragma: export
 #include "argil/core/collision/surface_contact.hpp"        // IWYU pragma: export
 #include "argil/core/collision/surface_intersection.hpp"   // IWYU pragma: export
-#include "argil/core/collision/surface_pair_refine.hpp"    // IWYU pragma: export
 #include "argil/core/collision/surface_penetration.hpp"    // IWYU pragma: export
 #include "argil/core/collision/triangle_intersection.hpp"  // IWYU pragma: export
 // deform

@@ -343,15 +343,15 @@ TEST_CASE("the elastic forces are minus the gradient of the elastic energy (fini
   ControlNet u(kCountU * kCountV, 3);
   for (Eigen::Index i = 0; i < u.rows(); ++i) u.row(i) << normal(rng), normal(rng), normal(rng);
   const std::vector<char> free(static_cast<std::size_t>(u.rows()), 0);
-  const ControlNet f = argil::elastic_forces(springs, k, k_anchor, u, free);
+  const ControlNet f = argil::elastic_forces(springs, {k, k_anchor}, u, free);
   const double h = 1e-4;  // [mm]; the energy is quadratic, so central differences are exact
   for (Eigen::Index i = 0; i < u.rows(); ++i)
     for (int c = 0; c < 3; ++c) {
       ControlNet up = u, down = u;
       up(i, c) += h;
       down(i, c) -= h;
-      const double slope = (argil::elastic_energy(springs, k, k_anchor, up) -
-                            argil::elastic_energy(springs, k, k_anchor, down)) /
+      const double slope = (argil::elastic_energy(springs, {k, k_anchor}, up) -
+                            argil::elastic_energy(springs, {k, k_anchor}, down)) /
                            (2 * h);
       CAPTURE(i, c);
       CHECK(-slope == Approx(f(i, c)).margin(1e-8));  // energy ~ 1e2 mJ, rounding / h

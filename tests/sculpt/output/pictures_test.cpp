@@ -140,7 +140,8 @@ TEST_CASE("the force plot draws axes and curves", "[pictures]") {
     t.push_back(k * 1e-3);
     f.emplace_back(0.5 * std::sin(k * 0.01), 0.0, 3.0 * std::min(1.0, k * 0.002));
   }
-  const Image plot = decode(plot_force_png(t, f, "test", 640, 360).value());
+  const Image plot =
+      decode(plot_force_png(t, f, {.title = "test", .width = 640, .height = 360}).value());
   CHECK(plot.width == 640);
   long dark = 0;
   for (const std::uint32_t p : plot.pixels) {
@@ -148,7 +149,7 @@ TEST_CASE("the force plot draws axes and curves", "[pictures]") {
     dark += r + g + b < 150;
   }
   CHECK(dark > 1000);  // axes, labels and the |f| curve are dark
-  CHECK_FALSE(plot_force_png({0.0}, {}, "mismatch").ok());
+  CHECK_FALSE(plot_force_png({0.0}, {}, {.title = "mismatch"}).ok());
 }
 
 TEST_CASE("axis ticks are round numbers covering the range", "[pictures]") {

@@ -54,10 +54,9 @@ std::string quote_non_finite_literals(std::string_view text) {
   return out;
 }
 
-bool is_non_finite_marker(std::string_view text, std::string& literal) {
-  if (text.substr(0, kNonFiniteMarker.size()) != kNonFiniteMarker) return false;
-  literal = std::string(text.substr(kNonFiniteMarker.size()));
-  return true;
+std::optional<std::string> non_finite_marker_literal(std::string_view text) {
+  if (text.substr(0, kNonFiniteMarker.size()) != kNonFiniteMarker) return std::nullopt;
+  return std::string(text.substr(kNonFiniteMarker.size()));
 }
 
 }  // namespace argil::io

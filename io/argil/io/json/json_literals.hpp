@@ -4,6 +4,7 @@
 // parser with a byte offset only. Quoting them as marked strings lets a reader
 // report them with their field path instead.
 
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -16,7 +17,7 @@ inline constexpr std::string_view kNonFiniteMarker = "argil:non-finite:";
 /// "argil:non-finite:<literal>"; everything else is copied unchanged.
 std::string quote_non_finite_literals(std::string_view text);
 
-/// True when `text` (a string value) is such a marker; `literal` gets the original.
-bool is_non_finite_marker(std::string_view text, std::string& literal);
+/// The original literal when `text` (a string value) is such a marker; nullopt otherwise.
+std::optional<std::string> non_finite_marker_literal(std::string_view text);
 
 }  // namespace argil::io

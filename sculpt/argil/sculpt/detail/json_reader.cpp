@@ -13,9 +13,9 @@ namespace {
 // A value for an error message: its JSON text, cut short when long.
 std::string shown(const Json& value) {
   std::string text = value.dump(-1, ' ', false, Json::error_handler_t::replace);
-  std::string literal;
-  if (value.is_string() && io::is_non_finite_marker(value.get_ref<const std::string&>(), literal)) {
-    return literal;
+  if (value.is_string()) {
+    if (auto literal = io::non_finite_marker_literal(value.get_ref<const std::string&>()))
+      return *literal;
   }
   if (text.size() > 40) text = text.substr(0, 37) + "...";
   return text;
@@ -78,9 +78,8 @@ bool JsonReader::only_known(const Json& object, const std::string& path,
 
 bool JsonReader::number(const Json& value, const std::string& path, double& out) {
   if (value.is_string()) {
-    std::string literal;
-    if (io::is_non_finite_marker(value.get_ref<const std::string&>(), literal)) {
-      return fail(path, literal + " is not allowed (finite numbers only)");
+    if (auto literal = io::non_finite_marker_literal(value.get_ref<const std::string&>())) {
+      return fail(path, *literal + " is not allowed (finite numbers only)");
     }
   }
   if (value.is_null()) return fail(path, "null where a number belongs (a NaN or infinity?)");

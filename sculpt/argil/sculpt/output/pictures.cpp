@@ -381,7 +381,10 @@ void draw_force_curves(cairo_t* cr, const PlotFrame& frame, const std::vector<do
 
 Result<std::string> plot_force_png(const std::vector<double>& times,
                                    const std::vector<Eigen::Vector3d>& forces,
-                                   const std::string& title, int width, int height) {
+                                   const ForcePlotOptions& options) {
+  const std::string& title = options.title;
+  const int width = options.width;
+  const int height = options.height;
   if (times.size() != forces.size()) {
     return Status::error(StatusCode::invalid_argument,
                          "force plot: times and forces differ in length");

@@ -61,9 +61,14 @@ Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolP
 /// Force on the device over time: |f| and the x, y, z components [N] against
 /// time [s], with axes, ticks, labels and a legend, as PNG bytes.
 /// `times` and `forces` have the same length.
+struct ForcePlotOptions {
+  std::string title;
+  int width = 960;  // [px]
+  int height = 540;
+};
 Result<std::string> plot_force_png(const std::vector<double>& times,
                                    const std::vector<Eigen::Vector3d>& forces,
-                                   const std::string& title, int width = 960, int height = 540);
+                                   const ForcePlotOptions& options = {});
 
 /// Axis ticks for [lo, hi]: round numbers 1, 2 or 5 times a power of ten, about
 /// `target` of them, covering the range.

@@ -69,10 +69,12 @@ SurfacePictureOptions after_options_for(const io::Model& before, const io::Trian
 
 }  // namespace
 
-Status write_session_pictures(const io::Model& before, const io::Model& after, const ToolPath& path,
-                              const std::vector<double>& times,
-                              const std::vector<Eigen::Vector3d>& forces, const std::string& title,
+Status write_session_pictures(const SessionPicturesRequest& request,
                               const std::filesystem::path& folder) {
+  const io::Model& before = request.before;
+  const io::Model& after = request.after;
+  const ToolPath& path = request.path;
+  const std::string& title = request.title;
   const Box3 models = merge(io::model_box(before), io::model_box(after));
   io::TessellationOptions options;
   options.chord_tolerance_mm = std::max(models.diagonal() * kPictureChordRelative, 1e-9);
@@ -91,7 +93,8 @@ Status write_session_pictures(const io::Model& before, const io::Model& after, c
       {kBeforePicture, render_surface_png(before_mesh.value(), path, camera, before_options)},
       {kAfterPicture, render_surface_png(after_mesh.value(), path, camera,
                                          after_options_for(before, after_mesh.value(), title))},
-      {kForcePicture, plot_force_png(times, forces, title + ": force on the device")},
+      {kForcePicture,
+       plot_force_png(request.times, request.forces, {.title = title + ": force on the device"})},
   };
   for (const auto& picture : pictures) {
     if (!picture.png.ok()) return picture.png.status();

@@ -61,7 +61,7 @@ enum class JournalFault {
 const char* to_string(JournalFault fault);
 
 /// A journal as read back, or why it could not be.
-struct JournalRead {
+struct [[nodiscard]] JournalRead {
   JournalFault fault = JournalFault::none;
   Status status;             // the error naming the file and line; ok iff fault is none
   JournalContents contents;  // meaningful iff ok()

@@ -52,7 +52,7 @@ struct Contact {
   int region = -1;  // connected contact region id
 };
 
-struct CollisionResult {
+struct [[nodiscard]] CollisionResult {
   /// Not ok (and nothing computed) when the request is outside the documented
   /// range for the surfaces queried: see check_request().
   Status status;

@@ -9,8 +9,8 @@
 #include <set>
 #include <tuple>
 
-#include "argil/core/collision/contact_regions.hpp"
-#include "argil/core/collision/patch_minimize.hpp"
+#include "argil/core/collision/detail/contact_regions.hpp"
+#include "argil/core/collision/detail/patch_minimize.hpp"
 #include "argil/core/collision/surface_contact.hpp"
 #include "argil/core/geometry/triangle_distance.hpp"
 
@@ -338,7 +338,9 @@ CollisionResult collide(const SurfaceHierarchy& h, const ImplicitTool& tool,
   if (!result.status.ok()) return result;
   ToolDescent descent(h, tool, request.tolerance, result.counters);
   std::vector<LeafContact> leaves = descent.run();
-  group_regions(leaves, request.max_contacts, result);
+  ContactRegions regions = group_regions(leaves, request.max_contacts);
+  result.contacts = std::move(regions.contacts);
+  result.region_count = regions.region_count;
   if (request.refine) refine_region_heads(h, descent.function(), leaves, result);
   result.contacts = unique_by_uv(result.contacts);
   return result;

@@ -20,7 +20,7 @@ CollisionResult collide(const SurfaceHierarchy& surface, const ImplicitTool& too
                         const CollisionRequest& request = {});
 
 /// Closest point on the surface to p_W (the point tool / proxy).
-struct ClosestPoint {
+struct [[nodiscard]] ClosestPoint {
   /// Not ok when the request is outside the documented range (check_request());
   /// then nothing was searched and the distances are NaN.
   Status status;

@@ -17,7 +17,7 @@ namespace argil {
 /// One body: a surface (through its hierarchy) or an implicit tool, never
 /// both. The scene does not own them.
 struct SceneBody {
-  SurfaceHierarchy* surface = nullptr;
+  const SurfaceHierarchy* surface = nullptr;
   const ImplicitTool* tool = nullptr;
   /// Fixed bodies do not move relative to each other, so fixed-fixed pairs
   /// are never tested (their contacts cannot change).

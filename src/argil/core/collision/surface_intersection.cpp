@@ -10,8 +10,9 @@
 #include <tuple>
 #include <vector>
 
-#include "argil/core/collision/contact_regions.hpp"
+#include "argil/core/collision/detail/contact_regions.hpp"
 #include "argil/core/collision/detail/segment_chains.hpp"
+#include "argil/core/collision/detail/surface_pair_refine.hpp"
 #include "argil/core/collision/surface_contact.hpp"
 #include "argil/core/collision/surface_penetration.hpp"
 #include "argil/core/collision/triangle_intersection.hpp"
@@ -507,12 +508,13 @@ CollisionResult collide(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
   leaves.reserve(descent.pending.size());
   for (const PendingContact& p : descent.pending)
     leaves.push_back(finish_contact(pair, p, request.refine));
-  if (!request.compute_depth || request.first_crossing_only) {
-    group_regions(leaves, request.max_contacts, result);
-    return result;
-  }
   // Penetration needs each region's full extent, so trim only after adding it.
-  group_regions(leaves, std::numeric_limits<int>::max(), result);
+  const bool penetration = request.compute_depth && !request.first_crossing_only;
+  ContactRegions regions =
+      group_regions(leaves, penetration ? std::numeric_limits<int>::max() : request.max_contacts);
+  result.contacts = std::move(regions.contacts);
+  result.region_count = regions.region_count;
+  if (!penetration) return result;
   add_penetration_contacts(pair.a, pair.b, result.contacts);
   rank_regions(result.contacts, result.region_count, request.max_contacts);
   return result;

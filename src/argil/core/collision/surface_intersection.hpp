@@ -7,7 +7,6 @@
 #include <Eigen/Core>
 
 #include "argil/core/collision/contact.hpp"
-#include "argil/core/collision/surface_pair_refine.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "argil/core/collision/patch_minimize.hpp"
+#include "argil/core/collision/detail/patch_minimize.hpp"
 #include "argil/core/geometry/evaluate.hpp"
 
 namespace argil {

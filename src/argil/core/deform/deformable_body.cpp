@@ -51,14 +51,17 @@ double DeformableBody::kinetic_energy() const {
 }
 
 double DeformableBody::potential_energy() const {
-  return elastic_energy(springs_, material_.stiffness, material_.anchor_stiffness, nodes_ - rest_);
+  return elastic_energy(springs_, {material_.stiffness, material_.anchor_stiffness},
+                        nodes_ - rest_);
 }
 
 Status DeformableBody::factorize(double dt) {
   if (solver_ && solver_dt_ == dt) return Status::success();
   const SurfaceOperators& ops = operators();
-  Result<BandedCholesky> f = BandedCholesky::factorize(implicit_step_matrix(
-      ops.u->count(), ops.v->count(), springs_, masses_, material_, fixed_, dt));
+  const ImplicitStepRequest request{
+      .count_u = ops.u->count(), .count_v = ops.v->count(), .material = material_, .dt = dt};
+  Result<BandedCholesky> f =
+      BandedCholesky::factorize(implicit_step_matrix(springs_, masses_, fixed_, request));
   if (!f.ok()) return f.status();
   solver_ = std::move(f).value();
   solver_dt_ = dt;
@@ -84,7 +87,7 @@ Result<LoadPreview> DeformableBody::begin_step(double dt, const ControlNet& node
   assert(pattern.size() == 0 || pattern.size() == n);
   has_pattern_ = pattern.size() > 0;
   step_dt_ = dt;
-  ControlNet force = elastic_forces(springs_, material_.stiffness, material_.anchor_stiffness,
+  ControlNet force = elastic_forces(springs_, {material_.stiffness, material_.anchor_stiffness},
                                     nodes_ - rest_, fixed_);
   if (node_forces.rows() > 0) force += node_forces;
   work_.resize(n, has_pattern_ ? 4 : 3);

@@ -4,6 +4,7 @@
 // rate, plasticity, and the exact fit back to control points every step.
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -47,8 +48,8 @@ class DeformableBody {
   /// Current surface (control points fitted to the nodes; weights unchanged).
   const BSplineSurface& surface() const { return hierarchy_.surface(); }
   const SurfaceHierarchy& hierarchy() const { return hierarchy_; }
-  /// For queries, which refine the hierarchy's lazy bounds.
-  SurfaceHierarchy& hierarchy() { return hierarchy_; }
+  /// Largest node count of the lazy hierarchy (SurfaceHierarchy::set_node_budget).
+  void set_node_budget(std::size_t nodes) { hierarchy_.set_node_budget(nodes); }
   const SurfaceOperators& operators() const { return hierarchy_.operators(); }
   const Material& material() const { return material_; }
   /// Node positions [mm], row i * n_v + j at (greville_u[i], greville_v[j]).

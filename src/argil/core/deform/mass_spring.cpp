@@ -76,8 +76,10 @@ std::vector<char> fixed_nodes(int nu, int nv, const BoundaryConditions& c) {
   return fixed;
 }
 
-ControlNet elastic_forces(const std::vector<Spring>& springs, double k, double k_anchor,
+ControlNet elastic_forces(const std::vector<Spring>& springs, const SpringConstants& constants,
                           const ControlNet& u, const std::vector<char>& fixed) {
+  const double k = constants.stiffness;
+  const double k_anchor = constants.anchor_stiffness;
   ControlNet f = -k_anchor * u;
   if (k != 0.0) {
     for (const Spring& s : springs) {
@@ -91,16 +93,23 @@ ControlNet elastic_forces(const std::vector<Spring>& springs, double k, double k
   return f;
 }
 
-double elastic_energy(const std::vector<Spring>& springs, double k, double k_anchor,
+double elastic_energy(const std::vector<Spring>& springs, const SpringConstants& constants,
                       const ControlNet& u) {
+  const double k = constants.stiffness;
+  const double k_anchor = constants.anchor_stiffness;
   double energy = 0.5 * k_anchor * u.squaredNorm();
   for (const Spring& s : springs) energy += 0.5 * k * (u.row(s.b) - u.row(s.a)).squaredNorm();
   return energy;
 }
 
-SymmetricBandMatrix implicit_step_matrix(int nu, int nv, const std::vector<Spring>& springs,
-                                         const Eigen::VectorXd& masses, const Material& m,
-                                         const std::vector<char>& fixed, double dt) {
+SymmetricBandMatrix implicit_step_matrix(const std::vector<Spring>& springs,
+                                         const Eigen::VectorXd& masses,
+                                         const std::vector<char>& fixed,
+                                         const ImplicitStepRequest& request) {
+  const int nu = request.count_u;
+  const int nv = request.count_v;
+  const Material& m = request.material;
+  const double dt = request.dt;
   const int n = nu * nv;
   SymmetricBandMatrix a(n, grid_bandwidth(nu, nv));
   const double scale = dt * m.damping + dt * dt;  // multiplies K (stiffness and dashpots)

@@ -48,21 +48,35 @@ Eigen::VectorXd node_masses(const BSplineSurface& surface, const SurfaceOperator
 /// Which nodes the boundary conditions hold (one flag per node).
 std::vector<char> fixed_nodes(int count_u, int count_v, const BoundaryConditions& conditions);
 
+/// The two constants of K = k Lap + k_a I [N/mm].
+struct SpringConstants {
+  double stiffness = 1.0;         // k, of every spring between nodes
+  double anchor_stiffness = 1.0;  // k_a, of every node's anchor to its rest position
+};
+
 /// Internal plus anchor force on every node [N] for displacements u (n x 3 [mm]):
 /// f = -(k Lap + k_a I) u. Fixed nodes get 0.
-ControlNet elastic_forces(const std::vector<Spring>& springs, double stiffness,
-                          double anchor_stiffness, const ControlNet& displacement,
-                          const std::vector<char>& fixed);
+ControlNet elastic_forces(const std::vector<Spring>& springs, const SpringConstants& constants,
+                          const ControlNet& displacement, const std::vector<char>& fixed);
 
 /// Elastic energy 0.5 u^T K u [N mm = mJ].
-double elastic_energy(const std::vector<Spring>& springs, double stiffness, double anchor_stiffness,
+double elastic_energy(const std::vector<Spring>& springs, const SpringConstants& constants,
                       const ControlNet& displacement);
 
+/// What implicit_step_matrix() assembles besides the springs, masses and fixed nodes.
+struct ImplicitStepRequest {
+  int count_u = 0;  // node grid n_u x n_v (springs index rows i * n_v + j)
+  int count_v = 0;
+  Material material;  // stiffness, anchor stiffness and damping beta
+  double dt = 0.0;    // time step h [s]
+};
+
 /// The implicit-Euler matrix M' + (h beta + h^2) K, M' = kMassToNewtonSecond2PerMm M,
-/// in band form (lower half). Rows and columns of fixed nodes are the identity.
-SymmetricBandMatrix implicit_step_matrix(int count_u, int count_v,
-                                         const std::vector<Spring>& springs,
-                                         const Eigen::VectorXd& masses, const Material& material,
-                                         const std::vector<char>& fixed, double dt);
+/// in band form (lower half), for node masses [kg] and one fixed flag per node.
+/// Rows and columns of fixed nodes are the identity.
+SymmetricBandMatrix implicit_step_matrix(const std::vector<Spring>& springs,
+                                         const Eigen::VectorXd& masses,
+                                         const std::vector<char>& fixed,
+                                         const ImplicitStepRequest& request);
 
 }  // namespace argil

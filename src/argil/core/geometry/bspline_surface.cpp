@@ -69,7 +69,8 @@ Eigen::MatrixX4d homogeneous_control_points(const BSplineSurface& s) {
   return pw;
 }
 
-void set_homogeneous_control_points(BSplineSurface& s, const Eigen::MatrixX4d& pw, bool rational) {
+BSplineSurface with_homogeneous_control_points(BSplineSurface s, const Eigen::MatrixX4d& pw,
+                                               bool rational) {
   if (rational) {
     s.weights = pw.col(3);
     s.control_points = pw.leftCols<3>().array().colwise() / pw.col(3).array();
@@ -77,6 +78,7 @@ void set_homogeneous_control_points(BSplineSurface& s, const Eigen::MatrixX4d& p
     s.weights.resize(0);
     s.control_points = pw.leftCols<3>();
   }
+  return s;
 }
 
 }  // namespace argil

@@ -98,8 +98,9 @@ Box3 control_point_box(const BSplineSurface& surface);
 /// the surface is polynomial.
 Eigen::MatrixX4d homogeneous_control_points(const BSplineSurface& surface);
 
-/// Sets control points (and weights when `rational`) from homogeneous rows.
-void set_homogeneous_control_points(BSplineSurface& surface, const Eigen::MatrixX4d& pw,
-                                    bool rational);
+/// `surface` with its control points (and weights when `rational`, none
+/// otherwise) taken from homogeneous rows; degrees and knots are kept.
+BSplineSurface with_homogeneous_control_points(BSplineSurface surface, const Eigen::MatrixX4d& pw,
+                                               bool rational);
 
 }  // namespace argil

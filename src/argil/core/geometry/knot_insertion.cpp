@@ -2,6 +2,7 @@
 
 #include <cassert>
 #include <string>
+#include <utility>
 
 #include "argil/core/base/number_text.hpp"
 #include "argil/core/geometry/basis.hpp"
@@ -103,8 +104,7 @@ Result<BSplineSurface> insert_knot(const BSplineSurface& s, Direction d, double 
       pw_new.row(row) = refined.points.row(i);
     }
   }
-  set_homogeneous_control_points(out, pw_new, s.is_rational());
-  return out;
+  return with_homogeneous_control_points(std::move(out), pw_new, s.is_rational());
 }
 
 }  // namespace argil

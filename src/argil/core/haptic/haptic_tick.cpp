@@ -115,7 +115,7 @@ int HapticWorld::add_body(Body body) {
   return body_count() - 1;
 }
 
-Status HapticWorld::check_tolerance(SurfaceHierarchy& surface) const {
+Status HapticWorld::check_tolerance(const SurfaceHierarchy& surface) const {
   // The proxies query at eps and at eps / 4: both must be in the documented
   // range for this surface, or every contact query of a tick would fail.
   for (const double tolerance : {options_.tolerance, 0.25 * options_.tolerance}) {
@@ -137,14 +137,18 @@ const SurfaceHierarchy& HapticWorld::hierarchy(int body) const {
   return b.deformable ? b.deformable->hierarchy() : *b.rigid;
 }
 
-SurfaceHierarchy& HapticWorld::mutable_hierarchy(int body) {
+void HapticWorld::set_node_budget(int body, std::size_t nodes) {
   Body& b = bodies_[static_cast<std::size_t>(body)];
-  return b.deformable ? b.deformable->hierarchy() : *b.rigid;
+  if (b.deformable) {
+    b.deformable->set_node_budget(nodes);
+  } else {
+    b.rigid->set_node_budget(nodes);
+  }
 }
 
-std::vector<SurfaceHierarchy*> HapticWorld::surfaces() {
-  std::vector<SurfaceHierarchy*> out;
-  for (int b = 0; b < body_count(); ++b) out.push_back(&mutable_hierarchy(b));
+std::vector<const SurfaceHierarchy*> HapticWorld::surfaces() const {
+  std::vector<const SurfaceHierarchy*> out;
+  for (int b = 0; b < body_count(); ++b) out.push_back(&hierarchy(b));
   return out;
 }
 

@@ -44,7 +44,7 @@ struct ProxyState {
   bool stuck = false;  // held by static friction this tick
 };
 
-struct TickResult {
+struct [[nodiscard]] TickResult {
   /// Not ok when the tick did not run: an invalid dt, a collision query that
   /// failed (its status, naming the request and the limit) or a deformable
   /// body that could not step. The proxy then keeps its state from the last
@@ -117,9 +117,7 @@ class HapticWorld {
   /// Coulomb coefficient of the tool against `body` [-].
   double friction(int body) const { return bodies_[static_cast<std::size_t>(body)].friction; }
   /// Largest node count of body `body`'s lazy hierarchy (SurfaceHierarchy::set_node_budget).
-  void set_node_budget(int body, std::size_t nodes) {
-    mutable_hierarchy(body).set_node_budget(nodes);
-  }
+  void set_node_budget(int body, std::size_t nodes);
   const ProxyState& proxy() const { return proxy_; }
   const WorldOptions& options() const { return options_; }
 
@@ -130,7 +128,7 @@ class HapticWorld {
     double friction = 0.0;
   };
   /// The proxy's move this tick (steps 1-2) and its contacts with every body.
-  struct ProxyMove {
+  struct [[nodiscard]] ProxyMove {
     Status status;
     ProxyState next;  // v_WT is filled in by step()
     std::vector<std::vector<Contact>> body_contacts;
@@ -138,17 +136,16 @@ class HapticWorld {
     Eigen::Vector3d outward_normal = Eigen::Vector3d::Zero();
   };
   /// The tool load on the bodies and the force on the device (steps 3-4).
-  struct Coupling {
+  struct [[nodiscard]] Coupling {
     Status status;
     Eigen::Vector3d force = Eigen::Vector3d::Zero();       // on the device [N]
     Eigen::Vector3d body_force = Eigen::Vector3d::Zero();  // on the bodies [N]
     bool clamped = false;
   };
   HapticWorld() = default;
-  SurfaceHierarchy& mutable_hierarchy(int body);
-  std::vector<SurfaceHierarchy*> surfaces();
+  std::vector<const SurfaceHierarchy*> surfaces() const;
   /// The world's tolerance checked against the documented range for a body.
-  Status check_tolerance(SurfaceHierarchy& surface) const;
+  Status check_tolerance(const SurfaceHierarchy& surface) const;
   int add_body(Body body);
   /// Steps every deformable body without tool load.
   Status relax(double dt);

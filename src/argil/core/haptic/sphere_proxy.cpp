@@ -23,7 +23,7 @@ int& SphereProxy::side(std::size_t index) {
   return sides_[index];
 }
 
-SphereProxy::Push SphereProxy::push_out(SurfaceHierarchy& surface, std::size_t index,
+SphereProxy::Push SphereProxy::push_out(const SurfaceHierarchy& surface, std::size_t index,
                                         const Eigen::Vector3d& c) {
   ClosestPoint cp = closest_point(surface, c, {.tolerance = 0.25 * eps_});
   if (!cp.status.ok()) return {std::move(cp.status), c, false};
@@ -45,7 +45,7 @@ SphereProxy::Push SphereProxy::push_out(SurfaceHierarchy& surface, std::size_t i
   return {Status::success(), cp.point + direction * std::max(radius_, 2.0 * tiny), true};
 }
 
-SphereMove SphereProxy::project(const std::vector<SurfaceHierarchy*>& surfaces,
+SphereMove SphereProxy::project(const std::vector<const SurfaceHierarchy*>& surfaces,
                                 const Eigen::Vector3d& start) {
   Eigen::Vector3d centre = start;
   for (int round = 0; round < 8; ++round) {
@@ -61,7 +61,7 @@ SphereMove SphereProxy::project(const std::vector<SurfaceHierarchy*>& surfaces,
   return {Status::success(), centre};
 }
 
-SphereMove SphereProxy::move(const std::vector<SurfaceHierarchy*>& surfaces,
+SphereMove SphereProxy::move(const std::vector<const SurfaceHierarchy*>& surfaces,
                              const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
   const double step = std::max(0.5 * radius_, 10.0 * eps_);
   const int count =
@@ -72,7 +72,7 @@ SphereMove SphereProxy::move(const std::vector<SurfaceHierarchy*>& surfaces,
   return at;
 }
 
-ProxyContact SphereProxy::nearest(const std::vector<SurfaceHierarchy*>& surfaces,
+ProxyContact SphereProxy::nearest(const std::vector<const SurfaceHierarchy*>& surfaces,
                                   const Eigen::Vector3d& centre) {
   ProxyContact best;
   for (std::size_t b = 0; b < surfaces.size(); ++b) {

@@ -11,7 +11,7 @@
 namespace argil {
 
 /// The surface nearest to a proxy.
-struct ProxyContact {
+struct [[nodiscard]] ProxyContact {
   /// Not ok when a closest-point query failed (its status; nothing else is set).
   Status status;
   int body = -1;           // index into the surfaces, -1 when there are none
@@ -30,7 +30,7 @@ struct ProxyContact {
 /// to the side it came from. Sides change only around a surface's boundary.
 /// Where a move or projection left the centre. Not ok when a closest-point
 /// query failed: the centre is then the last one reached before it.
-struct SphereMove {
+struct [[nodiscard]] SphereMove {
   Status status;
   Eigen::Vector3d p_WT = Eigen::Vector3d::Zero();  // the centre [mm]
 };
@@ -41,24 +41,25 @@ class SphereProxy {
   double radius() const { return radius_; }
 
   /// Moves the centre from `from` towards `to` and returns where it stops.
-  SphereMove move(const std::vector<SurfaceHierarchy*>& surfaces, const Eigen::Vector3d& from,
+  SphereMove move(const std::vector<const SurfaceHierarchy*>& surfaces, const Eigen::Vector3d& from,
                   const Eigen::Vector3d& to);
   /// The centre pushed out of every surface (at most 8 rounds over all surfaces).
-  SphereMove project(const std::vector<SurfaceHierarchy*>& surfaces, const Eigen::Vector3d& centre);
+  SphereMove project(const std::vector<const SurfaceHierarchy*>& surfaces,
+                     const Eigen::Vector3d& centre);
   /// The nearest surface to `centre` (and updates the side record far from surfaces).
-  ProxyContact nearest(const std::vector<SurfaceHierarchy*>& surfaces,
+  ProxyContact nearest(const std::vector<const SurfaceHierarchy*>& surfaces,
                        const Eigen::Vector3d& centre);
   /// Largest number of substeps in one move (a longer move stops early).
   static constexpr int kMaxSubsteps = 256;
 
  private:
   /// The centre pushed out of one surface, and whether it moved.
-  struct Push {
+  struct [[nodiscard]] Push {
     Status status;
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     bool moved = false;
   };
-  Push push_out(SurfaceHierarchy& surface, std::size_t index, const Eigen::Vector3d& centre);
+  Push push_out(const SurfaceHierarchy& surface, std::size_t index, const Eigen::Vector3d& centre);
   int& side(std::size_t index);
 
   double radius_;

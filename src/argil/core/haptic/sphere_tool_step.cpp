@@ -10,12 +10,12 @@ namespace argil {
 namespace {
 
 /// Contacts of a sphere of `radius` [mm] centred at p_WT with every surface.
-struct SphereContacts {
+struct [[nodiscard]] SphereContacts {
   Status status;  // the first failed query's, naming its body
   std::vector<std::vector<Contact>> per_body;
 };
 
-SphereContacts sphere_contacts(const std::vector<SurfaceHierarchy*>& surfaces,
+SphereContacts sphere_contacts(const std::vector<const SurfaceHierarchy*>& surfaces,
                                const Eigen::Vector3d& p_WT, double radius,
                                const CollisionRequest& request) {
   const auto tool = make_sphere(p_WT, radius);
@@ -39,7 +39,7 @@ HapticWorld::ProxyMove HapticWorld::move_sphere(const ProxyState& previous,
                                                 const DeviceSample& device) {
   const double eps = options_.tolerance;
   const double k = options_.coupling.stiffness;
-  const std::vector<SurfaceHierarchy*> surfs = surfaces();
+  const std::vector<const SurfaceHierarchy*> surfs = surfaces();
   const Eigen::Vector3d& p_WD = device.X_WD.p;
   ProxyMove out;
   out.next.X_WT.R = device.X_WD.R;

@@ -28,7 +28,7 @@ void SurfaceToolProxy::place(const Pose& X_WT) {
   posed_.set_control_points(world);
 }
 
-ToolContacts SurfaceToolProxy::contacts(const std::vector<SurfaceHierarchy*>& surfaces,
+ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy*>& surfaces,
                                         const Pose& X_WT) {
   place(X_WT);
   const Eigen::Vector3d centre = posed_.surface().control_points.colwise().mean().transpose();
@@ -55,7 +55,7 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<SurfaceHierarchy*>& su
 }
 
 SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
-    const std::vector<SurfaceHierarchy*>& surfaces, const Pose& X_WT) {
+    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT) {
   place(X_WT);
   // A yes/no test: the descent stops at the first crossing leaf pair.
   const CollisionRequest request{.tolerance = eps_,
@@ -63,7 +63,7 @@ SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
                                  .refine = false,
                                  .compute_depth = false,
                                  .first_crossing_only = true};
-  for (SurfaceHierarchy* surface : surfaces) {
+  for (const SurfaceHierarchy* surface : surfaces) {
     CollisionResult r = collide(*surface, posed_, request);
     // A failed query counts as crossing: the proxy must not move where it
     // cannot prove it is clear.
@@ -73,8 +73,9 @@ SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
   return {Status::success(), false};
 }
 
-SurfaceToolProxy::Advance SurfaceToolProxy::bisect(const std::vector<SurfaceHierarchy*>& surfaces,
-                                                   const Pose& clear, const Pose& crossing_pose) {
+SurfaceToolProxy::Advance SurfaceToolProxy::bisect(
+    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& clear,
+    const Pose& crossing_pose) {
   double lo = 0.0, hi = 1.0;
   const double span = (crossing_pose.p - clear.p).norm();
   for (int i = 0; i < kMaxBisections && (hi - lo) * span > 0.5 * eps_; ++i) {
@@ -86,8 +87,8 @@ SurfaceToolProxy::Advance SurfaceToolProxy::bisect(const std::vector<SurfaceHier
   return {Status::success(), interpolate(clear, crossing_pose, lo), true};
 }
 
-SurfaceToolProxy::Advance SurfaceToolProxy::advance(const std::vector<SurfaceHierarchy*>& surfaces,
-                                                    const Pose& from, const Pose& to) {
+SurfaceToolProxy::Advance SurfaceToolProxy::advance(
+    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from, const Pose& to) {
   const double length = (to.p - from.p).norm();
   const double step = std::max(0.25 * size_, 10.0 * eps_);
   const int count = std::clamp(static_cast<int>(std::ceil(length / step)), 1, 256);
@@ -105,7 +106,7 @@ SurfaceToolProxy::Advance SurfaceToolProxy::advance(const std::vector<SurfaceHie
   return {Status::success(), good, false};
 }
 
-ToolMove SurfaceToolProxy::push_out(const std::vector<SurfaceHierarchy*>& surfaces,
+ToolMove SurfaceToolProxy::push_out(const std::vector<const SurfaceHierarchy*>& surfaces,
                                     const Pose& from, const Pose& to) {
   Pose start = from;
   ToolContacts at_start = contacts(surfaces, start);
@@ -123,7 +124,7 @@ ToolMove SurfaceToolProxy::push_out(const std::vector<SurfaceHierarchy*>& surfac
   return {std::move(at_start.status), start};
 }
 
-ToolMove SurfaceToolProxy::move(const std::vector<SurfaceHierarchy*>& surfaces,
+ToolMove SurfaceToolProxy::move(const std::vector<const SurfaceHierarchy*>& surfaces,
                                 const Pose& X_WT_from, const Pose& X_WT_to) {
   ToolMove start = push_out(surfaces, X_WT_from, X_WT_to);
   if (!start.status.ok()) return start;

@@ -14,7 +14,7 @@
 namespace argil {
 
 /// Contacts of the posed tool with every surface, and whether any crosses.
-struct ToolContacts {
+struct [[nodiscard]] ToolContacts {
   /// Not ok when a collision query failed (its status; the contacts of the
   /// surfaces before it are kept).
   Status status;
@@ -27,7 +27,7 @@ struct ToolContacts {
 
 /// Where a move stopped. Not ok when a collision query failed: the proxy then
 /// stops at the last pose known not to cross.
-struct ToolMove {
+struct [[nodiscard]] ToolMove {
   Status status;
   Pose X_WT;
 };
@@ -47,9 +47,9 @@ class SurfaceToolProxy {
                                          OperatorCache& cache);
 
   /// The tool posed at X_WT, collided with every surface.
-  ToolContacts contacts(const std::vector<SurfaceHierarchy*>& surfaces, const Pose& X_WT);
+  ToolContacts contacts(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
   /// Moves from X_WT_from towards X_WT_to (rotation interpolated by slerp).
-  ToolMove move(const std::vector<SurfaceHierarchy*>& surfaces, const Pose& X_WT_from,
+  ToolMove move(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT_from,
                 const Pose& X_WT_to);
   /// The tool's hierarchy at the last pose used.
   const SurfaceHierarchy& hierarchy() const { return posed_; }
@@ -59,26 +59,27 @@ class SurfaceToolProxy {
 
  private:
   /// Whether the tool at a pose crosses any surface.
-  struct Crossing {
+  struct [[nodiscard]] Crossing {
     Status status;
     bool crosses = false;
   };
   /// The end of one conservative advance.
-  struct Advance {
+  struct [[nodiscard]] Advance {
     Status status;
     Pose X_WT;
     bool blocked = false;
   };
   SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy posed, double eps);
   void place(const Pose& X_WT);
-  Crossing crossing(const std::vector<SurfaceHierarchy*>& surfaces, const Pose& X_WT);
+  Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
   /// From a pose that does not cross towards `to`: the last pose that does not.
-  Advance advance(const std::vector<SurfaceHierarchy*>& surfaces, const Pose& from, const Pose& to);
+  Advance advance(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from,
+                  const Pose& to);
   /// Bisects between `clear` (no crossing) and `crossing_pose`.
-  Advance bisect(const std::vector<SurfaceHierarchy*>& surfaces, const Pose& clear,
+  Advance bisect(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& clear,
                  const Pose& crossing_pose);
   /// A start pose that crosses pushed out along the contact normal.
-  ToolMove push_out(const std::vector<SurfaceHierarchy*>& surfaces, const Pose& from,
+  ToolMove push_out(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from,
                     const Pose& to);
 
   ControlNet tool_points_;  // in T

@@ -7,7 +7,7 @@ namespace argil {
 
 HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous,
                                                       const DeviceSample& device) {
-  const std::vector<SurfaceHierarchy*> surfs = surfaces();
+  const std::vector<const SurfaceHierarchy*> surfs = surfaces();
   const double k = options_.coupling.stiffness;
   ProxyMove out;
   ToolMove moved = surface_tool_->move(surfs, previous.X_WT, device.X_WD);

@@ -55,8 +55,11 @@ struct QueryCounters {
 
 /// Owns a copy of the surface's control points (the per-frame state), shares
 /// its operators, and grows nodes on demand. The nodes and blocks are a cache
-/// over the control points: queries create and refresh them through const
-/// access, which changes no answer. Not thread-safe: one query at a time.
+/// over the control points: queries take `const SurfaceHierarchy&` and fill
+/// this mutable lazy cache through it, which changes no answer. So const does
+/// not mean shareable: do not share one object across threads (not even for
+/// const queries); give each thread its own copy. Only setting control points
+/// and the node budget need non-const access.
 class SurfaceHierarchy {
  public:
   /// Validates the surface and fetches its operators from `cache`.

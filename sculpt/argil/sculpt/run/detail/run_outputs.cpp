@@ -58,18 +58,19 @@ Status write_logs(const RunInputs& in, const Session& session, const RunState& s
 
 Status write_pictures(const RunInputs& in, const std::vector<io::Model>& before,
                       const std::vector<io::Model>& after, const RunState& state, Files& files) {
-  io::Model all_before, all_after;
+  SessionPicturesRequest pictures;
+  pictures.times = state.log.times();
+  pictures.forces = state.log.forces();
+  pictures.title = in.scene_name;
   for (std::size_t m = 0; m < after.size(); ++m) {
-    for (const io::FaceRecord& f : before[m].faces) all_before.faces.push_back(f);
-    for (const io::FaceRecord& f : after[m].faces) all_after.faces.push_back(f);
+    for (const io::FaceRecord& f : before[m].faces) pictures.before.faces.push_back(f);
+    for (const io::FaceRecord& f : after[m].faces) pictures.after.faces.push_back(f);
   }
-  ToolPath path;
   for (const DeviceSample& s : state.received) {
-    path.positions.push_back(s.X_WD.p);
-    path.engaged.push_back(s.engaged);
+    pictures.path.positions.push_back(s.X_WD.p);
+    pictures.path.engaged.push_back(s.engaged);
   }
-  const Status s = write_session_pictures(all_before, all_after, path, state.log.times(),
-                                          state.log.forces(), in.scene_name, in.out);
+  const Status s = write_session_pictures(pictures, in.out);
   if (!s.ok()) return s;
   for (const char* name : {kBeforePicture, kAfterPicture, kForcePicture}) {
     files.push_back(in.out / name);

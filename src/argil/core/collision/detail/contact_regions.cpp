@@ -1,9 +1,10 @@
-#include "argil/core/collision/contact_regions.hpp"
+#include "argil/core/collision/detail/contact_regions.hpp"
 
 #include <algorithm>
 #include <limits>
 #include <numeric>
 #include <tuple>
+#include <utility>
 
 namespace argil {
 
@@ -76,7 +77,7 @@ void trim(std::vector<Contact>& contacts, int max_contacts) {
 
 }  // namespace
 
-void group_regions(std::vector<LeafContact>& leaves, int max_contacts, CollisionResult& out) {
+ContactRegions group_regions(std::vector<LeafContact>& leaves, int max_contacts) {
   const int n = static_cast<int>(leaves.size());
   std::vector<int> parent(static_cast<std::size_t>(n));
   std::iota(parent.begin(), parent.end(), 0);
@@ -107,14 +108,13 @@ void group_regions(std::vector<LeafContact>& leaves, int max_contacts, Collision
     leaves[static_cast<std::size_t>(i)].contact.region =
         region_of_root[static_cast<std::size_t>(root)];
   }
-  out.region_count = regions;
   rank_and_sort(
       leaves, regions, [](auto& l) -> auto& { return l.contact; });
   std::vector<Contact> contacts;
   contacts.reserve(leaves.size());
   for (const LeafContact& l : leaves) contacts.push_back(l.contact);
   trim(contacts, max_contacts);
-  out.contacts.insert(out.contacts.end(), contacts.begin(), contacts.end());
+  return {std::move(contacts), regions};
 }
 
 void rank_regions(std::vector<Contact>& contacts, int region_count, int max_contacts) {

@@ -1,4 +1,4 @@
-#include "argil/core/collision/patch_minimize.hpp"
+#include "argil/core/collision/detail/patch_minimize.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>

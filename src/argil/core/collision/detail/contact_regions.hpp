@@ -1,6 +1,6 @@
 #pragma once
 // Grouping of leaf contacts into connected contact regions, shared by every
-// collision query.
+// collision query. Private to the collision module.
 
 #include <limits>
 #include <vector>
@@ -23,13 +23,19 @@ struct LeafContact {
   int node = -1;
 };
 
+/// Contacts grouped into regions: ids in [0, region_count).
+struct ContactRegions {
+  std::vector<Contact> contacts;
+  int region_count = 0;
+};
+
 /// Groups leaf contacts whose rectangles touch (closed rectangles: sharing an
 /// edge or a corner counts) into regions, numbers regions by their deepest
 /// contact (deepest first; ties keep first appearance), orders each region
-/// deepest first (ties by uv_a), and appends to `out.contacts` at most
-/// max_contacts of them: every region's deepest contact first, then the rest
-/// in order. Sets out.region_count. Reorders `leaves`.
-void group_regions(std::vector<LeafContact>& leaves, int max_contacts, CollisionResult& out);
+/// deepest first (ties by uv_a), and keeps at most max_contacts of them: every
+/// region's deepest contact first, then the rest in order. Reorders `leaves`
+/// (callers refine region heads from the reordered leaves afterwards).
+ContactRegions group_regions(std::vector<LeafContact>& leaves, int max_contacts);
 
 /// The ordering and trimming step of group_regions on contacts that already
 /// carry region ids in [0, region_count): for queries that add contacts to

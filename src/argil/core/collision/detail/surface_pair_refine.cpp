@@ -1,4 +1,4 @@
-#include "argil/core/collision/surface_pair_refine.hpp"
+#include "argil/core/collision/detail/surface_pair_refine.hpp"
 
 #include <Eigen/Dense>
 #include <array>
