@@ -18,6 +18,8 @@ namespace fs = std::filesystem;
 
 const fs::path kWork = fs::path(ARGIL_BINARY_DIR) / "runner-test";
 const fs::path kScene = fs::path(ARGIL_SOURCE_DIR) / "tests/data/sculpt/good.json";
+/// Three presses of the pin into the plate, 0.2 s each (571 ticks at 1 kHz).
+const fs::path kThreePresses = fs::path(ARGIL_SOURCE_DIR) / "tests/data/sculpt/three_presses.csv";
 
 std::string read_text(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -26,38 +28,11 @@ std::string read_text(const fs::path& path) {
   return s.str();
 }
 
-/// Three presses of the pin into the plate, 0.2 s each (600 ticks at 1 kHz),
-/// written next to the output folder `out` (each test has its own: CTest runs
-/// the cases in parallel).
-fs::path three_presses(const fs::path& out) {
-  const fs::path path = out.string() + ".csv";
-  fs::create_directories(kWork);
-  Script s;
-  s.tool = "pin";
-  double t = 0.0;
-  for (const double x : {60.0, 100.0, 140.0}) {
-    Keyframe above, engage, down, up;
-    above.t = t;
-    above.X_WD.p = {x, 0, 10};
-    engage.t = t + 0.04;
-    engage.X_WD.p = {x, 0, 1};
-    engage.event = ScriptEvent::engage;
-    down.t = t + 0.1;
-    down.X_WD.p = {x, 10, -4};
-    up.t = t + 0.17;
-    up.X_WD.p = {x, 20, 5};
-    up.event = ScriptEvent::release;
-    s.keyframes.insert(s.keyframes.end(), {above, engage, down, up});
-    t += 0.2;
-  }
-  REQUIRE(write_script(s, path).ok());
-  return path;
-}
-
 /// Options writing only what the comparisons need; stops once `stop_after`
 /// strokes are journalled (0: never).
 RunOptions options_for(const fs::path& out, bool fresh, int stop_after = 0) {
-  RunOptions o{.scene = kScene, .script = three_presses(out), .out = out, .fresh = fresh};
+  fs::create_directories(kWork);
+  RunOptions o{.scene = kScene, .script = kThreePresses, .out = out, .fresh = fresh};
   o.outputs = OutputOptions{.step = false,
                             .iges = false,
                             .json = true,
