@@ -42,7 +42,8 @@
 // deform
 #include "argil/core/deform/contact_response.hpp"  // IWYU pragma: export
 #include "argil/core/deform/deformable_body.hpp"   // IWYU pragma: export
-#include "argil/core/deform/mass_spring.hpp"       // IWYU pragma: export
+#include "argil/core/deform/pole_stencil_matrix.hpp"  // IWYU pragma: export
+#include "argil/core/deform/shell_matrices.hpp"  // IWYU pragma: export
 #include "argil/core/deform/material.hpp"          // IWYU pragma: export
 // haptic
 #include "argil/core/haptic/device_sample.hpp"       // IWYU pragma: export

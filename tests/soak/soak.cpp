@@ -137,12 +137,7 @@ int main(int argc, char** argv) {
       argil::HapticWorld::create(sphere ? argil::ToolShape{argil::SphereToolShape{5.0}}
                                         : argil::ToolShape{argil::SurfaceToolShape{cap_tool()}},
                                  options);
-  argil::Material clay;
-  clay.density = 2e-5;
-  clay.stiffness = 1.0;
-  clay.anchor_stiffness = 1.0;
-  clay.damping = 1e-3;
-  clay.yield = 0.5;
+  const argil::Material clay = *argil::material_preset("clay");
   if (!world.ok() || !world.value().add_deformable(rest, clay, {}, /*friction=*/0.3).ok()) {
     std::fprintf(stderr, "soak: could not build the world\n");
     return 2;

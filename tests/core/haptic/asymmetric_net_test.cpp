@@ -26,9 +26,10 @@ Eigen::Vector2d at_fraction(const BSplineSurface& surface, double s, double t) {
 
 argil::Material sheet_material() {
   argil::Material m;
-  m.density = 2e-5;
-  m.stiffness = 0.8;
-  m.anchor_stiffness = 0.5;
+  m.density = 2e4;
+  m.thickness = 1.0;
+  m.youngs_modulus = 0.8;
+  m.foundation_stiffness = 0.5;
   m.damping = 5e-3;
   m.yield = 0.3;
   return m;

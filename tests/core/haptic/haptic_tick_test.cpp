@@ -153,32 +153,33 @@ TEST_CASE("a tool dents an elastic panel, which returns to rest after it leaves"
     CAPTURE(yield);
     argil::HapticWorld w = world(argil::SphereToolShape{6.0}, 0.01, 20.0);
     argil::Material m;
-    m.density = 1e-5;
-    m.stiffness = 0.5;
-    m.anchor_stiffness = 0.5;
+    m.density = 1e4;  // 1 mm of a dense soft layer
+    m.thickness = 1.0;
+    m.youngs_modulus = 0.5;
+    m.foundation_stiffness = 0.4;
     m.damping = 0.01;
     m.yield = yield;
     argil::BoundaryConditions bc;
     bc.fixed_u0 = bc.fixed_u1 = true;
     REQUIRE(w.add_deformable(s, m, bc, 0.3).ok());
-    const ControlNet original = w.deformable(0)->nodes();
+    const ControlNet original = w.deformable(0)->control_points();
     REQUIRE(w.step(at(45, 45, 20), 1e-3).status.ok());
     double deepest = 0.0;
     for (int t = 0; t < 300; ++t) {
       const argil::TickResult r = w.step(at(45, 45, 6.0 - 4.0), 1e-3);  // 4 mm into the rest
       REQUIRE(r.status.ok());
       CHECK(r.max_depth <= 0.01);
-      deepest = std::max(deepest, (w.deformable(0)->nodes() - original).cwiseAbs().maxCoeff());
+      deepest = std::max(deepest, (w.deformable(0)->control_points() - original).cwiseAbs().maxCoeff());
     }
     CHECK(deepest > 0.2);  // the panel gave way
     CHECK(w.proxy().in_contact);
     for (int t = 0; t < 3000; ++t) REQUIRE(w.step(at(45, 45, 40), 1e-3).status.ok());
-    const double kept = (w.deformable(0)->nodes() - original).cwiseAbs().maxCoeff();
+    const double kept = (w.deformable(0)->control_points() - original).cwiseAbs().maxCoeff();
     if (!std::isfinite(yield)) {
       CHECK(kept < 1e-3);  // back to rest within 1 um
     } else {
       CHECK(kept > 0.1);  // the dent beyond yield stays
-      CHECK((w.deformable(0)->nodes() - w.deformable(0)->rest_nodes()).cwiseAbs().maxCoeff() <
+      CHECK((w.deformable(0)->control_points() - w.deformable(0)->rest_control_points()).cwiseAbs().maxCoeff() <
             1e-3);  // and it is the new rest state
     }
   }
@@ -188,9 +189,10 @@ TEST_CASE("the same inputs give bit-identical forces and surfaces", "[haptic]") 
   const auto run = [] {
     argil::HapticWorld w = world(argil::SphereToolShape{4.0}, 0.01, 10.0);
     argil::Material m;
-    m.density = 1e-5;
-    m.stiffness = 2.0;
-    m.anchor_stiffness = 1.0;
+    m.density = 1e4;
+    m.thickness = 1.0;
+    m.youngs_modulus = 2.0;
+    m.foundation_stiffness = 1.0;
     m.yield = 0.5;
     REQUIRE(w.add_deformable(sheet(8, 10.0, 2.0), m, {}, 0.3).ok());
     REQUIRE(w.add_rigid(sheet(4, 30.0, 0.0), 0.4).ok());  // a floor under it

@@ -44,7 +44,7 @@ TEST_CASE("a scene reads every field and resolves paths against its folder", "[s
   CHECK(s.models[0].file == std::filesystem::path("/x/examples/surfaces/panel.json"));
   CHECK(s.models[0].faces == std::vector<int>{0});
   CHECK(s.models[0].deformable);
-  CHECK(s.models[0].material.stiffness == 3.0);
+  CHECK(s.models[0].material.youngs_modulus == 3.0);  // v1 spring stiffness, 1 mm layer
   CHECK(s.models[0].material.yield == 0.1);
   CHECK(s.models[0].friction == 0.45);  // from material.friction
   CHECK(s.models[0].boundary.fixed_u0);

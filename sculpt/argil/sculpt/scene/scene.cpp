@@ -261,16 +261,24 @@ class SceneReader {
             {"density", "stiffness", "damping", "anchor_stiffness", "yield", "friction"})) {
       return false;
     }
+    // Version-1 numbers (areal density, per-spring and per-node stiffness),
+    // mapped to the physical material (docs/formats.md).
+    const Interval areal_range{1e-15, 1e3}, spring_range{0.0, 1e9};
+    double areal = 0.0, spring = 0.0, anchor = 1.0;
     const MaterialRange& range = kMaterialRange;
-    const RangedField required[] = {{"density", &out.density, range.density, "kg/mm^2"},
-                                    {"stiffness", &out.stiffness, range.stiffness, "N/mm"}};
-    const RangedField optional[] = {
-        {"damping", &out.damping, range.damping, "s"},
-        {"anchor_stiffness", &out.anchor_stiffness, range.anchor_stiffness, "N/mm"}};
+    const RangedField required[] = {{"density", &areal, areal_range, "kg/mm^2"},
+                                    {"stiffness", &spring, spring_range, "N/mm"}};
+    const RangedField optional[] = {{"damping", &out.damping, range.damping, "s"},
+                                    {"anchor_stiffness", &anchor, spring_range, "N/mm"}};
     if (!ranged_fields(value, path, required, true) ||
         !ranged_fields(value, path, optional, false)) {
       return false;
     }
+    out.thickness = std::max(1.0, areal / kKgPerM3ToKgPerMm3 / range.density.high);
+    out.density = areal / kKgPerM3ToKgPerMm3 / out.thickness;
+    out.poisson_ratio = 0.0;
+    out.youngs_modulus = spring / out.thickness;
+    out.foundation_stiffness = anchor;
     if (const Json* friction = r_.member(value, path, "friction", false)) {
       if (!this->friction(*friction, path + ".friction", model.friction)) return false;
     }

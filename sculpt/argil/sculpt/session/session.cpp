@@ -244,8 +244,8 @@ std::uint64_t Session::state_hash() const {
     const ControlNet& points = world_->surface(b).control_points;
     hash_bytes(h, points.data(), static_cast<std::size_t>(points.size()) * sizeof(double));
     if (const DeformableBody* body = world_->deformable(b)) {
-      hash_bytes(h, body->rest_nodes().data(),
-                 static_cast<std::size_t>(body->rest_nodes().size()) * sizeof(double));
+      hash_bytes(h, body->rest_control_points().data(),
+                 static_cast<std::size_t>(body->rest_control_points().size()) * sizeof(double));
       hash_bytes(h, body->velocities().data(),
                  static_cast<std::size_t>(body->velocities().size()) * sizeof(double));
     }

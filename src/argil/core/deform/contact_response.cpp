@@ -19,7 +19,7 @@ std::vector<double> contact_shares(const std::vector<Contact>& contacts, double 
   return shares;
 }
 
-Eigen::VectorXd contact_load_pattern(const BSplineSurface& s, const SurfaceOperators& ops,
+Eigen::VectorXd contact_load_pattern(const BSplineSurface& s,
                                      const std::vector<Contact>& contacts,
                                      const std::vector<double>& shares) {
   assert(contacts.size() == shares.size());
@@ -27,8 +27,7 @@ Eigen::VectorXd contact_load_pattern(const BSplineSurface& s, const SurfaceOpera
   const int nv = s.count(Direction::v);
   const int p = s.degree[0];
   const int q = s.degree[1];
-  Eigen::MatrixXd control(static_cast<Eigen::Index>(nu) * nv, 1);
-  control.setZero();
+  Eigen::VectorXd pattern = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nu) * nv);
   Eigen::MatrixXd bu(1, p + 1), bv(1, q + 1);
   Eigen::MatrixXd local(p + 1, q + 1);
   for (std::size_t k = 0; k < contacts.size(); ++k) {
@@ -49,9 +48,9 @@ Eigen::VectorXd contact_load_pattern(const BSplineSurface& s, const SurfaceOpera
       }
     for (int a = 0; a <= p; ++a)
       for (int b = 0; b <= q; ++b)
-        control(s.pole_index(su - p + a, sv - q + b), 0) += shares[k] * local(a, b) / sum;
+        pattern[s.pole_index(su - p + a, sv - q + b)] += shares[k] * local(a, b) / sum;
   }
-  return fit_adjoint(s, ops, control).col(0);
+  return pattern;
 }
 
 FrictionOutcome coulomb_friction(const Eigen::Vector3d& spring_force,

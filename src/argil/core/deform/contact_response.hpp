@@ -1,13 +1,13 @@
 #pragma once
 // From collision contacts to forces (docs/deformation.md): how a tool force is
-// shared among contacts, carried exactly onto the nodes, and split by Coulomb
+// shared among contacts, carried exactly onto the control points, and split by Coulomb
 // friction into stick and slip.
 
 #include <Eigen/Core>
 #include <vector>
 
 #include "argil/core/collision/contact.hpp"
-#include "argil/core/operators/surface_operators.hpp"
+#include "argil/core/geometry/bspline_surface.hpp"
 
 namespace argil {
 
@@ -16,13 +16,14 @@ namespace argil {
 /// some). Empty for no contacts.
 std::vector<double> contact_shares(const std::vector<Contact>& contacts, double eps);
 
-/// Generalised node weights g (n_u * n_v entries) of a unit force applied at
-/// the contacts' points S(uv_a) with the given shares: the control-point
-/// forces Q_ij = sum_k share_k R_ij(uv_k) (rational basis) carried to the nodes
-/// by fit_adjoint. A force F through the pattern gives node forces g_i F whose
-/// sum is F and whose moment is sum_k share_k S(uv_k) x F, exactly (virtual
-/// work: g . x is the shared contact point for any node positions x).
-Eigen::VectorXd contact_load_pattern(const BSplineSurface& surface, const SurfaceOperators& ops,
+/// Control-point weights g (n_u * n_v entries, row i * n_v + j) of a unit
+/// force applied at the contacts' points S(uv_a) with the given shares:
+/// g_ij = sum_k share_k R_ij(uv_k), R the rational basis. A force F through
+/// the pattern gives control-point forces g_ij F that are non-negative
+/// multiples of F, sum to F and have the moment sum_k share_k S(uv_k) x F,
+/// exactly (virtual work: g . P is the shared contact point for any control
+/// points P). Nothing is inverted, so nothing amplifies.
+Eigen::VectorXd contact_load_pattern(const BSplineSurface& surface,
                                      const std::vector<Contact>& contacts,
                                      const std::vector<double>& shares);
 

@@ -1,11 +1,32 @@
 #include "argil/core/deform/deformable_body.hpp"
 
+#include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <string>
 
 #include "argil/core/base/number_text.hpp"
 
 namespace argil {
+
+namespace {
+
+/// Which control points the boundary conditions hold (one flag per pole).
+std::vector<char> held_poles(int nu, int nv, const BoundaryConditions& c) {
+  std::vector<char> fixed(static_cast<std::size_t>(nu) * static_cast<std::size_t>(nv), 0);
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      const bool corner = (i == 0 || i == nu - 1) && (j == 0 || j == nv - 1);
+      const bool held = (c.fixed_u0 && i == 0) || (c.fixed_u1 && i == nu - 1) ||
+                        (c.fixed_v0 && j == 0) || (c.fixed_v1 && j == nv - 1) ||
+                        (c.fixed_corners && corner);
+      fixed[static_cast<std::size_t>(i * nv + j)] = held ? 1 : 0;
+    }
+  }
+  return fixed;
+}
+
+}  // namespace
 
 DeformableBody::DeformableBody(SurfaceHierarchy hierarchy, const Material& material)
     : hierarchy_(std::move(hierarchy)), material_(material) {}
@@ -20,26 +41,54 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   DeformableBody body(std::move(h).value(), material);
   const int nu = surface.count(Direction::u);
   const int nv = surface.count(Direction::v);
-  body.springs_ = grid_springs(nu, nv);
-  body.fixed_ = fixed_nodes(nu, nv, conditions);
-  body.masses_ = node_masses(surface, body.operators(), material.density);
-  const MaterialRange& r = kMaterialRange;
+  body.shell_ = shell_matrices(surface);
+  const ShellStiffness k = shell_stiffness(material);
+  // K = k_a Foundation + A Membrane + D (Bending + Joints).
+  body.stiffness_ = PoleStencilMatrix(nu, nv, body.shell_.foundation.reach_u(),
+                                      body.shell_.foundation.reach_v());
+  body.stiffness_.add_scaled(body.shell_.foundation, k.foundation);
+  body.stiffness_.add_scaled(body.shell_.membrane, k.membrane);
+  body.stiffness_.add_scaled(body.shell_.bending, k.bending);
+  body.stiffness_.add_scaled(body.shell_.joints, k.bending);
+  body.masses_ = k.mass_per_area * body.shell_.area;
+  body.fixed_ = held_poles(nu, nv, conditions);
+
+  // Conditioning: the implicit step must resolve each control point's rigid
+  // motion (mass and foundation) against its elastic coupling.
+  const double h2 = kHapticStep * kHapticStep;
   for (Eigen::Index i = 0; i < body.masses_.size(); ++i) {
-    const double m = body.masses_[i];
-    if (!r.node_mass.contains(m)) {
-      // The derived mass rounds away from the range, so the printed value
-      // still lies outside it.
-      const LimitSide away = m > r.node_mass.high ? LimitSide::lower : LimitSide::upper;
-      return Status::error(StatusCode::invalid_argument,
-                           "material.density " + number_text(material.density) +
-                               " kg/mm^2 gives node " + std::to_string(i) + " a mass of " +
-                               limit_text(m, away) + " kg; node masses must be in " +
-                               interval_text(r.node_mass, "kg"));
+    const double elastic = h2 * body.stiffness_.diagonal(i);
+    const double inertia =
+        kMassToNewtonSecond2PerMm * body.masses_[i] + h2 * k.foundation * body.shell_.area[i];
+    if (elastic > 0.0 && !(inertia >= kMaterialRange.min_inertia_ratio * elastic)) {
+      return Status::error(
+          StatusCode::invalid_argument,
+          "material too stiff for its mass on this face: control point " + std::to_string(i) +
+              " has (m + h^2 k_a) / (h^2 k) = " + limit_text(inertia / elastic, LimitSide::upper) +
+              " at the " + number_text(kHapticStep) + " s step, below " +
+              number_text(kMaterialRange.min_inertia_ratio) +
+              " (raise density, thickness or foundation_stiffness, or lower youngs_modulus)");
     }
   }
-  body.rest_ = evaluate_nodes(surface, body.operators());
-  body.nodes_ = body.rest_;
-  body.velocities_ = ControlNet::Zero(body.rest_.rows(), 3);
+
+  // Solve order: the narrower band of the two row-major orders.
+  const int ru = body.stiffness_.reach_u(), rv = body.stiffness_.reach_v();
+  const bool by_u = static_cast<long long>(ru) * nv + rv <= static_cast<long long>(rv) * nu + ru;
+  body.bandwidth_ = by_u ? ru * nv + rv : rv * nu + ru;
+  const Eigen::Index n = static_cast<Eigen::Index>(nu) * nv;
+  body.order_.resize(static_cast<std::size_t>(n));
+  body.rank_.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      const int r = by_u ? i * nv + j : j * nu + i;
+      body.order_[static_cast<std::size_t>(r)] = surface.pole_index(i, j);
+      body.rank_[static_cast<std::size_t>(surface.pole_index(i, j))] = r;
+    }
+  }
+  body.bandwidth_ = std::min<int>(body.bandwidth_, static_cast<int>(n) - 1);
+  body.bandwidth_ = std::max(body.bandwidth_, 0);
+  body.rest_ = surface.control_points;
+  body.velocities_ = ControlNet::Zero(n, 3);
   return body;
 }
 
@@ -51,86 +100,113 @@ double DeformableBody::kinetic_energy() const {
 }
 
 double DeformableBody::potential_energy() const {
-  return elastic_energy(springs_, {material_.stiffness, material_.anchor_stiffness},
-                        nodes_ - rest_);
+  return 0.5 * stiffness_.quadratic_form(control_points() - rest_);
+}
+
+SymmetricBandMatrix DeformableBody::step_matrix(double dt) const {
+  const Eigen::Index n = masses_.size();
+  SymmetricBandMatrix a(static_cast<int>(n), bandwidth_);
+  const double scale = dt * material_.damping + dt * dt;  // multiplies K (springs and dashpots)
+  const auto is_fixed = [&](Eigen::Index pole) { return fixed_[static_cast<std::size_t>(pole)] != 0; };
+  const int nu = stiffness_.count_u(), nv = stiffness_.count_v();
+  const int ru = stiffness_.reach_u(), rv = stiffness_.reach_v();
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      const Eigen::Index pa = static_cast<Eigen::Index>(i) * nv + j;
+      const int ra = rank_[static_cast<std::size_t>(pa)];
+      if (is_fixed(pa)) {
+        a.at(ra, ra) = 1.0;  // a held point's velocity is zero: no coupling
+        continue;
+      }
+      a.at(ra, ra) += kMassToNewtonSecond2PerMm * masses_[pa];
+      for (int di = std::max(-ru, -i); di <= std::min(ru, nu - 1 - i); ++di) {
+        for (int dj = std::max(-rv, -j); dj <= std::min(rv, nv - 1 - j); ++dj) {
+          const Eigen::Index pb = static_cast<Eigen::Index>(i + di) * nv + (j + dj);
+          const int rb = rank_[static_cast<std::size_t>(pb)];
+          if (rb > ra || is_fixed(pb)) continue;  // lower half only
+          a.at(ra, rb) += scale * stiffness_.at(i, j, di, dj);
+        }
+      }
+    }
+  }
+  return a;
 }
 
 Status DeformableBody::factorize(double dt) {
   if (solver_ && solver_dt_ == dt) return Status::success();
-  const SurfaceOperators& ops = operators();
-  const ImplicitStepRequest request{
-      .count_u = ops.u->count(), .count_v = ops.v->count(), .material = material_, .dt = dt};
-  Result<BandedCholesky> f =
-      BandedCholesky::factorize(implicit_step_matrix(springs_, masses_, fixed_, request));
+  Result<BandedCholesky> f = BandedCholesky::factorize(step_matrix(dt));
   if (!f.ok()) return f.status();
   solver_ = std::move(f).value();
   solver_dt_ = dt;
   return Status::success();
 }
 
-Status DeformableBody::step(double dt, const ControlNet& node_forces) {
-  Result<LoadPreview> preview = begin_step(dt, node_forces, {});
+Status DeformableBody::step(double dt, const ControlNet& forces) {
+  Result<LoadPreview> preview = begin_step(dt, forces, {});
   if (!preview.ok()) return preview.status();
   finish_step(Eigen::Vector3d::Zero());
   return Status::success();
 }
 
-Result<LoadPreview> DeformableBody::begin_step(double dt, const ControlNet& node_forces,
+Result<LoadPreview> DeformableBody::begin_step(double dt, const ControlNet& forces,
                                                const Eigen::VectorXd& pattern) {
   if (const Interval range{0.0, kMaxTimeStep, IntervalEnds::open_low}; !range.contains(dt)) {
     return Status::error(StatusCode::invalid_argument,
                          "time step dt " + out_of_interval_text(dt, range, "s"));
   }
   if (Status s = factorize(dt); !s.ok()) return s;
-  const Eigen::Index n = nodes_.rows();
-  assert(node_forces.rows() == 0 || node_forces.rows() == n);
+  const Eigen::Index n = masses_.size();
+  assert(forces.rows() == 0 || forces.rows() == n);
   assert(pattern.size() == 0 || pattern.size() == n);
   has_pattern_ = pattern.size() > 0;
   step_dt_ = dt;
-  ControlNet force = elastic_forces(springs_, {material_.stiffness, material_.anchor_stiffness},
-                                    nodes_ - rest_, fixed_);
-  if (node_forces.rows() > 0) force += node_forces;
+  Eigen::MatrixXd force = -stiffness_.multiply(control_points() - rest_);
+  if (forces.rows() > 0) force += forces;
   work_.resize(n, has_pattern_ ? 4 : 3);
-  for (Eigen::Index i = 0; i < n; ++i) {
+  for (Eigen::Index r = 0; r < n; ++r) {
+    const Eigen::Index i = order_[static_cast<std::size_t>(r)];
     if (fixed_[static_cast<std::size_t>(i)]) {
-      work_.row(i).setZero();
+      work_.row(r).setZero();
       continue;
     }
     const double m = kMassToNewtonSecond2PerMm * masses_[i];
-    for (int c = 0; c < 3; ++c) work_(i, c) = m * velocities_(i, c) + dt * force(i, c);
-    if (has_pattern_) work_(i, 3) = pattern[i];
+    for (int c = 0; c < 3; ++c) work_(r, c) = m * velocities_(i, c) + dt * force(i, c);
+    if (has_pattern_) work_(r, 3) = pattern[i];
   }
   solver_->solve_in_place(work_);
   LoadPreview preview;
   if (has_pattern_) {
-    for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index r = 0; r < n; ++r) {
+      const Eigen::Index i = order_[static_cast<std::size_t>(r)];
       if (fixed_[static_cast<std::size_t>(i)]) continue;
-      preview.free_motion += dt * pattern[i] * work_.row(i).head<3>().transpose();
-      preview.compliance += dt * dt * pattern[i] * work_(i, 3);
+      preview.free_motion += dt * pattern[i] * work_.row(r).head<3>().transpose();
+      preview.compliance += dt * dt * pattern[i] * work_(r, 3);
     }
   }
   return preview;
 }
 
 void DeformableBody::finish_step(const Eigen::Vector3d& pattern_force) {
-  const Eigen::Index n = nodes_.rows();
+  const Eigen::Index n = masses_.size();
   const double h = step_dt_;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (fixed_[static_cast<std::size_t>(i)]) continue;  // x = x_rest, v = 0 throughout
-    Eigen::RowVector3d v = work_.row(i).head<3>();
-    if (has_pattern_) v += h * work_(i, 3) * pattern_force.transpose();
+  ControlNet points = control_points();
+  for (Eigen::Index r = 0; r < n; ++r) {
+    const Eigen::Index i = order_[static_cast<std::size_t>(r)];
+    if (fixed_[static_cast<std::size_t>(i)]) continue;  // P = P_rest, V = 0 throughout
+    Eigen::RowVector3d v = work_.row(r).head<3>();
+    if (has_pattern_) v += h * work_(r, 3) * pattern_force.transpose();
     velocities_.row(i) = v;
-    nodes_.row(i) += h * v;
+    points.row(i) += h * v;
   }
   if (std::isfinite(material_.yield)) {
-    // Plastic flow: the rest position follows so the anchor stretch is the yield.
+    // Plastic flow: the rest position follows so no stretch exceeds the yield.
     for (Eigen::Index i = 0; i < n; ++i) {
-      const Eigen::RowVector3d stretch = nodes_.row(i) - rest_.row(i);
+      const Eigen::RowVector3d stretch = points.row(i) - rest_.row(i);
       const double length = stretch.norm();
       if (length > material_.yield) rest_.row(i) += (1.0 - material_.yield / length) * stretch;
     }
   }
-  hierarchy_.set_control_points(fit_control_points(surface(), operators(), nodes_));
+  hierarchy_.set_control_points(points);
 }
 
 }  // namespace argil

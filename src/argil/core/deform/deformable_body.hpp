@@ -1,97 +1,117 @@
 #pragma once
-// A deformable surface (docs/deformation.md): nodes at the Greville abscissae,
-// springs and anchors (mass_spring.hpp), an implicit Euler step at the haptic
-// rate, plasticity, and the exact fit back to control points every step.
+// A deformable surface (docs/deformation.md): the control net is the state
+// (dynamic NURBS). Mass, membrane, bending, joint and foundation terms are
+// integrated once over the rest surface (shell_matrices.hpp); loads enter
+// through the basis values at the contact; an implicit Euler step moves the
+// control points, plasticity moves their rest positions, and the hierarchy
+// sees the new control points. Nothing is fitted or inverted on the tick path.
 
 #include <Eigen/Core>
 #include <cstddef>
 #include <optional>
 #include <vector>
 
-#include "argil/core/deform/mass_spring.hpp"
 #include "argil/core/deform/material.hpp"
+#include "argil/core/deform/pole_stencil_matrix.hpp"
+#include "argil/core/deform/shell_matrices.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
 #include "argil/core/linalg/banded_cholesky.hpp"
 
 namespace argil {
 
-/// Largest time step a body accepts [s] (the haptic step is 1e-3).
+/// Largest time step a body accepts [s].
 inline constexpr double kMaxTimeStep = 0.1;
+/// The haptic step [s]: create() checks a material's conditioning at it.
+inline constexpr double kHapticStep = 1e-3;
 
 /// What a step would do before a load whose size depends on it is known: the
 /// motion of the loaded point without that load, and its compliance.
 struct LoadPreview {
-  /// g . (x_next - x) over the step without the pattern load [mm], g the pattern.
+  /// g . (P_next - P) over the step without the pattern load [mm], g the pattern.
   Eigen::Vector3d free_motion = Eigen::Vector3d::Zero();
   /// h^2 g^T A^-1 g [mm/N]: how far the loaded point moves this step per newton
   /// applied through the pattern (the same in every direction).
   double compliance = 0.0;
 };
 
-/// State x (nodes), v (node velocities), x_rest (rest nodes) and a material.
-/// One step, with h = dt and K, C = beta K, M' = 1e-3 M (mass_spring.hpp):
-///   (M' + h C + h^2 K) v+ = M' v + h (f - K (x - x_rest)),  x+ = x + h v+
+/// State P (control points), V (their velocities), P_rest (rest control
+/// points) and a material. One step, with h = dt, K the elastic stiffness
+/// (shell matrices times the material's stiffnesses), C = beta K and M' =
+/// 1e-3 M the lumped mass:
+///   (M' + h C + h^2 K) V+ = M' V + h (f - K (P - P_rest)),  P+ = P + h V+
 /// (implicit Euler, unconditionally stable for M' > 0, K, C >= 0; without
-/// external force the energy 0.5 v^T M' v + 0.5 u^T K u never increases).
-/// Fixed nodes keep x = x_rest and v = 0. After the step, plasticity moves
-/// x_rest so no anchor stretch exceeds the yield, and the control points are
-/// refitted exactly through the nodes (fit_control_points) and handed to the
-/// hierarchy, so the next query sees the new surface.
+/// external force the energy 0.5 V^T M' V + 0.5 U^T K U never increases).
+/// Held control points keep P = P_rest and V = 0. After the step, plasticity
+/// moves P_rest so that no control point is farther than the yield from it.
+/// The weights of a rational face do not change.
 class DeformableBody {
  public:
-  /// Validates the surface and the material, builds the node layer and checks
-  /// node masses against kMaterialRange (error names `density`).
+  /// Validates the surface and the material, integrates the shell matrices
+  /// and checks the material's conditioning at kHapticStep on this face
+  /// (MaterialRange::min_inertia_ratio; the error names the material and the
+  /// ratio, never an absolute mass).
   static Result<DeformableBody> create(const BSplineSurface& surface, const Material& material,
                                        const BoundaryConditions& conditions, OperatorCache& cache);
 
-  /// Current surface (control points fitted to the nodes; weights unchanged).
+  /// Current surface.
   const BSplineSurface& surface() const { return hierarchy_.surface(); }
   const SurfaceHierarchy& hierarchy() const { return hierarchy_; }
   /// Largest node count of the lazy hierarchy (SurfaceHierarchy::set_node_budget).
   void set_node_budget(std::size_t nodes) { hierarchy_.set_node_budget(nodes); }
   const SurfaceOperators& operators() const { return hierarchy_.operators(); }
   const Material& material() const { return material_; }
-  /// Node positions [mm], row i * n_v + j at (greville_u[i], greville_v[j]).
-  const ControlNet& nodes() const { return nodes_; }
-  /// Rest positions [mm]; they move only by plastic flow.
-  const ControlNet& rest_nodes() const { return rest_; }
+  /// Control points [mm], row i * n_v + j (the state).
+  const ControlNet& control_points() const { return surface().control_points; }
+  /// Rest control points [mm]; they move only by plastic flow.
+  const ControlNet& rest_control_points() const { return rest_; }
   const ControlNet& velocities() const { return velocities_; }  // [mm/s]
-  const Eigen::VectorXd& masses() const { return masses_; }     // [kg]
+  /// Lumped masses [kg]: rho h integral R_i dA.
+  const Eigen::VectorXd& masses() const { return masses_; }
+  /// One flag per control point: held by the boundary conditions.
   const std::vector<char>& fixed() const { return fixed_; }
-  const std::vector<Spring>& springs() const { return springs_; }
+  const ShellMatrices& shell() const { return shell_; }
+  /// K [N/mm], the same for x, y and z.
+  const PoleStencilMatrix& stiffness() const { return stiffness_; }
   /// 0.5 sum m' |v|^2 [mJ = N mm].
   double kinetic_energy() const;
-  /// Springs and anchors, 0.5 u^T K u with u = x - x_rest [mJ].
+  /// 0.5 sum_c U_c^T K U_c with U = P - P_rest [mJ].
   double potential_energy() const;
 
-  /// One step of dt [s] (0 < dt <= kMaxTimeStep) with explicit node forces
-  /// (n x 3 [N]; empty for none). Fails only on an invalid dt or a matrix that
-  /// is not positive definite to working precision (outside the documented range).
-  Status step(double dt, const ControlNet& node_forces = {});
+  /// One step of dt [s] (0 < dt <= kMaxTimeStep) with explicit control-point
+  /// forces (n x 3 [N]; empty for none). Fails only on an invalid dt or a
+  /// matrix that is not positive definite to working precision.
+  Status step(double dt, const ControlNet& forces = {});
 
-  /// The first half of a step with a load F spread by `pattern` (generalised
-  /// node weights, n entries, e.g. fit_adjoint of a contact's basis values;
-  /// empty for none) whose size is decided after seeing the preview. Must be
-  /// followed by finish_step.
-  Result<LoadPreview> begin_step(double dt, const ControlNet& node_forces,
+  /// The first half of a step with a load F spread by `pattern` (one weight
+  /// per control point, e.g. contact_load_pattern(); empty for none) whose size
+  /// is decided after seeing the preview. Must be followed by finish_step.
+  Result<LoadPreview> begin_step(double dt, const ControlNet& forces,
                                  const Eigen::VectorXd& pattern);
-  /// Completes the step with pattern force F [N] (node force g_i F).
+  /// Completes the step with pattern force F [N] (control-point force g_i F).
   void finish_step(const Eigen::Vector3d& pattern_force);
 
  private:
   DeformableBody(SurfaceHierarchy hierarchy, const Material& material);
   Status factorize(double dt);
+  /// The implicit matrix M' + (h beta + h^2) K in band form, unknowns in solve order.
+  SymmetricBandMatrix step_matrix(double dt) const;
 
   SurfaceHierarchy hierarchy_;
   Material material_;
-  std::vector<Spring> springs_;
+  ShellMatrices shell_;
+  PoleStencilMatrix stiffness_;
   std::vector<char> fixed_;
   Eigen::VectorXd masses_;
-  ControlNet rest_, nodes_, velocities_;
+  ControlNet rest_, velocities_;
+  /// Solve order: the pole of each unknown, row-major in the direction that
+  /// gives the narrower band.
+  std::vector<Eigen::Index> order_;
+  std::vector<int> rank_;  // inverse of order_
+  int bandwidth_ = 0;
   std::optional<BandedCholesky> solver_;
   double solver_dt_ = 0.0;
-  // Between begin_step and finish_step.
+  // Between begin_step and finish_step, in solve order.
   RowMajorMatrix work_;
   double step_dt_ = 0.0;
   bool has_pattern_ = false;

@@ -228,7 +228,7 @@ HapticWorld::Coupling HapticWorld::step_bodies(
     DeformableBody& body = *bodies_[b].deformable;
     Eigen::VectorXd pattern;
     if (pressing && !body_contacts[b].empty())
-      pattern = contact_load_pattern(body.surface(), body.operators(), body_contacts[b],
+      pattern = contact_load_pattern(body.surface(), body_contacts[b],
                                      contact_shares(body_contacts[b], eps));
     Result<LoadPreview> p = body.begin_step(dt, {}, pattern);
     if (!p.ok()) return {p.status(), {0, 0, 0}, {0, 0, 0}, false};
