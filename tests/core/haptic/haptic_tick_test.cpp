@@ -155,8 +155,8 @@ TEST_CASE("a tool dents an elastic panel, which returns to rest after it leaves"
     argil::Material m;
     m.density = 1e4;  // 1 mm of a dense soft layer
     m.thickness = 1.0;
-    m.youngs_modulus = 0.5;
-    m.foundation_stiffness = 0.4;
+    m.youngs_modulus = 0.1;
+    m.foundation_stiffness = 0.02;
     m.damping = 0.01;
     m.yield = yield;
     argil::BoundaryConditions bc;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "argil/core/base/number_text.hpp"
+#include "argil/core/operators/surface_operators.hpp"
 
 namespace argil {
 
@@ -27,6 +28,24 @@ std::vector<char> held_poles(int nu, int nv, const BoundaryConditions& c) {
 }
 
 }  // namespace
+
+void DeformableBody::plastic_flow(const ControlNet& points) {
+  // The yield applies to the surface's displacement, d(xi_i) at each control
+  // point's Greville point: evaluated, not the control-point stretch, which
+  // overstates a coarse net's displacement and would make yielding depend on
+  // the net. Where |d| exceeds the yield, the rest control point takes up the
+  // excess fraction of its stretch.
+  BSplineSurface displaced = surface();
+  displaced.control_points = points - rest_;
+  SurfaceGrid grid;
+  evaluate_grid(displaced, operators().u->greville_rows(), operators().v->greville_rows(), 0,
+                grid);
+  for (Eigen::Index i = 0; i < rest_.rows(); ++i) {
+    const double length = grid.points.row(i).norm();
+    if (length > material_.yield)
+      rest_.row(i) += (1.0 - material_.yield / length) * (points.row(i) - rest_.row(i));
+  }
+}
 
 DeformableBody::DeformableBody(SurfaceHierarchy hierarchy, const Material& material)
     : hierarchy_(std::move(hierarchy)), material_(material) {}
@@ -198,14 +217,7 @@ void DeformableBody::finish_step(const Eigen::Vector3d& pattern_force) {
     velocities_.row(i) = v;
     points.row(i) += h * v;
   }
-  if (std::isfinite(material_.yield)) {
-    // Plastic flow: the rest position follows so no stretch exceeds the yield.
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const Eigen::RowVector3d stretch = points.row(i) - rest_.row(i);
-      const double length = stretch.norm();
-      if (length > material_.yield) rest_.row(i) += (1.0 - material_.yield / length) * stretch;
-    }
-  }
+  if (std::isfinite(material_.yield)) plastic_flow(points);
   hierarchy_.set_control_points(points);
 }
 

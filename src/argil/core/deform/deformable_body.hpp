@@ -43,7 +43,8 @@ struct LoadPreview {
 /// (implicit Euler, unconditionally stable for M' > 0, K, C >= 0; without
 /// external force the energy 0.5 V^T M' V + 0.5 U^T K U never increases).
 /// Held control points keep P = P_rest and V = 0. After the step, plasticity
-/// moves P_rest so that no control point is farther than the yield from it.
+/// moves P_rest where the surface's displacement at a control point's
+/// Greville point exceeds the yield.
 /// The weights of a rational face do not change.
 class DeformableBody {
  public:
@@ -94,6 +95,8 @@ class DeformableBody {
  private:
   DeformableBody(SurfaceHierarchy hierarchy, const Material& material);
   Status factorize(double dt);
+  /// Moves the rest control points so that no surface displacement exceeds the yield.
+  void plastic_flow(const ControlNet& points);
   /// The implicit matrix M' + (h beta + h^2) K in band form, unknowns in solve order.
   SymmetricBandMatrix step_matrix(double dt) const;
 
