@@ -169,7 +169,7 @@ TEST_CASE("undo and redo restore the exact states before and after each stroke",
 Scene parse(const std::string& models,
             const std::string& tools = R"([{"name": "p", "type": "point"}])") {
   const Result<Scene> r =
-      parse_scene(R"({"format": "argil.scene", "version": 1, "tolerance": 0.001, "models": )" +
+      parse_scene(R"({"format": "argil.scene", "version": 2, "tolerance": 0.001, "models": )" +
                       models + R"(, "tools": )" + tools + "}",
                   "test-scene.json", std::filesystem::path(ARGIL_SOURCE_DIR) / "tests/data");
   INFO(r.status().message);
@@ -180,7 +180,7 @@ Scene parse(const std::string& models,
 TEST_CASE("a session loads only the faces its scene names", "[session]") {
   const Scene scene = parse(
       R"([{"name": "ring", "file": "bearing.iges", "faces": [161, 3],
-           "material": {"density": 100, "stiffness": 100}},
+           "material": "sheet_steel"},
           {"name": "other", "file": "bearing.iges", "faces": [7], "kind": "rigid"}])");
   Result<Session> created = Session::create(scene);
   INFO(created.status().message);
@@ -196,7 +196,7 @@ TEST_CASE("a session loads only the faces its scene names", "[session]") {
 
 TEST_CASE("session errors name the scene field", "[session][bad-input]") {
   const std::string sheet = R"({"name": "sheet", "file": "collide_sheet.json",
-                                "material": {"density": 1e-5, "stiffness": 1}})";
+                                "material": "clay"})";
   const std::pair<Scene, std::string> cases[] = {
       {parse("[" + sheet +
              R"(, {"name": "m", "file": "bearing.iges", "faces": [0, 999], "kind": "rigid"}])"),
