@@ -1,5 +1,6 @@
 // argil help [COMMAND]: the program's usage, or one command's; and the table
 // of commands the program dispatches to.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -40,9 +41,11 @@ std::string program_usage() {
       "usage: argil COMMAND [ARGS]\n"
       "       argil help COMMAND, or argil COMMAND --help, for a command's options\n"
       "\ncommands:\n";
+  std::size_t width = 0;
+  for (const Command& c : all_commands()) width = std::max(width, c.spec().name.size());
   for (const Command& c : all_commands()) {
     const CommandDeclaration& spec = c.spec();
-    out += "  " + spec.name + std::string(10 - spec.name.size(), ' ') + spec.summary + "\n";
+    out += "  " + spec.name + std::string(width + 2 - spec.name.size(), ' ') + spec.summary + "\n";
   }
   out +=
       "\noptions:\n"

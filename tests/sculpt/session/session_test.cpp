@@ -179,15 +179,15 @@ Scene parse(const std::string& models,
 
 TEST_CASE("a session loads only the faces its scene names", "[session]") {
   const Scene scene = parse(
-      R"([{"name": "ring", "file": "bearing.iges", "faces": [161, 3],
-           "material": "sheet_steel"},
+      R"([{"name": "ring", "file": "bearing.iges", "faces": [161, 5],
+           "material": "clay"},
           {"name": "other", "file": "bearing.iges", "faces": [7], "kind": "rigid"}])");
   Result<Session> created = Session::create(scene);
   INFO(created.status().message);
   REQUIRE(created.ok());
   Session& s = created.value();
   REQUIRE(s.models().size() == 2);
-  CHECK(s.models()[0].file_faces == std::vector<int>{161, 3});
+  CHECK(s.models()[0].file_faces == std::vector<int>{161, 5});
   CHECK(s.models()[0].initial.faces.size() == 2);
   CHECK(s.models()[0].bodies.size() == 2);
   CHECK(s.models()[1].file_faces == std::vector<int>{7});
@@ -207,8 +207,9 @@ TEST_CASE("session errors name the scene field", "[session][bad-input]") {
              R"([{"name": "t", "type": "bspline", "file": "bearing.iges", "face": 500}])"),
        "tools[0].face: face 500 is out of range"},
       {parse(R"([{"name": "m", "file": "collide_sheet.json",
-                  "material": {"density": 1e-12, "stiffness": 1}}])"),
-       "models[0] face 0: material.density"},
+                  "material": {"preset": "sheet_steel", "density": 0.001,
+                               "youngs_modulus": 1e7, "foundation_stiffness": 0}}])"),
+       "models[0] face 0: material too stiff for its mass on this face"},
   };
   for (const auto& [scene, expected] : cases) {
     const Result<Session> r = Session::create(scene);

@@ -138,7 +138,11 @@ bool read_version1_material(JsonReader& r, const Json& value, const std::string&
     if (!read_yield(r, *v, JsonReader::join(path, "yield"), range.yield, old.yield)) return false;
   }
   const Result<Material> mapped = material_from_version1(old);
-  if (!mapped.ok()) return r.fail(path, mapped.status().message);
+  if (!mapped.ok()) {
+    return r.fail(path, mapped.status().message +
+                            "; write the scene in version 2 to give this material "
+                            "(argil materials lists the presets)");
+  }
   out = mapped.value();
   return true;
 }
