@@ -7,7 +7,8 @@
 #include "argil/io.hpp"  // IWYU pragma: export
 
 // scene
-#include "argil/sculpt/scene/scene.hpp"  // IWYU pragma: export
+#include "argil/sculpt/scene/scene.hpp"              // IWYU pragma: export
+#include "argil/sculpt/scene/version1_material.hpp"  // IWYU pragma: export
 // script
 #include "argil/sculpt/script/script.hpp"  // IWYU pragma: export
 // session

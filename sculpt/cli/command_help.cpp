@@ -1,5 +1,6 @@
 // argil help [COMMAND]: the program's usage, or one command's; and the table
 // of commands the program dispatches to.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -22,8 +23,9 @@ const CommandDeclaration& help_command() {
 
 const std::vector<Command>& all_commands() {
   static const std::vector<Command> commands = {
-      {info_command, run_info},     {convert_command, run_convert}, {collide_command, run_collide},
-      {sculpt_command, run_sculpt}, {help_command, run_help},
+      {info_command, run_info},           {convert_command, run_convert},
+      {collide_command, run_collide},     {sculpt_command, run_sculpt},
+      {materials_command, run_materials}, {help_command, run_help},
   };
   return commands;
 }
@@ -39,9 +41,11 @@ std::string program_usage() {
       "usage: argil COMMAND [ARGS]\n"
       "       argil help COMMAND, or argil COMMAND --help, for a command's options\n"
       "\ncommands:\n";
+  std::size_t width = 0;
+  for (const Command& c : all_commands()) width = std::max(width, c.spec().name.size());
   for (const Command& c : all_commands()) {
     const CommandDeclaration& spec = c.spec();
-    out += "  " + spec.name + std::string(10 - spec.name.size(), ' ') + spec.summary + "\n";
+    out += "  " + spec.name + std::string(width + 2 - spec.name.size(), ' ') + spec.summary + "\n";
   }
   out +=
       "\noptions:\n"

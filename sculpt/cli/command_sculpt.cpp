@@ -110,7 +110,7 @@ const CommandDeclaration& sculpt_command() {
       .description =
           "Writes the sculpted surfaces (STEP, IGES, JSON), forces.csv, contacts.csv,\n"
           "timing.json, recorded.csv and pictures to DIR. An interrupted run resumes\n"
-          "from DIR/session.journal.",
+          "from DIR/session.journal. The material presets a scene can name: argil materials.",
       .options = {{.name = "--script",
                    .argument = "S",
                    .kind = ValueKind::text,

@@ -26,6 +26,10 @@ int run_collide(const std::vector<std::string>& args);
 const CommandDeclaration& sculpt_command();
 int run_sculpt(const std::vector<std::string>& args);
 
+/// argil materials
+const CommandDeclaration& materials_command();
+int run_materials(const std::vector<std::string>& args);
+
 /// argil help [COMMAND]
 const CommandDeclaration& help_command();
 int run_help(const std::vector<std::string>& args);

@@ -87,6 +87,7 @@ std::string count_problem(const CommandDeclaration& spec, std::size_t got) {
   const std::size_t most = spec.operands.size();
   const std::size_t least = spec.last_operand_optional ? most - 1 : most;
   if (got >= least && got <= most) return "";
+  if (most == 0) return "expected no arguments, got " + std::to_string(got);
   const std::string expected =
       least == most ? std::to_string(most) : std::to_string(least) + " or " + std::to_string(most);
   return "expected " + expected + (most == 1 ? " argument" : " arguments") + " (" +

@@ -4,6 +4,7 @@
 #               OpenCASCADE chatter.
 #   fails:      ARGS must exit non-zero with EXPECT in stderr (and, when
 #               NOT_EXPECT is given, no match of it).
+#   warns:      ARGS must exit 0 with EXPECT in stderr (a warning that does not stop it).
 # Variables: ARGIL, MODE, IN, OUT, ARGS (;-list), EXPECT, NOT_EXPECT.
 cmake_minimum_required(VERSION 3.20)
 
@@ -55,6 +56,12 @@ elseif(MODE STREQUAL "fails")
     message(FATAL_ERROR "stderr matches '${NOT_EXPECT}' ('${CMAKE_MATCH_0}'):\n${err}")
   endif()
   message(STATUS "failed as expected (${rc}): ${err}")
+elseif(MODE STREQUAL "warns")
+  run_argil(out err rc ${ARGS})
+  if(NOT rc EQUAL 0 OR NOT err MATCHES "${EXPECT}")
+    message(FATAL_ERROR "expected exit 0 and '${EXPECT}' on stderr, got exit ${rc}:\n${err}")
+  endif()
+  message(STATUS "warned as expected: ${err}")
 else()
   message(FATAL_ERROR "unknown MODE ${MODE}")
 endif()

@@ -11,14 +11,14 @@ namespace argil::sculpt {
 namespace {
 
 const char* kGoodScene = R"({
-  "format": "argil.scene", "version": 1,
+  "format": "argil.scene", "version": 2,
   "units": {"length": "mm", "time": "s", "force": "N"},
   "tolerance": 0.05, "haptic_rate": 500,
   "coupling": {"stiffness": 2, "damping": 0.001, "max_force": 8},
   "models": [
     {"name": "hood", "file": "../surfaces/panel.json", "faces": [0],
-     "material": {"density": 2e-6, "stiffness": 3, "damping": 0.02, "anchor_stiffness": 0.5,
-                  "yield": 0.1, "friction": 0.45},
+     "material": {"preset": "clay", "thickness": 3, "damping": 0.02, "yield": 0.1},
+     "friction": 0.45,
      "boundary": {"fixed_edges": ["u0", "v1"], "fixed_corners": true}},
     {"name": "frame", "file": "/abs/frame.step", "kind": "rigid", "friction": 0.15}
   ],
@@ -44,9 +44,11 @@ TEST_CASE("a scene reads every field and resolves paths against its folder", "[s
   CHECK(s.models[0].file == std::filesystem::path("/x/examples/surfaces/panel.json"));
   CHECK(s.models[0].faces == std::vector<int>{0});
   CHECK(s.models[0].deformable);
-  CHECK(s.models[0].material.youngs_modulus == 3.0);  // v1 spring stiffness, 1 mm layer
+  CHECK(s.models[0].material.thickness == 3.0);
+  CHECK(s.models[0].material.damping == 0.02);
   CHECK(s.models[0].material.yield == 0.1);
-  CHECK(s.models[0].friction == 0.45);  // from material.friction
+  CHECK(s.models[0].material.youngs_modulus == material_preset("clay")->youngs_modulus);
+  CHECK(s.models[0].friction == 0.45);
   CHECK(s.models[0].boundary.fixed_u0);
   CHECK_FALSE(s.models[0].boundary.fixed_u1);
   CHECK(s.models[0].boundary.fixed_v1);
@@ -69,16 +71,29 @@ TEST_CASE("a scene reads every field and resolves paths against its folder", "[s
   CHECK_FALSE(s.outputs.iges);
   CHECK_FALSE(s.outputs.pictures);
   CHECK(s.script == std::filesystem::path("/x/examples/dent/press.csv"));
+  CHECK(s.version == 2);
+  CHECK(s.warnings.empty());
 }
 
-TEST_CASE("a scene's material yield defaults to elastic", "[scene]") {
+TEST_CASE("a material given field by field defaults to elastic with 1e-3 s damping", "[scene]") {
   const Result<Scene> r = parse_scene(
-      R"({"format": "argil.scene", "version": 1, "tolerance": 1,
-          "models": [{"name": "m", "file": "m.json", "material": {"density": 1, "stiffness": 1}}],
+      R"({"format": "argil.scene", "version": 2, "tolerance": 1,
+          "models": [{"name": "m", "file": "m.json",
+                      "material": {"density": 1200, "thickness": 4, "youngs_modulus": 2.5,
+                                   "poisson_ratio": 0.25, "foundation_stiffness": 0.75}}],
           "tools": [{"name": "p", "type": "point"}]})",
       "s.json", ".");
+  INFO(r.status().message);
   REQUIRE(r.ok());
-  CHECK(std::isinf(r.value().models[0].material.yield));
+  const Material& m = r.value().models[0].material;
+  CHECK(m.density == 1200.0);
+  CHECK(m.thickness == 4.0);
+  CHECK(m.youngs_modulus == 2.5);
+  CHECK(m.poisson_ratio == 0.25);
+  CHECK(m.foundation_stiffness == 0.75);
+  CHECK(m.damping == 1e-3);
+  CHECK(std::isinf(m.yield));
+  CHECK(r.value().models[0].friction == 0.3);
   CHECK(r.value().haptic_rate == 1000.0);
 }
 
@@ -96,8 +111,10 @@ TEST_CASE("bad scenes give an error naming the field", "[scene][bad-input]") {
       {"", "empty file"},
       {"{\"format\": ", "not valid JSON"},
       {edited("\"argil.scene\"", "\"argil.surfaces\""), "format: expected \"argil.scene\""},
-      {edited("\"version\": 1", "\"version\": 7"), "version: unknown schema version 7"},
-      {edited("\"version\": 1", "\"version\": \"1\""), "version: expected an integer"},
+      {edited("\"version\": 2", "\"version\": 3"),
+       "version: unknown schema version 3 (this build reads versions 1 to 2)"},
+      {edited("\"version\": 2", "\"version\": 0"), "version: unknown schema version 0"},
+      {edited("\"version\": 2", "\"version\": \"2\""), "version: expected an integer"},
       {edited("\"tolerance\": 0.05, ", ""), "tolerance: missing field"},
       {edited("\"tolerance\": 0.05", "\"tolerance\": -0.05"),
        "tolerance: must be > 0 mm, got -0.05 mm"},
@@ -118,23 +135,20 @@ TEST_CASE("bad scenes give an error naming the field", "[scene][bad-input]") {
        "coupling.stiffness: must be in (0, 1e+06] N/mm, got 1e+07 N/mm"},
       {edited("\"damping\": 0.001", "\"damping\": -1"),
        "coupling.damping: must be in [0, 1000] N s/mm, got -1 N s/mm"},
-      {edited("\"stiffness\": 3", "\"stiffness\": -3"),
-       "models[0].material.stiffness: must be in [0, 1e+09] N/mm, got -3 N/mm"},
-      {edited("\"stiffness\": 3", "\"stiffness\": 2e9"),
-       "models[0].material.stiffness: must be in [0, 1e+09] N/mm, got 2e+09 N/mm"},
-      {edited("\"density\": 2e-6", "\"density\": 0"),
-       "models[0].material.density: must be in [1e-15, 1000] kg/mm^2, got 0 kg/mm^2"},
+      {edited("\"thickness\": 3", "\"thickness\": -3"),
+       "models[0].material.thickness: must be in [1e-06, 10000] mm, got -3 mm"},
+      {edited("\"thickness\": 3", "\"poisson_ratio\": 0.5"),
+       "models[0].material.poisson_ratio: must be in [0, 0.5), got 0.5"},
       {edited("\"yield\": 0.1", "\"yield\": 0"),
        "models[0].material.yield: must be in [1e-09, inf] mm, got 0 mm"},
-      {edited("\"density\": 2e-6, ", ""), "models[0].material.density: missing field"},
-      {edited("\"friction\": 0.45", "\"friction\": -0.3"),
-       "models[0].material.friction: must be >= 0, got -0.3"},
-      {edited("\"friction\": 0.45", "\"friction\": 11"),
-       "models[0].material.friction: must be in [0, 10], got 11"},
-      {edited("\"friction\": 0.15", "\"friction\": 12"),
-       "models[1].friction: must be in [0, 10], got 12"},
       {edited("\"yield\": 0.1", "\"yield\": \"soft\""),
        "models[0].material.yield: expected a number"},
+      {edited("\"friction\": 0.45", "\"friction\": -0.3"),
+       "models[0].friction: must be >= 0, got -0.3"},
+      {edited("\"friction\": 0.45", "\"friction\": 11"),
+       "models[0].friction: must be in [0, 10], got 11"},
+      {edited("\"friction\": 0.15", "\"friction\": 12"),
+       "models[1].friction: must be in [0, 10], got 12"},
       {edited("\"faces\": [0]", "\"faces\": [-1]"), "models[0].faces[0]: face index must be >= 0"},
       {edited("\"faces\": [0]", "\"faces\": [0, 0]"), "models[0].faces[1]: face 0 is listed twice"},
       {edited("\"faces\": [0]", "\"faces\": [1.5]"), "models[0].faces[0]: expected an integer"},
@@ -178,14 +192,10 @@ TEST_CASE("bad scenes give an error naming the field", "[scene][bad-input]") {
   }
 }
 
-TEST_CASE("the scene reader accepts exactly the material and coupling values validate() accepts",
+TEST_CASE("the scene reader accepts exactly the coupling values validate() accepts",
           "[scene][bad-input]") {
-  // Material::stiffness 0 means no springs; the upper ends are inclusive.
+  // The upper ends are inclusive; damping 0 is no damper.
   const std::pair<std::string, std::string> edges[] = {
-      {"\"stiffness\": 3", "\"stiffness\": 0"},
-      {"\"stiffness\": 3", "\"stiffness\": 1e9"},
-      {"\"anchor_stiffness\": 0.5", "\"anchor_stiffness\": 0"},
-      {"\"damping\": 0.02", "\"damping\": 1"},
       {"\"max_force\": 8", "\"max_force\": 1e4"},
       {"\"damping\": 0.001", "\"damping\": 0"},
   };
@@ -193,22 +203,21 @@ TEST_CASE("the scene reader accepts exactly the material and coupling values val
     const Result<Scene> r = parse_scene(edited(from, to), "scene.json", ".");
     INFO(to);
     REQUIRE(r.ok());
-    CHECK(validate(r.value().models[0].material).ok());
     CHECK(validate(r.value().coupling).ok());
   }
 }
 
 TEST_CASE("a scene without a deformable model or without tools is refused", "[scene][bad-input]") {
   const Result<Scene> rigid = parse_scene(
-      R"({"format": "argil.scene", "version": 1, "tolerance": 1,
+      R"({"format": "argil.scene", "version": 2, "tolerance": 1,
           "models": [{"name": "m", "file": "m.json", "kind": "rigid"}],
           "tools": [{"name": "p", "type": "point"}]})",
       "s.json", ".");
   REQUIRE_FALSE(rigid.ok());
   CHECK(rigid.status().message.find("models: no deformable model") != std::string::npos);
   const Result<Scene> no_tools = parse_scene(
-      R"({"format": "argil.scene", "version": 1, "tolerance": 1,
-          "models": [{"name": "m", "file": "m.json", "material": {"density": 1, "stiffness": 1}}],
+      R"({"format": "argil.scene", "version": 2, "tolerance": 1,
+          "models": [{"name": "m", "file": "m.json", "material": "clay"}],
           "tools": []})",
       "s.json", ".");
   REQUIRE_FALSE(no_tools.ok());

@@ -169,7 +169,7 @@ TEST_CASE("undo and redo restore the exact states before and after each stroke",
 Scene parse(const std::string& models,
             const std::string& tools = R"([{"name": "p", "type": "point"}])") {
   const Result<Scene> r =
-      parse_scene(R"({"format": "argil.scene", "version": 1, "tolerance": 0.001, "models": )" +
+      parse_scene(R"({"format": "argil.scene", "version": 2, "tolerance": 0.001, "models": )" +
                       models + R"(, "tools": )" + tools + "}",
                   "test-scene.json", std::filesystem::path(ARGIL_SOURCE_DIR) / "tests/data");
   INFO(r.status().message);
@@ -179,15 +179,15 @@ Scene parse(const std::string& models,
 
 TEST_CASE("a session loads only the faces its scene names", "[session]") {
   const Scene scene = parse(
-      R"([{"name": "ring", "file": "bearing.iges", "faces": [161, 3],
-           "material": {"density": 100, "stiffness": 100}},
+      R"([{"name": "ring", "file": "bearing.iges", "faces": [161, 5],
+           "material": "clay"},
           {"name": "other", "file": "bearing.iges", "faces": [7], "kind": "rigid"}])");
   Result<Session> created = Session::create(scene);
   INFO(created.status().message);
   REQUIRE(created.ok());
   Session& s = created.value();
   REQUIRE(s.models().size() == 2);
-  CHECK(s.models()[0].file_faces == std::vector<int>{161, 3});
+  CHECK(s.models()[0].file_faces == std::vector<int>{161, 5});
   CHECK(s.models()[0].initial.faces.size() == 2);
   CHECK(s.models()[0].bodies.size() == 2);
   CHECK(s.models()[1].file_faces == std::vector<int>{7});
@@ -196,7 +196,7 @@ TEST_CASE("a session loads only the faces its scene names", "[session]") {
 
 TEST_CASE("session errors name the scene field", "[session][bad-input]") {
   const std::string sheet = R"({"name": "sheet", "file": "collide_sheet.json",
-                                "material": {"density": 1e-5, "stiffness": 1}})";
+                                "material": "clay"})";
   const std::pair<Scene, std::string> cases[] = {
       {parse("[" + sheet +
              R"(, {"name": "m", "file": "bearing.iges", "faces": [0, 999], "kind": "rigid"}])"),
@@ -207,8 +207,9 @@ TEST_CASE("session errors name the scene field", "[session][bad-input]") {
              R"([{"name": "t", "type": "bspline", "file": "bearing.iges", "face": 500}])"),
        "tools[0].face: face 500 is out of range"},
       {parse(R"([{"name": "m", "file": "collide_sheet.json",
-                  "material": {"density": 1e-12, "stiffness": 1}}])"),
-       "models[0] face 0: material.density"},
+                  "material": {"preset": "sheet_steel", "density": 0.001,
+                               "youngs_modulus": 1e7, "foundation_stiffness": 0}}])"),
+       "models[0] face 0: material too stiff for its mass on this face"},
   };
   for (const auto& [scene, expected] : cases) {
     const Result<Session> r = Session::create(scene);

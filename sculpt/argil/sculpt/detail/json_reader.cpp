@@ -8,20 +8,6 @@
 #include "argil/io/json/json_literals.hpp"
 
 namespace argil::sculpt::internal {
-namespace {
-
-// A value for an error message: its JSON text, cut short when long.
-std::string shown(const Json& value) {
-  std::string text = value.dump(-1, ' ', false, Json::error_handler_t::replace);
-  if (value.is_string()) {
-    if (auto literal = io::non_finite_marker_literal(value.get_ref<const std::string&>()))
-      return *literal;
-  }
-  if (text.size() > 40) text = text.substr(0, 37) + "...";
-  return text;
-}
-
-}  // namespace
 
 Result<Json> parse_json_text(std::string_view text, const std::string& source) {
   if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
@@ -37,6 +23,16 @@ Result<Json> parse_json_text(std::string_view text, const std::string& source) {
     }
   }
   return root;
+}
+
+std::string JsonReader::shown(const Json& value) {
+  std::string text = value.dump(-1, ' ', false, Json::error_handler_t::replace);
+  if (value.is_string()) {
+    if (auto literal = io::non_finite_marker_literal(value.get_ref<const std::string&>()))
+      return *literal;
+  }
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return text;
 }
 
 bool JsonReader::fail(const std::string& path, const std::string& what) {
@@ -149,6 +145,12 @@ std::string JsonReader::index(const std::string& path, std::size_t k) {
 }
 
 bool JsonReader::format_header(const Json& root, std::string_view format, long long version) {
+  long long read = 0;
+  return format_header(root, format, version, version, read);
+}
+
+bool JsonReader::format_header(const Json& root, std::string_view format, long long oldest,
+                               long long newest, long long& read) {
   const Json* format_value = member(root, "", "format");
   const Json* version_value = member(root, "", "version");
   if (format_value == nullptr || version_value == nullptr) return false;
@@ -157,11 +159,13 @@ bool JsonReader::format_header(const Json& root, std::string_view format, long l
   if (name != format) {
     return fail("format", "expected \"" + std::string(format) + "\", got \"" + name + "\"");
   }
-  long long number = 0;
-  if (!integer(*version_value, "version", number)) return false;
-  if (number != version) {
-    return fail("version", "unknown schema version " + std::to_string(number) +
-                               " (this build reads version " + std::to_string(version) + ")");
+  if (!integer(*version_value, "version", read)) return false;
+  if (read < oldest || read > newest) {
+    const std::string readable =
+        oldest == newest ? "version " + std::to_string(newest)
+                         : "versions " + std::to_string(oldest) + " to " + std::to_string(newest);
+    return fail("version", "unknown schema version " + std::to_string(read) +
+                               " (this build reads " + readable + ")");
   }
   return true;
 }

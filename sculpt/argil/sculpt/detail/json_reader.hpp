@@ -1,7 +1,7 @@
 #pragma once
 // Private to argil::sculpt (included by .cpp files only): reading nlohmann-json
 // values with errors that name the source and the field path, e.g.
-// "scene.json: models[1].material.stiffness: must be in [0, 1e+09] N/mm, got -3 N/mm".
+// "scene.json: models[1].material.youngs_modulus: must be in [0, 1e+07] MPa, got -3 MPa".
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -55,9 +55,15 @@ class JsonReader {
   /// The document header: "format" equal to `format` and "version" equal to
   /// `version` (an unknown version is named with the one this build reads).
   bool format_header(const Json& root, std::string_view format, long long version);
+  /// The same for a format whose readers take versions `oldest` to `newest`;
+  /// `read` gets the document's version.
+  bool format_header(const Json& root, std::string_view format, long long oldest, long long newest,
+                     long long& read);
   /// An array of exactly `count` finite numbers.
   bool numbers(const Json& value, const std::string& path, std::size_t count, double* out);
 
+  /// A value for an error message: its JSON text, cut short when long.
+  static std::string shown(const Json& value);
   /// Path of member `key` below `path` ("models[1]" + "material" -> "models[1].material").
   static std::string join(const std::string& path, std::string_view key);
   static std::string index(const std::string& path, std::size_t k);

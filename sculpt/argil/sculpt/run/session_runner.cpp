@@ -51,7 +51,8 @@ std::vector<std::string> start_warnings(const ResumePlan& plan) {
 Status resume(Session& session, const OpenedJournal& journal, const RunInputs& in, RunState& state,
               RunReport& report) {
   report.start = journal.plan.start;
-  report.warnings = start_warnings(journal.plan);
+  report.warnings = in.scene.warnings;
+  for (std::string& w : start_warnings(journal.plan)) report.warnings.push_back(std::move(w));
   if (journal.plan.start != RunStart::resumed) return Status::success();
   const Status replayed =
       detail::replay_journal(session, journal.plan.journal, in.out / kJournalName, state);

@@ -59,7 +59,8 @@ struct RunReport {
   std::vector<std::filesystem::path> files{};  // written, in order; the journal last
   TimingSummary wall_timing{};                 // wall time of each live Session::step [s]
   TimingSummary cpu_timing{};                  // the ticking thread's CPU time of each [s]
-  std::vector<std::string> warnings{};         // what the run recovered from
+  /// The scene's (Scene::warnings), then what the run recovered from.
+  std::vector<std::string> warnings{};
 };
 
 /// Runs `options.scene` with its script to the end (or until on_progress asks

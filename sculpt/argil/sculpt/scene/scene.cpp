@@ -10,6 +10,7 @@
 #include "argil/core/deform/contact_response.hpp"
 #include "argil/io/base/text_file.hpp"
 #include "argil/sculpt/detail/json_reader.hpp"
+#include "argil/sculpt/scene/detail/material_reader.hpp"
 
 namespace argil::sculpt {
 namespace {
@@ -23,7 +24,7 @@ constexpr double kMaxHapticRate = 1e5;
 class SceneReader {
  public:
   SceneReader(const std::string& source, std::filesystem::path base_dir)
-      : r_(source), base_dir_(std::move(base_dir)) {}
+      : r_(source), source_(source), base_dir_(std::move(base_dir)) {}
 
   Status error() const { return r_.error(); }
 
@@ -33,7 +34,8 @@ class SceneReader {
                         "models", "tools", "outputs", "script"})) {
       return false;
     }
-    if (!header(root)) return false;
+    if (!header(root, out.version)) return false;
+    version_ = out.version;
     if (const Json* units = r_.member(root, "", "units", false)) {
       if (!this->units(*units)) return false;
     }
@@ -52,6 +54,7 @@ class SceneReader {
       if (!this->coupling(*coupling, out.coupling)) return false;
     }
     if (!models(root, out.models) || !tools(root, out.tools)) return false;
+    out.warnings = std::move(warnings_);
     if (const Json* outputs = r_.member(root, "", "outputs", false)) {
       if (!this->outputs(*outputs, out.outputs)) return false;
     }
@@ -104,8 +107,12 @@ class SceneReader {
     return true;
   }
 
-  bool header(const Json& root) {
-    return r_.format_header(root, kSceneFormatName, kSceneFormatVersion);
+  bool header(const Json& root, int& version) {
+    long long read = 0;
+    if (!r_.format_header(root, kSceneFormatName, kSceneOldestVersion, kSceneFormatVersion, read))
+      return false;
+    version = static_cast<int>(read);
+    return true;
   }
 
   bool units(const Json& units) {
@@ -126,36 +133,24 @@ class SceneReader {
     return true;
   }
 
-  /// "coupling": each field against kCouplingRange, the range validate() uses.
+  /// "coupling": each field present against kCouplingRange, the range validate() uses.
   bool coupling(const Json& value, CouplingOptions& out) {
     if (!r_.only_known(value, "coupling", {"stiffness", "damping", "max_force"})) return false;
     const CouplingRange& range = kCouplingRange;
-    const RangedField fields[] = {{"stiffness", &out.stiffness, range.stiffness, "N/mm"},
-                                  {"damping", &out.damping, range.damping, "N s/mm"},
-                                  {"max_force", &out.max_force, range.max_force, "N"}};
-    return ranged_fields(value, "coupling", fields, false);
-  }
-
-  /// A number field of a physics struct and the range its validator uses.
-  struct RangedField {
-    const char* key;
-    double* value;
-    Interval range;
-    const char* unit;
-  };
-
-  /// Reads each of `fields` present in `object` (all of them when `required`),
-  /// each error naming its own path.
-  template <std::size_t N>
-  bool ranged_fields(const Json& object, const std::string& path, const RangedField (&fields)[N],
-                     bool required) {
-    for (const auto& [key, field, range, unit] : fields) {
-      const Json* v = r_.member(object, path, key, required);
-      if (v == nullptr) {
-        if (required) return false;
-        continue;
+    const struct {
+      const char* key;
+      double* value;
+      Interval range;
+      const char* unit;
+    } fields[] = {{"stiffness", &out.stiffness, range.stiffness, "N/mm"},
+                  {"damping", &out.damping, range.damping, "N s/mm"},
+                  {"max_force", &out.max_force, range.max_force, "N"}};
+    for (const auto& f : fields) {
+      const Json* v = r_.member(value, "coupling", f.key, false);
+      if (v != nullptr &&
+          !r_.within(*v, JsonReader::join("coupling", f.key), *f.value, f.range, f.unit)) {
+        return false;
       }
-      if (!r_.within(*v, JsonReader::join(path, key), *field, range, unit)) return false;
     }
     return true;
   }
@@ -226,9 +221,10 @@ class SceneReader {
     const Json* material = r_.member(value, path, "material", false);
     const Json* boundary = r_.member(value, path, "boundary", false);
     if (const Json* friction = r_.member(value, path, "friction", false)) {
-      if (out.deformable) {
+      if (out.deformable && version_ == 1) {
         return r_.fail(path + ".friction",
-                       "only rigid models take a friction here (deformable: material.friction)");
+                       "a version-1 scene gives a deformable model's friction as "
+                       "material.friction");
       }
       if (!this->friction(*friction, path + ".friction", out.friction)) return false;
     }
@@ -253,43 +249,23 @@ class SceneReader {
     return r_.fail(path, out_of_interval_text(out, Interval{0.0, kMaxFriction}, ""));
   }
 
-  /// The material of `model`, and the tool's friction against it.
+  /// The material of `model`; in version 1 also the tool's friction against it,
+  /// and a warning that the old numbers were mapped.
   bool material(const Json& value, const std::string& path, ModelOptions& model) {
-    Material& out = model.material;
-    if (!r_.only_known(
-            value, path,
-            {"density", "stiffness", "damping", "anchor_stiffness", "yield", "friction"})) {
-      return false;
-    }
-    // Version-1 numbers (areal density, per-spring and per-node stiffness),
-    // mapped to the physical material (docs/formats.md).
-    const Interval areal_range{1e-15, 1e3}, spring_range{0.0, 1e9};
-    double areal = 0.0, spring = 0.0, anchor = 1.0;
-    const MaterialRange& range = kMaterialRange;
-    const RangedField required[] = {{"density", &areal, areal_range, "kg/mm^2"},
-                                    {"stiffness", &spring, spring_range, "N/mm"}};
-    const RangedField optional[] = {{"damping", &out.damping, range.damping, "s"},
-                                    {"anchor_stiffness", &anchor, spring_range, "N/mm"}};
-    if (!ranged_fields(value, path, required, true) ||
-        !ranged_fields(value, path, optional, false)) {
-      return false;
-    }
-    out.thickness = std::max(1.0, areal / kKgPerM3ToKgPerMm3 / range.density.high);
-    out.density = areal / kKgPerM3ToKgPerMm3 / out.thickness;
-    out.poisson_ratio = 0.0;
-    out.youngs_modulus = spring / out.thickness;
-    out.foundation_stiffness = anchor;
+    if (version_ >= 2) return internal::read_material(r_, value, path, model.material);
+    if (!internal::read_version1_material(r_, value, path, model.material)) return false;
     if (const Json* friction = r_.member(value, path, "friction", false)) {
       if (!this->friction(*friction, path + ".friction", model.friction)) return false;
     }
-    if (const Json* v = r_.member(value, path, "yield", false)) {
-      // JSON has no infinity: "none" (or absence) means purely elastic.
-      if (v->is_string() && v->get<std::string>() == "none") {
-        out.yield = std::numeric_limits<double>::infinity();
-      } else if (!r_.within(*v, path + ".yield", out.yield, range.yield, "mm")) {
-        return false;
-      }
-    }
+    const Material& m = model.material;
+    warnings_.push_back(
+        source_ + ": " + path + ": version-1 material mapped to physical units: density " +
+        number_text(m.density) + " kg/m^3, thickness " + number_text(m.thickness) +
+        " mm, youngs_modulus " + number_text(m.youngs_modulus) + " MPa, poisson_ratio " +
+        number_text(m.poisson_ratio) + ", foundation_stiffness " +
+        number_text(m.foundation_stiffness) +
+        " N/mm^3; it feels different from version 1 (docs/formats.md, \"Version 1 scenes\"): "
+        "write the scene in version 2 to choose the material");
     return true;
   }
 
@@ -407,7 +383,10 @@ class SceneReader {
   }
 
   JsonReader r_;
+  std::string source_;
   std::filesystem::path base_dir_;
+  int version_ = kSceneFormatVersion;  // of the document being read
+  std::vector<std::string> warnings_;
 };
 
 }  // namespace

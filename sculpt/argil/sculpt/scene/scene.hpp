@@ -1,8 +1,9 @@
 #pragma once
-// A sculpting scene (docs/formats.md, "argil.scene" version 1): which faces of
-// which files are modelled and how (rigid or deformable, material, boundary
-// conditions), the tools, the tolerance eps, the haptic rate and the outputs.
-// Loading checks every field and names the bad one; it reads no model file.
+// A sculpting scene (docs/formats.md, "argil.scene" version 2; version 1 still
+// reads): which faces of which files are modelled and how (rigid or deformable,
+// material, boundary conditions), the tools, the tolerance eps, the haptic rate
+// and the outputs. Loading checks every field and names the bad one; it reads
+// no model file.
 
 #include <filesystem>
 #include <limits>
@@ -16,9 +17,12 @@
 
 namespace argil::sculpt {
 
-/// The "format" value of a scene file and the one schema version this build reads.
+/// The "format" value of a scene file, the schema version this build writes
+/// and documents, and the oldest it still reads (version 1 materials are
+/// mapped to physical units: version1_material.hpp).
 inline constexpr std::string_view kSceneFormatName = "argil.scene";
-inline constexpr int kSceneFormatVersion = 1;
+inline constexpr int kSceneFormatVersion = 2;
+inline constexpr int kSceneOldestVersion = 1;
 
 /// One model: faces of a CAD or JSON file.
 struct ModelOptions {
@@ -30,8 +34,8 @@ struct ModelOptions {
   BoundaryConditions boundary;  // deformable models only
   /// Coulomb coefficient mu [-] of the tool against this model, in [0,
   /// kMaxFriction]: the one friction setting (a property of the tool-body
-  /// pair). Read from "material.friction" of a deformable model or
-  /// "friction" of a rigid one.
+  /// pair). Read from the model's "friction" (version 1: "material.friction"
+  /// of a deformable model).
   double friction = 0.3;
 };
 
@@ -63,7 +67,11 @@ struct Scene {
   double haptic_rate = 1000.0;       // [Hz]
   CouplingOptions coupling;          // read directly from "coupling"
   OutputOptions outputs;
-  std::filesystem::path script;  // default script, resolved; empty: none
+  std::filesystem::path script;       // default script, resolved; empty: none
+  int version = kSceneFormatVersion;  // the file's schema version
+  /// What the reader changed, each starting with the file and the field (a
+  /// version-1 material mapped to physical units); `argil sculpt` prints them.
+  std::vector<std::string> warnings;
 
   /// Index of the tool called `name` (the first tool when `name` is empty); -1 if none.
   int tool_index(std::string_view name) const;
