@@ -28,8 +28,8 @@ argil::Material sheet_material() {
   argil::Material m;
   m.density = 2e4;
   m.thickness = 1.0;
-  m.youngs_modulus = 0.8;
-  m.foundation_stiffness = 0.5;
+  m.youngs_modulus = 0.1;
+  m.foundation_stiffness = 0.01;
   m.damping = 5e-3;
   m.yield = 0.3;
   return m;

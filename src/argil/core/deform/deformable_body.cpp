@@ -69,7 +69,10 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   body.stiffness_.add_scaled(body.shell_.membrane, k.membrane);
   body.stiffness_.add_scaled(body.shell_.bending, k.bending);
   body.stiffness_.add_scaled(body.shell_.joints, k.bending);
-  body.masses_ = k.mass_per_area * body.shell_.area;
+  // A control point with (almost) no area, on a collapsed edge or a row of
+  // coincident poles, gets 1e-3 of the mean mass so the step can move it.
+  body.masses_ = k.mass_per_area *
+                 body.shell_.area.cwiseMax(1e-3 * body.shell_.area.mean());
   body.fixed_ = held_poles(nu, nv, conditions);
 
   // Conditioning: the implicit step must resolve each control point's rigid

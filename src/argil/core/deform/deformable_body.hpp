@@ -67,7 +67,8 @@ class DeformableBody {
   /// Rest control points [mm]; they move only by plastic flow.
   const ControlNet& rest_control_points() const { return rest_; }
   const ControlNet& velocities() const { return velocities_; }  // [mm/s]
-  /// Lumped masses [kg]: rho h integral R_i dA.
+  /// Lumped masses [kg]: rho h integral R_i dA, at least 1e-3 of the mean
+  /// (a control point on a collapsed edge has no area of its own).
   const Eigen::VectorXd& masses() const { return masses_; }
   /// One flag per control point: held by the boundary conditions.
   const std::vector<char>& fixed() const { return fixed_; }
