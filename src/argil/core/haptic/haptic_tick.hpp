@@ -1,7 +1,7 @@
 #pragma once
 // The haptic tick (docs/deformation.md): one call per device sample that moves
 // the tool proxy, collides it with every body, applies contact and friction
-// forces to the deformable bodies, steps and refits them, and returns the
+// forces to the deformable bodies, steps them, and returns the
 // force to render on the device.
 //
 // Deterministic: no clock, no threads, no global state; the same bodies, tool
@@ -102,8 +102,8 @@ class HapticWorld {
   ///     F = k (p_WD - p_WT) + b (v_WD - v_WT) is shared among them
   ///     (contact_shares), solved backwards in time against the bodies'
   ///     compliance (implicit_coupling_force), clamped, and applied through
-  ///     exact node load patterns (contact_load_pattern).
-  ///  4. Every deformable body steps (DeformableBody) and refits its surface.
+  ///     load patterns through the basis (contact_load_pattern).
+  ///  4. Every deformable body steps (DeformableBody): its control points move.
   ///  Strategies: sphere_tool_step.cpp (god-object sphere), surface_tool_step.cpp
   ///  (B-spline tool, conservative advancement).
   TickResult step(const DeviceSample& device, double dt);
