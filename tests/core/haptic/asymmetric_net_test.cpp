@@ -24,12 +24,14 @@ Eigen::Vector2d at_fraction(const BSplineSurface& surface, double s, double t) {
   return {lerp(Direction::u, s), lerp(Direction::v, t)};
 }
 
-argil::Material sheet_material() {
+/// A soft sheet (dents visibly under a sphere), or a stiffer one whose small
+/// dent keeps the B-spline tool's crossing decisions away from rounding.
+argil::Material sheet_material(bool soft = true) {
   argil::Material m;
   m.density = 2e4;
   m.thickness = 1.0;
-  m.youngs_modulus = 0.1;
-  m.foundation_stiffness = 0.01;
+  m.youngs_modulus = soft ? 0.1 : 0.8;
+  m.foundation_stiffness = soft ? 0.01 : 0.5;
   m.damping = 5e-3;
   m.yield = 0.3;
   return m;
@@ -59,14 +61,14 @@ struct Run {
 };
 
 Run run(const BSplineSurface& surface, const argil::ToolShape& tool,
-        const std::vector<argil::DeviceSample>& script) {
+        const std::vector<argil::DeviceSample>& script, bool soft = true) {
   argil::WorldOptions o;
   o.tolerance = 0.01;
   o.coupling = {.stiffness = 1.0, .damping = 0.0, .max_force = 20.0};
   auto created = argil::HapticWorld::create(tool, o);
   REQUIRE(created.ok());
   argil::HapticWorld w = std::move(created).value();
-  const auto added = w.add_deformable(surface, sheet_material(), {}, 0.3);
+  const auto added = w.add_deformable(surface, sheet_material(soft), {}, 0.3);
   INFO(added.status().message);
   REQUIRE(added.ok());
   Run r;
@@ -162,8 +164,9 @@ TEST_CASE("transposing the net leaves a B-spline tool's force and proxy unchange
           "[haptic][asymmetric]") {
   const BSplineSurface s = argil::test::asymmetric_surface();
   const std::vector<argil::DeviceSample> script = press_script(s, at_fraction(s, 0.45, 0.6));
-  const Run a = run(s, argil::SurfaceToolShape{bowl_tool()}, script);
-  const Run b = run(argil::test::transposed(s), argil::SurfaceToolShape{bowl_tool()}, script);
+  const Run a = run(s, argil::SurfaceToolShape{bowl_tool()}, script, false);
+  const Run b =
+      run(argil::test::transposed(s), argil::SurfaceToolShape{bowl_tool()}, script, false);
   REQUIRE(a.ticks.size() == b.ticks.size());
   double force_gap = 0.0, proxy_gap = 0.0;
   for (std::size_t k = 0; k < a.ticks.size(); ++k) {

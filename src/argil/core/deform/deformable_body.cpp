@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "argil/core/base/number_text.hpp"
 #include "argil/core/operators/surface_operators.hpp"
@@ -95,7 +96,14 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
 
   // Solve order: the narrower band of the two row-major orders.
   const int ru = body.stiffness_.reach_u(), rv = body.stiffness_.reach_v();
-  const bool by_u = static_cast<long long>(ru) * nv + rv <= static_cast<long long>(rv) * nu + ru;
+  // Ties go to the direction with more poles (then the higher degree) as the
+  // slow index, so a transposed net is solved in the same physical order and
+  // gives the same result to the last bit.
+  const long long band_u = static_cast<long long>(ru) * nv + rv;
+  const long long band_v = static_cast<long long>(rv) * nu + ru;
+  const bool by_u = band_u != band_v ? band_u < band_v
+                                     : std::pair(nu, surface.degree[0]) >=
+                                           std::pair(nv, surface.degree[1]);
   body.bandwidth_ = by_u ? ru * nv + rv : rv * nu + ru;
   const Eigen::Index n = static_cast<Eigen::Index>(nu) * nv;
   body.order_.resize(static_cast<std::size_t>(n));

@@ -1,7 +1,9 @@
 #include "argil/core/haptic/sphere_proxy.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "argil/core/collision/implicit_contact.hpp"
 
@@ -17,6 +19,58 @@ bool on_boundary(const BSplineSurface& s, const Eigen::Vector2d& uv) {
 }
 
 }  // namespace
+
+Eigen::Vector3d push_apart(const std::vector<PushConstraint>& pushes) {
+  // min |x|^2 subject to n_k . x >= d_k. In 3D at most three pushes are active
+  // at the optimum, so try every set of one to three independent pushes as
+  // equalities (x = N lambda, N^T N lambda = d, lambda >= 0) and keep the
+  // shortest x that satisfies them all. A handful of surfaces touch a proxy,
+  // so the enumeration is cheap and has no degenerate cases to get wrong.
+  const auto feasible = [&](const Eigen::Vector3d& x) {
+    for (const PushConstraint& p : pushes)
+      if (p.normal.dot(x) < p.depth - 1e-12 * std::max(1.0, std::abs(p.depth))) return false;
+    return true;
+  };
+  const std::size_t n = pushes.size();
+  Eigen::Vector3d best = Eigen::Vector3d::Zero();
+  if (feasible(best)) return best;
+  double best_norm = std::numeric_limits<double>::infinity();
+  const auto consider = [&](std::initializer_list<std::size_t> set) {
+    const Eigen::Index m = static_cast<Eigen::Index>(set.size());
+    Eigen::MatrixXd normals(3, m);
+    Eigen::VectorXd depth(m);
+    Eigen::Index a = 0;
+    for (const std::size_t k : set) {
+      normals.col(a) = pushes[k].normal;
+      depth[a++] = pushes[k].depth;
+    }
+    const Eigen::MatrixXd gram = normals.transpose() * normals;
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(gram);
+    // Dependent normals (a flat seam) make a singular set; a smaller set covers it.
+    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-12)) return;
+    const Eigen::VectorXd lambda = ldlt.solve(depth);
+    if (!(lambda.minCoeff() >= 0.0)) return;
+    const Eigen::Vector3d x = normals * lambda;
+    if (x.norm() < best_norm && feasible(x)) {
+      best = x;
+      best_norm = x.norm();
+    }
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    consider({i});
+    for (std::size_t j = i + 1; j < n; ++j) {
+      consider({i, j});
+      for (std::size_t k = j + 1; k < n; ++k) consider({i, j, k});
+    }
+  }
+  if (std::isfinite(best_norm)) return best;
+  // No set satisfies every push (opposed pushes: the proxy is squeezed
+  // between surfaces): take the deepest push alone.
+  const auto deepest = std::max_element(
+      pushes.begin(), pushes.end(),
+      [](const PushConstraint& x, const PushConstraint& y) { return x.depth < y.depth; });
+  return deepest->depth * deepest->normal;
+}
 
 int& SphereProxy::side(std::size_t index) {
   if (sides_.size() <= index) sides_.resize(index + 1, 0);
@@ -47,16 +101,23 @@ SphereProxy::Push SphereProxy::push_out(const SurfaceHierarchy& surface, std::si
 
 SphereMove SphereProxy::project(const std::vector<const SurfaceHierarchy*>& surfaces,
                                 const Eigen::Vector3d& start) {
+  // Every surface's push is taken from the same centre and the pushes are
+  // combined by the smallest move that satisfies them all (push_apart). Pushing
+  // out of one surface after another instead zigzags in a groove or at a seam
+  // and stops on a different side each tick: the proxy flip-flops.
   Eigen::Vector3d centre = start;
-  for (int round = 0; round < 8; ++round) {
-    bool moved = false;
+  std::vector<PushConstraint> pushes;
+  for (int round = 0; round < kMaxProjectionRounds; ++round) {
+    pushes.clear();
     for (std::size_t b = 0; b < surfaces.size(); ++b) {
       Push push = push_out(*surfaces[b], b, centre);
       if (!push.status.ok()) return {std::move(push.status), centre};
-      centre = push.centre;
-      moved = push.moved || moved;
+      const Eigen::Vector3d move = push.centre - centre;
+      const double length = move.norm();
+      if (push.moved && length > 0.0) pushes.push_back({move / length, length});
     }
-    if (!moved) break;
+    if (pushes.empty()) break;
+    centre += push_apart(pushes);
   }
   return {Status::success(), centre};
 }
@@ -75,19 +136,33 @@ SphereMove SphereProxy::move(const std::vector<const SurfaceHierarchy*>& surface
 ProxyContact SphereProxy::nearest(const std::vector<const SurfaceHierarchy*>& surfaces,
                                   const Eigen::Vector3d& centre) {
   ProxyContact best;
+  std::vector<double> clearances(surfaces.size());
+  std::vector<Eigen::Vector3d> normals(surfaces.size());
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
     ClosestPoint cp = closest_point(*surfaces[b], centre, {.tolerance = 0.25 * eps_});
     if (!cp.status.ok()) return {std::move(cp.status)};
     const double clearance = cp.distance - radius_;
+    const int s = side(b) == 0 ? (cp.signed_distance < 0.0 ? -1 : 1) : side(b);
+    clearances[b] = clearance;
+    normals[b] = cp.distance > 1e-3 * eps_ ? Eigen::Vector3d((centre - cp.point) / cp.distance)
+                                           : Eigen::Vector3d(s * cp.normal);
     if (best.body >= 0 && clearance >= best.clearance) continue;
     best.body = static_cast<int>(b);
     best.clearance = clearance;
     best.point = cp.point;
-    const int s = side(b) == 0 ? (cp.signed_distance < 0.0 ? -1 : 1) : side(b);
-    best.outward_normal = cp.distance > 1e-3 * eps_
-                              ? Eigen::Vector3d((centre - cp.point) / cp.distance)
-                              : Eigen::Vector3d(s * cp.normal);
   }
+  if (best.body < 0) return best;
+  // In a groove or at a seam two surfaces are nearest by turns, tick after
+  // tick; the normal blends every surface within eps of the nearest, each
+  // weighted by how much closer than that band it is, so it turns smoothly
+  // instead of jumping between the faces' normals.
+  Eigen::Vector3d blend = Eigen::Vector3d::Zero();
+  for (std::size_t b = 0; b < surfaces.size(); ++b) {
+    const double weight = best.clearance + eps_ - clearances[b];
+    if (weight > 0.0) blend += weight * normals[b];
+  }
+  best.outward_normal = blend.norm() > 0.0 ? Eigen::Vector3d(blend.normalized())
+                                           : normals[static_cast<std::size_t>(best.body)];
   return best;
 }
 

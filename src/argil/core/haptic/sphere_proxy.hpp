@@ -17,7 +17,9 @@ struct [[nodiscard]] ProxyContact {
   int body = -1;           // index into the surfaces, -1 when there are none
   double clearance = 0.0;  // distance from the centre minus the radius [mm]; < 0 when sinking
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // closest surface point [mm]
-  /// Unit vector from the surface towards the proxy centre (the side the proxy is on).
+  /// Unit vector from the surfaces towards the proxy centre (the side the
+  /// proxy is on): the nearest surface's, blended with every surface within
+  /// eps of it (weighted by how much closer than nearest + eps it is).
   Eigen::Vector3d outward_normal = Eigen::Vector3d::Zero();
 };
 
@@ -35,6 +37,17 @@ struct [[nodiscard]] SphereMove {
   Eigen::Vector3d p_WT = Eigen::Vector3d::Zero();  // the centre [mm]
 };
 
+/// A surface's push on the centre: it must move at least `depth` [mm] along
+/// the unit `normal`.
+struct PushConstraint {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  double depth = 0.0;
+};
+
+/// The smallest move x with normal_k . x >= depth_k for every push (the
+/// god-object's constraint planes, solved together).
+Eigen::Vector3d push_apart(const std::vector<PushConstraint>& pushes);
+
 class SphereProxy {
  public:
   SphereProxy(double radius, double eps) : radius_(radius), eps_(eps) {}
@@ -43,7 +56,10 @@ class SphereProxy {
   /// Moves the centre from `from` towards `to` and returns where it stops.
   SphereMove move(const std::vector<const SurfaceHierarchy*>& surfaces, const Eigen::Vector3d& from,
                   const Eigen::Vector3d& to);
-  /// The centre pushed out of every surface (at most 8 rounds over all surfaces).
+  /// The centre pushed out of every surface: each round takes every surface's
+  /// push from the same centre and moves by push_apart() of them (at most
+  /// kMaxProjectionRounds rounds; the surfaces are curved, so one round is not
+  /// always enough).
   SphereMove project(const std::vector<const SurfaceHierarchy*>& surfaces,
                      const Eigen::Vector3d& centre);
   /// The nearest surface to `centre` (and updates the side record far from surfaces).
@@ -51,6 +67,7 @@ class SphereProxy {
                        const Eigen::Vector3d& centre);
   /// Largest number of substeps in one move (a longer move stops early).
   static constexpr int kMaxSubsteps = 256;
+  static constexpr int kMaxProjectionRounds = 8;
 
  private:
   /// The centre pushed out of one surface, and whether it moved.
