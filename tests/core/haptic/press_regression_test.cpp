@@ -111,7 +111,9 @@ TEST_CASE("named plates at 20 x 20 mm: the press stays local", "[deformation][re
       const argil::Material m = *argil::material_preset(name);
       CAPTURE(plate.name, name);
       argil::test::SpherePress p = named_press(m, {0.37, 0.41});
-      p.samples = 81;  // 0.25 mm apart: finer than the footprint
+      p.samples = 61;       // 0.33 mm apart: finer than the 0.46 mm footprint radius
+      p.press_time = 0.3;   // the dent settles within tens of ms on these light layers
+      p.release_time = 0.1;
       const argil::test::PressOutcome r = argil::test::press_sphere(s, p);
       check_press(r, p);
       // Far: four bending lengths (kei(4) is under 1% of kei(0)) plus the widest

@@ -11,6 +11,7 @@
 #include "support/random_surface.hpp"
 #include "support/sphere_press.hpp"
 #include "support/test_plates.hpp"
+#include "support/uniform_refinement.hpp"
 
 namespace {
 
@@ -88,17 +89,6 @@ BSplineSurface after(const BSplineSurface& s, const argil::ControlNet& points) {
   return out;
 }
 
-/// `s` with every non-empty span of both directions halved `times` times.
-BSplineSurface refined(BSplineSurface s, int times) {
-  for (int k = 0; k < times; ++k)
-    for (const Direction d : {Direction::u, Direction::v}) {
-      const Eigen::VectorXd t = s.knots_in(d);
-      for (Eigen::Index i = 0; i + 1 < t.size(); ++i)
-        if (t[i] < t[i + 1]) s = argil::insert_knot(s, d, 0.5 * (t[i] + t[i + 1]), 1).value();
-    }
-  return s;
-}
-
 /// The same press on `s` and on its 2x and 4x refinements: dent and peak force within 5%.
 void check_resolution(const BSplineSurface& s, const Eigen::Vector2d& uv, double radius,
                       double depth) {
@@ -110,7 +100,7 @@ void check_resolution(const BSplineSurface& s, const Eigen::Vector2d& uv, double
     REQUIRE(base.error.empty());
     REQUIRE(base.dent > 0.0);
     for (const int times : {1, 2}) {
-      const BSplineSurface r = refined(s, times);
+      const BSplineSurface r = argil::test::halved_spans(s, times);
       const argil::test::PressOutcome fine = argil::test::press_sphere(r, p);
       INFO(fine.error);
       REQUIRE(fine.error.empty());

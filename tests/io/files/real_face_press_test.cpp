@@ -8,12 +8,14 @@
 // across) and on a 1 m panel.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "argil/io.hpp"
 #include "support/sphere_press.hpp"
 #include "support/test_plates.hpp"
+#include "support/uniform_refinement.hpp"
 #include "test_files.hpp"
 
 namespace {
@@ -155,5 +157,40 @@ TEST_CASE("every preset is accepted on every face of bearing.iges and on a 1 m p
     const std::string failure = press_face("1 m panel", 0, panel, preset);
     INFO(failure);
     CHECK(failure.empty());
+  }
+}
+
+TEST_CASE("resolution independence: real faces and their 2x, 4x refinements",
+          "[deformation][real_faces][resolution]") {
+  // A bicubic piecewise-Bezier face (surf114.igs D3, 19 x 10 poles) and a
+  // rational cylinder (as1-oc-214.stp #624, 2 x 4 poles), pressed with clay
+  // and with elastic clay: dent depth and peak force within 5%.
+  struct RealFace {
+    const char* file;
+    std::size_t face;
+  };
+  argil::Material elastic = *argil::material_preset("clay");
+  elastic.yield = std::numeric_limits<double>::infinity();
+  for (const RealFace& f : {RealFace{"surf114.igs", 1}, RealFace{"as1-oc-214.stp", 5}}) {
+    const auto model = argil::io::read_model(argil::test::shared_data(f.file));
+    REQUIRE(model.ok());
+    const BSplineSurface& s = model.value().faces.at(f.face).surface;
+    for (const argil::Material& m : {*argil::material_preset("clay"), elastic}) {
+      const argil::test::SpherePress p = press_for(s, m);
+      const argil::test::PressOutcome base = argil::test::press_sphere(s, p);
+      INFO(base.error);
+      REQUIRE(base.error.empty());
+      REQUIRE(base.dent > 0.0);
+      for (const int times : {1, 2}) {
+        const BSplineSurface r = argil::test::halved_spans(s, times);
+        const argil::test::PressOutcome fine = argil::test::press_sphere(r, p);
+        INFO(fine.error);
+        REQUIRE(fine.error.empty());
+        CAPTURE(f.file, f.face, m.yield, times, base.dent, fine.dent, base.peak_force,
+                fine.peak_force);
+        CHECK(std::abs(fine.dent - base.dent) <= 0.05 * base.dent);
+        CHECK(std::abs(fine.peak_force - base.peak_force) <= 0.05 * base.peak_force);
+      }
+    }
   }
 }
