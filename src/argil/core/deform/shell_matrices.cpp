@@ -88,6 +88,14 @@ std::vector<int> spans(const BSplineSurface& s, int direction) {
 /// joint terms of degree-1 faces (which couple poles two apart) fit.
 int reach(int degree) { return std::max(degree, 2); }
 
+/// Gauss points per knot span in one direction: degree + 1 integrates a
+/// polynomial face's mass exactly; a rational face's integrands are quotients,
+/// so it gets twice as many (capped).
+int quadrature_points(const BSplineSurface& s, int direction) {
+  const int p = s.degree[static_cast<std::size_t>(direction)];
+  return s.is_rational() ? std::min(2 * p + 2, 32) : p + 1;
+}
+
 /// A pole and a coefficient of a linear functional of the displacement.
 struct Term {
   int i = 0;
@@ -115,8 +123,8 @@ void add_square(PoleStencilMatrix& m, std::vector<Term> terms, double weight) {
 void integrate_area(const BSplineSurface& s, ShellMatrices& out) {
   const int p = s.degree[0];
   const int q = s.degree[1];
-  const detail::QuadratureRule ru = detail::gauss_legendre(p + 1);
-  const detail::QuadratureRule rv = detail::gauss_legendre(q + 1);
+  const detail::QuadratureRule ru = detail::gauss_legendre(quadrature_points(s, 0));
+  const detail::QuadratureRule rv = detail::gauss_legendre(quadrature_points(s, 1));
   const int n = (p + 1) * (q + 1);
   Eigen::Matrix2Xd grad(2, n), flux(2, n);  // gradient, and g^-1 times it
   std::vector<Eigen::Matrix2d> shape(static_cast<std::size_t>(n));  // g^-1 H
@@ -176,7 +184,10 @@ void integrate_joints(const BSplineSurface& s, int direction, ShellMatrices& out
   const int p = s.degree[d];
   const Eigen::VectorXd& t = s.knots[d];
   const int count = static_cast<int>(t.size()) - p - 1;
-  const detail::QuadratureRule rule = detail::gauss_legendre(s.degree[e] + 1);
+  const detail::QuadratureRule rule = detail::gauss_legendre(quadrature_points(s, static_cast<int>(e)));
+  // A degree-1 direction is all C0 lines (a faceted face): its joints are its
+  // only bending, so they take the material's stiffness, not a stiff joint's.
+  const double joint_stiffness = p == 1 ? 1.0 : kJointStiffness;
   for (int k = p + 1; k < count;) {
     int m = 1;
     while (k + m < count && t[k + m] == t[k]) ++m;
@@ -213,7 +224,7 @@ void integrate_joints(const BSplineSurface& s, int direction, ShellMatrices& out
           };
           add_side(lb, lc, -1.0 / speed_l);
           add_side(rb, rc, 1.0 / speed_r);
-          add_square(out.joints, terms, kJointStiffness * ds / h);
+          add_square(out.joints, terms, joint_stiffness * ds / h);
         }
       }
     }

@@ -19,7 +19,9 @@
 namespace argil {
 
 /// How much stiffer a C0 knot line of a face resists a change of its angle
-/// than the bending of the material either side of it [-].
+/// than the bending of the material either side of it [-] (degree >= 2 across
+/// the line; across a degree-1 direction the joints are the face's bending and
+/// take factor 1).
 inline constexpr double kJointStiffness = 100.0;
 
 struct ShellMatrices {
@@ -43,7 +45,8 @@ struct ShellMatrices {
 };
 
 /// Integrates the matrices over `rest` by Gauss-Legendre quadrature with
-/// degree + 1 points per knot span and direction. Points where the surface is
+/// degree + 1 points per knot span and direction (2 degree + 2, at most 32, on
+/// a rational face). Points where the surface is
 /// degenerate (S_u x S_v vanishes, e.g. at a collapsed edge) carry no area and
 /// are skipped. Precondition: validate(rest).ok().
 ShellMatrices shell_matrices(const BSplineSurface& rest);

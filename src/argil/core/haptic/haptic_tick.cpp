@@ -206,18 +206,6 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
     r.status = std::move(load.status);
     return r;
   }
-  if (sphere_ && pressing) {
-    // The force above assumed the proxy moves with the loaded points; put it
-    // there (and outside every surface), so the next tick starts where this
-    // one ended instead of a step behind the surface, which would make the
-    // force alternate tick to tick.
-    SphereMove settled = sphere_->project(surfaces(), next.X_WT.p + load.contact_motion);
-    if (!settled.status.ok()) {
-      r.status = std::move(settled.status);
-      return r;
-    }
-    next.X_WT.p = settled.p_WT;
-  }
   r.force = load.force;
   r.body_force = load.body_force;
   r.clamped = load.clamped;
@@ -267,13 +255,6 @@ HapticWorld::Coupling HapticWorld::step_bodies(
   } else {
     const ClampedForce f = clamp_force(-spring, options_.coupling.max_force);
     out = {Status::success(), f.force, {0, 0, 0}, f.clamped};
-  }
-  if (pressing) {
-    for (std::size_t b = 0; b < bodies_.size(); ++b) {
-      const double share = total_weight > 0.0 ? weight[b] / total_weight : 0.0;
-      out.contact_motion +=
-          share * (previews[b].free_motion + previews[b].compliance * share * load);
-    }
   }
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     if (bodies_[b].deformable)

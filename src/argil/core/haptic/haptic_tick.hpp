@@ -141,9 +141,6 @@ class HapticWorld {
     Eigen::Vector3d force = Eigen::Vector3d::Zero();       // on the device [N]
     Eigen::Vector3d body_force = Eigen::Vector3d::Zero();  // on the bodies [N]
     bool clamped = false;
-    /// How far the loaded points moved in this step [mm] (share-weighted):
-    /// the proxy resting on them moves with them.
-    Eigen::Vector3d contact_motion = Eigen::Vector3d::Zero();
   };
   HapticWorld() = default;
   std::vector<const SurfaceHierarchy*> surfaces() const;
