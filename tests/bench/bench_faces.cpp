@@ -5,21 +5,10 @@
 #include <utility>
 
 #include "bench_surfaces.hpp"
+#include "support/test_plates.hpp"
+#include "support/uniform_refinement.hpp"
 
 namespace argil::bench {
-
-namespace {
-
-/// Midpoints of the non-empty knot spans inside the domain of direction d.
-std::vector<double> span_midpoints(const BSplineSurface& s, Direction d) {
-  const Eigen::VectorXd& k = s.knots_in(d);
-  std::vector<double> mids;
-  for (Eigen::Index i = s.degree_in(d); i < s.count(d); ++i)
-    if (k[i + 1] > k[i]) mids.push_back(0.5 * (k[i] + k[i + 1]));
-  return mids;
-}
-
-}  // namespace
 
 BSplineSurface flat_panel(int n, double pitch) {
   BSplineSurface s;
@@ -27,44 +16,24 @@ BSplineSurface flat_panel(int n, double pitch) {
   s.knots = {uniform_knots(3, n), uniform_knots(3, n)};
   s.control_points.resize(static_cast<Eigen::Index>(n) * n, 3);
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) s.control_points.row(s.pole_index(i, j)) << pitch * i, pitch * j, 0.0;
+    for (int j = 0; j < n; ++j)
+      s.control_points.row(s.pole_index(i, j)) << pitch * i, pitch * j, 0.0;
   return s;
 }
 
 BSplineSurface c0_plate() {
-  BSplineSurface s;
-  s.degree = {1, 10};
-  s.knots[0].resize(4);
-  s.knots[0] << 0, 0, 1, 1;
-  s.knots[1].resize(32);
-  s.knots[1].head(11).setZero();
-  s.knots[1].segment(11, 10).setConstant(0.5);
-  s.knots[1].tail(11).setOnes();
-  s.control_points.resize(2 * 21, 3);
-  for (int i = 0; i <= 1; ++i)
-    for (int j = 0; j <= 20; ++j) s.control_points.row(s.pole_index(i, j)) << 20.0 * i, j, 0.0;
-  return s;
+  return test::flat_plate(
+      {.width = 20.0, .height = 20.0, .spans_u = 1, .degree_v = 10, .pieces_v = 2, .join_v = 10});
 }
 
-Result<BSplineSurface> refine_midpoints(const BSplineSurface& surface, int levels) {
-  BSplineSurface s = surface;
-  for (int level = 0; level < levels; ++level) {
-    for (const Direction d : kDirections) {
-      for (const double t : span_midpoints(s, d)) {
-        Result<BSplineSurface> r = insert_knot(s, d, t);
-        if (!r.ok()) return r.status();
-        s = std::move(r).value();
-      }
-    }
-  }
-  return s;
+BSplineSurface refine_midpoints(const BSplineSurface& surface, int levels) {
+  return test::halved_spans(surface, levels);
 }
 
 std::string net_text(const BSplineSurface& s) {
   char text[96];
   std::snprintf(text, sizeof text, "degree %dx%d, %dx%d poles%s", s.degree[0], s.degree[1],
-                s.count(Direction::u), s.count(Direction::v),
-                s.is_rational() ? ", rational" : "");
+                s.count(Direction::u), s.count(Direction::v), s.is_rational() ? ", rational" : "");
   return text;
 }
 

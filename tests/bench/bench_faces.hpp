@@ -3,7 +3,6 @@
 // faces read from STEP/IGES through argil::io, and their exact refinement.
 
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,10 +13,10 @@ namespace argil::bench {
 
 /// A face to deform, with what the tables say about it.
 struct BenchFace {
-  std::string name;       // "bearing.iges face 65", "C0 plate"
+  std::string name;  // "bearing.iges face 65", "C0 plate"
   BSplineSurface surface;
   bool reversed = false;  // the outward normal is -S_u x S_v
-  std::string origin;     // "index 65, source D1693, trimmed (trims ignored)"
+  std::string origin;     // "index 161, source D4185, degree 5x3, 6x4 poles, trimmed ..."
 };
 
 /// A flat bicubic panel, n x n poles on a `pitch` grid in z = 0.
@@ -25,12 +24,13 @@ BSplineSurface flat_panel(int n, double pitch);
 
 /// The high-degree C0 plate, 20 x 20 mm: degree 1 x 10, knots_v = [0 x11,
 /// 0.5 x10, 1 x11] (a C0 knot line at v = 0.5), poles (20 i, j, 0) for
-/// i = 0..1, j = 0..20.
+/// i = 0..1, j = 0..20 (the deformation tests' plate, tests/support).
 BSplineSurface c0_plate();
 
-/// Inserts the midpoint of every non-empty knot span once, in u and in v,
-/// `levels` times: the same surface and parametrisation on a finer net.
-Result<BSplineSurface> refine_midpoints(const BSplineSurface& surface, int levels);
+/// `surface` with every non-empty knot span halved `levels` times by exact
+/// knot insertion, in u and in v: the same surface and parametrisation on a
+/// finer net (the deformation tests' refinement, tests/support).
+BSplineSurface refine_midpoints(const BSplineSurface& surface, int levels);
 
 /// "d_u x d_v, n_u x n_v poles, rational" for the tables.
 std::string net_text(const BSplineSurface& surface);

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdio>
-#include <string>
 #include <ctime>
+#include <string>
 #include <vector>
 
 namespace argil::bench {

@@ -38,9 +38,9 @@ Eigen::Vector3d device_over(const BenchFace& face, const StrokeOptions& stroke, 
   const double u = domain_at(s, Direction::u, u_fraction);
   const double v = domain_at(s, Direction::v, v_fraction);
   const Eigen::Vector3d point = evaluate_derivatives(s, u, v, 0).point;
-  const Eigen::Vector3d out = stroke.vertical
-                                  ? Eigen::Vector3d(Eigen::Vector3d::UnitZ())
-                                  : Eigen::Vector3d((face.reversed ? -1.0 : 1.0) * unit_normal(s, u, v));
+  const Eigen::Vector3d out =
+      stroke.vertical ? Eigen::Vector3d(Eigen::Vector3d::UnitZ())
+                      : Eigen::Vector3d((face.reversed ? -1.0 : 1.0) * unit_normal(s, u, v));
   const double offset = stroke.bspline_tool ? 0.0 : stroke.radius;
   return point + out * (offset + height);
 }

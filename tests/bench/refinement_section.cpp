@@ -83,31 +83,27 @@ void refinement_section(const std::vector<RefinementCase>& cases) {
       const Material material = *material_preset(material_name);
       LevelResult previous;
       for (int level = 0; level <= 2; ++level) {
-        Result<BSplineSurface> fine = refine_midpoints(c.face.surface, level);
-        if (!fine.ok()) {
-          std::printf("| %s | %s | %d | refinement failed: %s |\n", c.name.c_str(), material_name,
-                      level, fine.status().message.c_str());
-          break;
-        }
-        const BenchFace body{c.face.name, fine.value(), c.face.reversed, ""};
+        const BSplineSurface fine = refine_midpoints(c.face.surface, level);
+        const BenchFace body{c.face.name, fine, c.face.reversed, ""};
         Result<HapticWorld> world = make_world(body, material, stroke);
         if (!world.ok()) {
           std::printf("| %s | %s | %d | not run: %s |\n", c.name.c_str(), material_name, level,
                       world.status().message.c_str());
           break;
         }
-        LevelResult r{.net = net_text(fine.value())};
+        LevelResult r{.net = net_text(fine)};
         const TickLog log = run_ticks(
             world.value(),
             [&](int t) { return press_device(c.face, stroke, c.u_fraction, c.v_fraction, t); },
-            kPressTicks, [&](int t) {
+            kPressTicks,
+            [&](int t) {
               if (t == kHoldEndTick - 1) r.loaded = dent_depth(world.value().surface(0), rest);
             });
         r.residual = dent_depth(world.value().surface(0), rest);
         r.peak_force = log.peak_force;
         r.failed = log.failed;
-        std::printf("| %s | %s | %d | %s | %.4g mm%s | %.4g mm%s | %.4g N%s |%s\n",
-                    c.name.c_str(), material_name, level, r.net.c_str(), r.loaded,
+        std::printf("| %s | %s | %d | %s | %.4g mm%s | %.4g mm%s | %.4g N%s |%s\n", c.name.c_str(),
+                    material_name, level, r.net.c_str(), r.loaded,
                     level > 0 ? change_text(r.loaded, previous.loaded).c_str() : "", r.residual,
                     level > 0 && r.residual > 1e-3 * r.loaded
                         ? change_text(r.residual, previous.residual).c_str()

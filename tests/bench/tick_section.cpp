@@ -43,9 +43,8 @@ void tick_section(const std::vector<TickCase>& cases, int ticks, int repeats) {
           "%-36s run %d ticks %6d wall: p50 %7.1f p99 %7.1f p99.9 %7.1f max %8.1f us |"
           " cpu: p50 %7.1f p99 %7.1f p99.9 %7.1f max %8.1f us |"
           " contacts/tick %4.1f mean |F| %.3g N max depth %.3g mm%s%s\n",
-          c.name.c_str(), run + 1, ticks, w.p50, w.p99, w.p999, w.max, p.p50, p.p99, p.p999,
-          p.max, s.contacts_per_tick, s.mean_force, s.max_depth,
-          log.failed > 0 ? " | failed ticks: " : "",
+          c.name.c_str(), run + 1, ticks, w.p50, w.p99, w.p999, w.max, p.p50, p.p99, p.p999, p.max,
+          s.contacts_per_tick, s.mean_force, s.max_depth, log.failed > 0 ? " | failed ticks: " : "",
           log.failed > 0 ? (std::to_string(log.failed) + " (" + log.first_error + ")").c_str()
                          : "");
       std::fflush(stdout);
