@@ -1,135 +1,158 @@
-// The full haptic tick (docs/benchmarks.md): collide, contact and friction forces,
-// implicit deformation, exact refit, device force, on 16x16, 32x32 and 64x64
-// bicubic panels with a sphere tool and with a B-spline tool, along a scripted
-// stroke that presses 2 mm into the panel and drags across it at 100 mm/s.
-// Each tick is timed alone (steady_clock); prints p50, p99, p99.9 and max.
-#include <algorithm>
-#include <chrono>
-#include <cmath>
+// The full haptic tick (docs/benchmarks.md): proxy move, collide, contact and
+// friction forces, implicit deformation of the control net, device force.
+//  - ticks: a sphere tool and a B-spline tool pressing and dragging on 16x16,
+//    32x32 and 64x64 bicubic panels, and a sphere on the high-degree C0 plate
+//    and on real faces read from STEP/IGES (bearing.iges, 11752.stp,
+//    Ventilator.stp when it imports), all with the clay preset;
+//  - refine: dent depth and peak force against exact refinement of the face,
+//    foam and clay;
+//  - create: the one-off cost of a deformable body.
+// Arguments: [ticks] [ticks|refine|create|all] [case filter]: the filter is a
+// substring of the case names; CAD files are read only when it is empty or
+// names the file.
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <string>
 #include <vector>
 
 #include "argil/core.hpp"
+#include "argil/io.hpp"
+#include "bench_faces.hpp"
 #include "bench_surfaces.hpp"
+#include "haptic_loop_sections.hpp"
+#include "haptic_stroke.hpp"
 
 namespace {
 
-constexpr double kDt = 1e-3;       // [s]
-constexpr double kPress = 2.0;     // device depth under the rest surface [mm]
-constexpr double kApproach = 200;  // ticks to descend from 10 mm above
+using argil::bench::BenchFace;
 
-/// A bowl-shaped bicubic cap 12 mm wide, lowest near its frame origin.
-argil::BSplineSurface cap_tool() {
-  argil::BSplineSurface tool;
-  tool.degree = {3, 3};
-  tool.knots = {argil::bench::uniform_knots(3, 4), argil::bench::uniform_knots(3, 4)};
-  tool.control_points.resize(16, 3);
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      const double x = -6.0 + 4.0 * i, y = -6.0 + 4.0 * j;
-      tool.control_points.row(tool.pole_index(i, j)) << x, y, 0.05 * (x * x + y * y);
+constexpr int kRepeats = 3;
+
+BenchFace panel_face(int poles) {
+  return {std::to_string(poles) + "x" + std::to_string(poles) + " panel",
+          argil::bench::bicubic_panel(poles), false, "bicubic, 10 mm pitch, 20 mm wave"};
+}
+
+/// The panels' stroke: a 5 mm sphere (or the cap) 2 mm under the rest surface
+/// along z, dragged at 100 mm/s over 0.4 of the panel's width.
+argil::bench::StrokeOptions panel_stroke(int poles, bool bspline_tool) {
+  const double width = 10.0 * (poles - 1);  // [mm]
+  return {.radius = 5.0,
+          .bspline_tool = bspline_tool,
+          .press = 2.0,
+          .lift = 10.0,
+          .tolerance = 0.05,
+          .pass_seconds = 0.4 * width / 100.0,
+          .vertical = true};
+}
+
+/// The faces of a CAD file the tables use: its largest polynomial and
+/// largest rational nets with interior control points that the clay preset
+/// accepts (larger nets it refuses are reported).
+std::vector<BenchFace> file_faces(const std::string& file) {
+  const auto model = argil::bench::read_bench_model(std::string(ARGIL_BENCH_DATA_DIR) + "/" + file);
+  std::vector<BenchFace> faces;
+  if (!model.ok()) return faces;
+  const argil::Material clay = *argil::material_preset("clay");
+  for (const bool rational : {false, true}) {
+    for (const int index : argil::bench::faces_by_net_size(model.value(), rational)) {
+      BenchFace face = argil::bench::model_face(model.value(), index, file);
+      argil::OperatorCache cache;
+      const auto body = argil::DeformableBody::create(face.surface, clay, {}, cache);
+      if (body.ok()) {
+        faces.push_back(std::move(face));
+        break;
+      }
+      std::printf("%s (%s, size %.3g mm): clay refused: %s\n", face.name.c_str(),
+                  face.origin.c_str(), argil::bench::face_size(face.surface),
+                  body.status().message.c_str());
     }
-  return tool;
-}
-
-/// Device position at tick t: descend onto (u, v) = (0.3, 0.5), then drag
-/// along u at 100 mm/s for the rest of the run (a back-and-forth stroke).
-Eigen::Vector3d device_at(const argil::BSplineSurface& rest, double tool_offset, int t, int ticks) {
-  const double width = rest.control_points.col(0).maxCoeff();
-  const double span = 0.4 * width;                           // stroke length [mm]
-  const double travel = 0.1 * std::max(0.0, t - kApproach);  // [mm] at 100 mm/s
-  const double phase = std::fmod(travel, 2.0 * span);
-  const double along = phase < span ? phase : 2.0 * span - phase;
-  const double u = 0.3 + 0.4 * along / span;
-  (void)ticks;
-  const auto d = argil::evaluate_derivatives(rest, u, 0.5, 1);
-  const double descend = std::max(0.0, 1.0 - t / kApproach);
-  return d.point + Eigen::Vector3d::UnitZ() * (tool_offset - kPress + (10.0 + kPress) * descend);
-}
-
-/// CPU time of this thread [us]: unlike wall time, it excludes time the
-/// scheduler gave to other processes on a loaded machine.
-double thread_cpu_us() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e6 * static_cast<double>(ts.tv_sec) + 1e-3 * static_cast<double>(ts.tv_nsec);
-}
-
-struct Percentiles {
-  double p50, p99, p999, max;
-};
-
-Percentiles percentiles(std::vector<double> us) {
-  std::sort(us.begin(), us.end());
-  const auto at = [&](double q) {
-    return us[std::min(us.size() - 1,
-                       static_cast<std::size_t>(q * static_cast<double>(us.size())))];
-  };
-  return {at(0.5), at(0.99), at(0.999), us.back()};
-}
-
-void run(int poles, bool sphere, int ticks) {
-  const argil::BSplineSurface panel = argil::bench::bicubic_panel(poles);
-  argil::WorldOptions options;
-  options.tolerance = 0.05;  // [mm]
-  options.coupling = {.stiffness = 1.0, .damping = 0.002, .max_force = 8.0};
-  const argil::ToolShape tool = sphere ? argil::ToolShape{argil::SphereToolShape{5.0}}
-                                       : argil::ToolShape{argil::SurfaceToolShape{cap_tool()}};
-  auto world = argil::HapticWorld::create(tool, options);
-  if (!world.ok()) std::abort();
-  argil::Material clay;
-  clay.density = 2e-5;
-  clay.stiffness = 1.0;
-  clay.anchor_stiffness = 1.0;
-  clay.damping = 1e-3;
-  clay.yield = 0.5;
-  if (!world.value().add_deformable(panel, clay, {}, /*friction=*/0.3).ok()) std::abort();
-  const double offset = sphere ? 5.0 : 0.0;  // sphere centre above its contact point
-  std::vector<double> us, cpu;
-  us.reserve(static_cast<std::size_t>(ticks));
-  cpu.reserve(static_cast<std::size_t>(ticks));
-  long contacts = 0;
-  double max_depth = 0.0, force = 0.0;
-  for (int t = 0; t < ticks; ++t) {
-    const argil::DeviceSample device{.tick = t,
-                                     .t = t * kDt,
-                                     .X_WD = argil::Pose::at(device_at(panel, offset, t, ticks)),
-                                     .engaged = true};
-    const double cpu_start = thread_cpu_us();
-    const auto start = std::chrono::steady_clock::now();
-    const argil::TickResult r = world.value().step(device, kDt);
-    const auto stop = std::chrono::steady_clock::now();
-    cpu.push_back(thread_cpu_us() - cpu_start);
-    us.push_back(std::chrono::duration<double, std::micro>(stop - start).count());
-    contacts += r.contacts;
-    max_depth = std::max(max_depth, r.max_depth);
-    force += r.force.norm();
   }
-  const Percentiles p = percentiles(us);
-  const Percentiles c = percentiles(cpu);
-  std::printf(
-      "%2dx%-2d %-8s ticks %6d wall: p50 %7.1f p99 %7.1f p99.9 %7.1f max %8.1f us |"
-      " cpu: p50 %7.1f p99 %7.1f p99.9 %7.1f max %8.1f us |"
-      " contacts/tick %4.1f mean |F| %4.2f N max depth %.4f mm\n",
-      poles, poles, sphere ? "sphere" : "bspline", ticks, p.p50, p.p99, p.p999, p.max, c.p50, c.p99,
-      c.p999, c.max, static_cast<double>(contacts) / ticks, force / ticks, max_depth);
-  std::fflush(stdout);
+  return faces;
+}
+
+bool wanted(const std::string& name, const std::string& filter) {
+  return filter.empty() || name.find(filter) != std::string::npos;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Arguments: [ticks] [poles] [sphere|bspline] to run one case.
-  const int ticks = argc > 1 ? std::atoi(argv[1]) : 20000;
-  const int only_poles = argc > 2 ? std::atoi(argv[2]) : 0;
-  const std::string only_tool = argc > 3 ? argv[3] : "";
-  for (const int poles : {16, 32, 64}) {
-    if (only_poles != 0 && poles != only_poles) continue;
-    if (only_tool != "bspline") run(poles, true, ticks);
-    if (only_tool != "sphere") run(poles, false, ticks);
+  const int ticks = argc > 1 ? std::atoi(argv[1]) : 10000;
+  const std::string section = argc > 2 ? argv[2] : "all";
+  const std::string filter = argc > 3 ? argv[3] : "";
+  if (ticks < 1 ||
+      (section != "all" && section != "ticks" && section != "refine" && section != "create")) {
+    std::fprintf(stderr, "usage: %s [ticks >= 1] [ticks|refine|create|all] [case filter]\n",
+                 argv[0]);
+    return 2;
+  }
+
+  const BenchFace plate{"C0 plate", argil::bench::c0_plate(), false,
+                        "20 x 20 mm, C0 line at v = 0.5"};
+  const BenchFace flat{"flat panel", argil::bench::flat_panel(8, 10.0), false,
+                       "8x8 bicubic, 70 x 70 mm"};
+  std::vector<BenchFace> real;
+  for (const std::string file : {"bearing.iges", "11752.stp", "Ventilator.stp"}) {
+    // Reading 11752.stp takes tens of seconds: only when a case may use it.
+    if (!filter.empty() && file.find(filter) == std::string::npos &&
+        filter.find(file) == std::string::npos)
+      continue;
+    for (BenchFace& f : file_faces(file)) {
+      std::printf("%s: %s, size %.4g mm\n", f.name.c_str(), f.origin.c_str(),
+                  argil::bench::face_size(f.surface));
+      real.push_back(std::move(f));
+    }
+  }
+
+  if (section == "all" || section == "ticks") {
+    std::vector<argil::bench::TickCase> cases;
+    for (const int poles : {16, 32, 64}) {
+      for (const bool bspline_tool : {false, true}) {
+        cases.push_back({panel_face(poles).name + (bspline_tool ? ", B-spline tool" : ", sphere"),
+                         panel_face(poles), panel_stroke(poles, bspline_tool)});
+      }
+    }
+    cases.push_back({"C0 plate, sphere", plate, argil::bench::scaled_stroke(plate.surface)});
+    for (const BenchFace& f : real)
+      cases.push_back({f.name + ", sphere", f, argil::bench::scaled_stroke(f.surface)});
+    std::erase_if(cases, [&](const auto& c) { return !wanted(c.name, filter); });
+    argil::bench::tick_section(cases, ticks, kRepeats);
+  }
+
+  if (section == "all" || section == "refine") {
+    std::vector<argil::bench::RefinementCase> cases = {
+        {"flat panel at its centre", flat},
+        // (0.4, 0.4) is a Greville point of the 8x8 net and of both refinements;
+        // the centre is one of the refined nets only.
+        {"flat panel at a Greville point", flat, 0.4, 0.4},
+        {"C0 plate on its C0 line", plate, 0.5, 0.5},
+        {"C0 plate off its C0 line", plate, 0.5, 0.25},
+    };
+    // The real face: 11752.stp's largest polynomial net.
+    for (const BenchFace& f : real) {
+      if (f.name.starts_with("11752.stp") && !f.surface.is_rational()) cases.push_back({f.name, f});
+    }
+    std::erase_if(cases, [&](const auto& c) { return !wanted(c.name, filter); });
+    argil::bench::refinement_section(cases);
+  }
+
+  if (section == "all" || section == "create") {
+    std::vector<BenchFace> faces;
+    for (const int poles : {16, 32, 64}) faces.push_back(panel_face(poles));
+    faces.push_back(flat);
+    faces.push_back(plate);
+    for (const BenchFace& f : real) faces.push_back(f);
+    // The refined nets of the refinement table.
+    for (std::size_t i = 3, n = faces.size(); i < n; ++i) {
+      for (int level = 1; level <= 2; ++level) {
+        faces.push_back({faces[i].name + " level " + std::to_string(level),
+                         argil::bench::refine_midpoints(faces[i].surface, level), faces[i].reversed,
+                         ""});
+      }
+    }
+    std::erase_if(faces, [&](const auto& f) { return !wanted(f.name, filter); });
+    argil::bench::creation_section(faces, kRepeats);
   }
   return 0;
 }

@@ -1,0 +1,40 @@
+#pragma once
+// The three parts of bench_haptic_loop (docs/benchmarks.md), each printing
+// its runs and a summary table.
+
+#include <string>
+#include <vector>
+
+#include "bench_faces.hpp"
+#include "haptic_stroke.hpp"
+
+namespace argil::bench {
+
+/// One timed case: a face, a tool and its stroke.
+struct TickCase {
+  std::string name;
+  BenchFace face;
+  StrokeOptions stroke;
+};
+
+/// Per-tick wall and thread CPU time of the press-and-drag stroke, `repeats`
+/// runs of `ticks` ticks per case with the clay preset; each percentile is the
+/// median over the runs.
+void tick_section(const std::vector<TickCase>& cases, int ticks, int repeats);
+
+/// One face of the refinement table, pressed at (u, v) (domain fractions).
+struct RefinementCase {
+  std::string name;
+  BenchFace face;
+  double u_fraction = 0.5, v_fraction = 0.5;
+};
+
+/// Dent depth and peak force of the same press on refinement levels 0, 1 and
+/// 2 (midpoint knot insertion), with the foam and clay presets.
+void refinement_section(const std::vector<RefinementCase>& cases);
+
+/// Creation cost of a deformable body (shell matrices, create, first step
+/// with the factorisation), medians over `repeats` runs of a few creations.
+void creation_section(const std::vector<BenchFace>& faces, int repeats);
+
+}  // namespace argil::bench
