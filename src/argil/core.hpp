@@ -24,6 +24,7 @@
 #include "argil/core/geometry/param_rect.hpp"         // IWYU pragma: export
 #include "argil/core/geometry/pose.hpp"               // IWYU pragma: export
 #include "argil/core/geometry/triangle_distance.hpp"  // IWYU pragma: export
+#include "argil/core/geometry/trim_region.hpp"        // IWYU pragma: export
 // operators
 #include "argil/core/operators/curve_operators.hpp"    // IWYU pragma: export
 #include "argil/core/operators/surface_operators.hpp"  // IWYU pragma: export
@@ -39,6 +40,7 @@
 #include "argil/core/collision/surface_intersection.hpp"   // IWYU pragma: export
 #include "argil/core/collision/surface_penetration.hpp"    // IWYU pragma: export
 #include "argil/core/collision/triangle_intersection.hpp"  // IWYU pragma: export
+#include "argil/core/collision/trimmed_contact.hpp"        // IWYU pragma: export
 // deform
 #include "argil/core/deform/contact_response.hpp"  // IWYU pragma: export
 #include "argil/core/deform/deformable_body.hpp"   // IWYU pragma: export

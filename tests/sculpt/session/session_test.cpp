@@ -1,8 +1,14 @@
 // Sessions: determinism (same scene and script give bit-identical control
 // points), recorded scripts replay exactly, undo and redo restore exact
-// states, and only the named faces are loaded.
+// states, only the named faces are loaded, and every face touches the tool
+// only where it has material (its trims).
+#include <unistd.h>
 #include <catch2/catch.hpp>
 #include <cstring>
+
+#include "argil/core/geometry/evaluate.hpp"
+#include "argil/io/json/json_format.hpp"
+#include "support/trim_loops.hpp"
 
 #include "argil/sculpt/scene/scene.hpp"
 #include "argil/sculpt/script/script.hpp"
@@ -177,6 +183,24 @@ Scene parse(const std::string& models,
   return r.value();
 }
 
+/// A JSON model whose one trim loop does not close (its last side stops
+/// short), written once to the temp folder.
+std::filesystem::path open_loop_model() {
+  const std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                     ("argil-open-loop-" + std::to_string(::getpid()) + ".json");
+  const Result<Scene> sheet_scene = parse(R"([{"name": "sheet", "file": "collide_sheet.json",
+                                               "material": "clay"}])");
+  Result<Session> sheet = Session::create(sheet_scene.value());
+  REQUIRE(sheet.ok());
+  io::Model model = sheet.value().current_model(0);
+  const ParamRect d = domain_of(model.faces[0].surface);
+  TrimLoop loop = test::rectangle_loop(d.lower(), d.upper(), true);
+  loop.curves[3].points(1, 1) = d.v0 + 0.5 * d.height();  // stops half way down
+  model.faces[0].loops = {loop};
+  REQUIRE(io::write_json(model, path).ok());
+  return path;
+}
+
 TEST_CASE("a session loads only the faces its scene names", "[session]") {
   const Scene scene = parse(
       R"([{"name": "ring", "file": "bearing.iges", "faces": [161, 5],
@@ -194,6 +218,62 @@ TEST_CASE("a session loads only the faces its scene names", "[session]") {
   CHECK(s.current_model(0).faces[1].source_id == s.models()[0].initial.faces[1].source_id);
 }
 
+TEST_CASE("a press on a real trimmed face touches only its material", "[session][trim]") {
+  // screw.step face 9: the screw's flat end, a disc of radius 4.08 mm trimmed
+  // from a square plane (normal -z, at z = -34.56). A ball of 1 mm radius
+  // presses up under the square's corner, outside the disc, then slides to
+  // the disc's centre.
+  const Scene scene = parse(
+      R"([{"name": "screw", "file": "screw.step", "faces": [9],
+           "material": "clay", "friction": 0.3}])",
+      R"([{"name": "ball", "type": "sphere", "radius": 1.0}])");
+  Result<Session> created = Session::create(scene);
+  INFO(created.status().message);
+  REQUIRE(created.ok());
+  Session& s = created.value();
+  const TrimRegion& trims = s.models()[0].trims[0];
+  REQUIRE_FALSE(trims.empty());
+  const io::FaceRecord& face = s.models()[0].initial.faces[0];
+  const Eigen::Vector3d corner(-21.5, -4.5, -35.06), centre(-17.9, -0.8, -35.06);
+  // Untrimmed, the corner press would touch: the plane is 0.5 mm into the ball there.
+  REQUIRE(std::abs(evaluate(face.surface, -2.9, -5.5).z() - (corner.z() + 1.0)) < 0.51);
+  Script script;
+  script.tool = "ball";
+  script.keyframes = {{0.0, Pose::at({-21.5, -4.5, -40}), ScriptEvent::none},
+                      {0.2, Pose::at({-21.5, -4.5, -37}), ScriptEvent::engage},
+                      {0.6, Pose::at(corner), ScriptEvent::none},
+                      {1.0, Pose::at(corner), ScriptEvent::none},
+                      {2.0, Pose::at(centre), ScriptEvent::none},
+                      {2.3, Pose::at({-17.9, -0.8, -38}), ScriptEvent::release}};
+  const ScriptSampler sampler(script, 1000.0);
+  // The edge's distance from a point: S(c(t)) on the face as sculpted now,
+  // densely sampled (1000 points per curve, 0.026 mm apart).
+  const auto edge_distance = [&](const Eigen::Vector3d& p) {
+    const BSplineSurface now = s.current_model(0).faces[0].surface;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const io::TrimLoop& loop : face.loops)
+      for (const Eigen::Vector2d& uv : test::dense_polygon(loop, 1000))
+        nearest = std::min(nearest, (evaluate(now, uv.x(), uv.y()) - p).norm());
+    return nearest;
+  };
+  int contacts = 0, on_edge = 0, at_corner = 0;
+  for (long long k = 0; k < sampler.tick_count(); ++k) {
+    const Result<TickReport> r = s.step(sampler.sample(k));
+    REQUIRE(r.ok());
+    for (const ContactRecord& c : r.value().contacts) {
+      ++contacts;
+      at_corner += k < 1000 ? 1 : 0;
+      if (trims.contains(c.uv)) continue;
+      ++on_edge;
+      CAPTURE(k, c.uv.x(), c.uv.y());
+      CHECK(edge_distance(c.point) < 0.02);  // on the edge, to its sampling
+    }
+  }
+  CHECK(at_corner == 0);  // outside the disc: nothing to touch
+  CHECK(contacts > 500);  // on the disc it presses
+  CHECK(on_edge > 0);     // and crossing the rim it touched the edge itself
+}
+
 TEST_CASE("session errors name the scene field", "[session][bad-input]") {
   const std::string sheet = R"({"name": "sheet", "file": "collide_sheet.json",
                                 "material": "clay"})";
@@ -206,6 +286,9 @@ TEST_CASE("session errors name the scene field", "[session][bad-input]") {
       {parse("[" + sheet + "]",
              R"([{"name": "t", "type": "bspline", "file": "bearing.iges", "face": 500}])"),
        "tools[0].face: face 500 is out of range"},
+      {parse(R"([{"name": "m", "file": ")" + open_loop_model().string() +
+             R"(", "material": "clay"}])"),
+       "models[0] face 0: loop 0 curve 3 ends at (u, v) = "},
   };
   for (const auto& [scene, expected] : cases) {
     const Result<Session> r = Session::create(scene);

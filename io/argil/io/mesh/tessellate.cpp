@@ -1,13 +1,16 @@
 #include "argil/io/mesh/tessellate.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <map>
+#include <string>
 #include <utility>
 
 #include "argil/core/base/number_text.hpp"
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/core/geometry/param_rect.hpp"
+#include "argil/core/geometry/trim_region.hpp"
 #include "argil/io/model/trim_curve.hpp"
 
 namespace argil::io {
@@ -214,12 +217,11 @@ ConformingCells conforming_cells(std::vector<Cell> leaves, VertexCache& cache,
 
 // Phase 3: the fans' triangles whose (u, v) centroid is inside the trim.
 std::vector<std::array<int, 3>> trimmed_fans(const FaceRecord& face, const ConformingCells& cells,
-                                             VertexCache& cache,
-                                             const TessellationOptions& options) {
-  std::vector<std::vector<Eigen::Vector2d>> polygons;
-  for (const TrimLoop& loop : face.loops) {
-    polygons.push_back(loop_polygon(loop, options.trim_samples_per_span));
-  }
+                                             VertexCache& cache) {
+  // The precondition (validate_trim_loops) accepted the loops, so this succeeds.
+  const Result<TrimRegion> trims = TrimRegion::create(face.loops);
+  assert(trims.ok());
+  const TrimRegion region = trims.ok() ? trims.value() : TrimRegion();
   std::vector<std::array<int, 3>> kept;
   for (std::size_t k = 0; k < cells.leaves.size(); ++k) {
     const int c = centre_of(cells.leaves[k], cache);
@@ -227,7 +229,7 @@ std::vector<std::array<int, 3>> trimmed_fans(const FaceRecord& face, const Confo
     for (std::size_t e = 0; e < b.size(); ++e) {
       const std::array<int, 3> t{c, b[e], b[(e + 1) % b.size()]};
       const Eigen::Vector2d centroid = (cache.uv(t[0]) + cache.uv(t[1]) + cache.uv(t[2])) / 3.0;
-      if (polygons.empty() || inside_trim(polygons, centroid)) kept.push_back(t);
+      if (region.contains(centroid)) kept.push_back(t);
     }
   }
   return kept;
@@ -280,7 +282,7 @@ TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& 
   VertexCache cache(s);
   const ConformingCells cells =
       conforming_cells(flat_cells(cache, options, min_depth), cache, options);
-  return compact_mesh(face, cache, trimmed_fans(face, cells, cache, options), face_index);
+  return compact_mesh(face, cache, trimmed_fans(face, cells, cache), face_index);
 }
 
 Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& options) {
@@ -308,6 +310,9 @@ Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& o
   for (std::size_t f = 0; f < model.faces.size(); ++f) {
     const Status check = validate_face(model.faces[f], f);
     if (!check.ok()) return check;
+    const Status loops = validate_trim_loops(model.faces[f].loops);
+    if (!loops.ok())
+      return Status::error(loops.code, "face " + std::to_string(f) + " " + loops.message);
     parts.push_back(tessellate_face(model.faces[f], options, static_cast<int>(f)));
     vertices += parts.back().positions.rows();
     triangles += parts.back().triangles.rows();

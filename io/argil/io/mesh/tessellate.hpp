@@ -18,9 +18,6 @@ struct TessellationOptions {
   /// Subdivision depth limit below each knot-span patch (a cell is at least
   /// 2^-max_depth of its span wide); reached only at singular points.
   int max_depth = 16;
-  /// Trim loops become polygons with this many points per knot span of curved
-  /// trim curves.
-  int trim_samples_per_span = 32;
 };
 
 /// Triangles over all faces of a model. Every vertex keeps the face and (u, v)
@@ -34,7 +31,8 @@ struct TriangleMesh {
   Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> triangles;
 };
 
-/// Tessellates one face (precondition: validate_face(face).ok()). `face_index`
+/// Tessellates one face (preconditions: validate_face(face).ok() and
+/// validate_trim_loops(face.loops).ok()). `face_index`
 /// fills TriangleMesh::vertex_face.
 ///
 /// Method: each non-empty knot-span patch is split into four recursively until
@@ -43,15 +41,17 @@ struct TriangleMesh {
 /// |S(u, v) - linear interpolation| at the interpolated (u, v), an upper bound of
 /// the distance to the surface). Cells take their neighbours' vertices on shared
 /// edges into their fan, so the mesh has no cracks. Trimming keeps a triangle
-/// when its (u, v) centroid lies inside the trim polygons: the trimmed boundary
-/// is therefore approximated to within one triangle (not a conforming trim).
+/// when its (u, v) centroid lies inside the trims (TrimRegion::contains, on the
+/// exact trim curves): the trimmed boundary is therefore approximated to within
+/// one triangle (not a conforming trim).
 /// Normals are S_u x S_v / |S_u x S_v| from the surface derivatives, flipped on
 /// reversed faces.
 TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& options = {},
                              int face_index = 0);
 
-/// Tessellates every face and concatenates the meshes. Fails when a face does
-/// not validate or the tolerance is not positive or below 1e-7 of the model's
+/// Tessellates every face and concatenates the meshes. Fails when a face or
+/// its trim loops do not validate (the message names the face, loop and
+/// curve) or the tolerance is not positive or below 1e-7 of the model's
 /// control-point diagonal (mesh files hold float32 coordinates).
 Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& options = {});
 

@@ -10,6 +10,7 @@
 
 #include "argil/core/geometry/bspline_curve.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
+#include "argil/core/geometry/trim_region.hpp"
 
 namespace argil::io {
 
@@ -17,13 +18,11 @@ namespace argil::io {
 /// a BSplineCurve whose points have two columns, (u, v).
 using TrimCurve = BSplineCurve;
 
-/// A closed chain of trim curves, each starting where the previous one ends.
-/// The outer loop runs counter-clockwise in (u, v), inner loops (holes) clockwise,
-/// so the kept region is on the left of every curve.
-struct TrimLoop {
-  bool outer = true;
-  std::vector<TrimCurve> curves;
-};
+/// A closed chain of trim curves, each starting where the previous one ends
+/// (within kMaxTrimGapRatio of the loop). The outer loop runs counter-clockwise
+/// in (u, v), inner loops (holes) clockwise, so the kept region is on the left
+/// of every curve. The core's type: argil::TrimRegion is built from these.
+using TrimLoop = argil::TrimLoop;
 
 /// One face of a CAD model, ready to sculpt.
 struct FaceRecord {

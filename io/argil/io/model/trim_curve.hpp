@@ -20,20 +20,13 @@ Status validate_trim_curve(const TrimCurve& curve);
 /// validate_trim_curve(curve).ok(). The NURBS Book A4.1.
 Eigen::Vector2d evaluate_trim_curve(const TrimCurve& curve, double t);
 
-/// A closed polygon through the loop in (u, v): every curve sampled at
-/// `samples_per_span` points per non-empty knot span (curved spans are sampled
-/// evenly in t; lines need only their ends). The first point is not repeated.
-std::vector<Eigen::Vector2d> loop_polygon(const TrimLoop& loop, int samples_per_span = 16);
-
-/// Even-odd rule over all loops of a face: true when (u, v) is inside the outer
-/// loop and outside every inner loop. Points exactly on a polygon edge may fall
-/// either way.
-bool inside_trim(const std::vector<std::vector<Eigen::Vector2d>>& polygons,
-                 const Eigen::Vector2d& uv);
-
 /// Checks the surface and every trim curve of a face; the message names the
 /// loop and curve and the defect ("loop 0 curve 2: ..."), not the face, for
-/// callers that name the face themselves.
+/// callers that name the face themselves. It does not check how the curves
+/// chain: a model holds whatever finite loops a file gave. Code that needs
+/// the region (tessellation, the physics) builds argil::TrimRegion from the
+/// loops, which checks that they close, enclose an area and run the right
+/// way round (argil::validate_trim_loops), then asks contains().
 Status validate_face(const FaceRecord& face);
 
 /// validate_face(face) with the message prefixed by the face index

@@ -68,8 +68,14 @@ Result<LoadedModel> load_model(const Scene& scene, std::size_t m) {
                                std::to_string(f) + " is out of range: " + spec.file.string() +
                                " has " + std::to_string(file.faces.size()) + " faces");
     }
+    Result<TrimRegion> trims = TrimRegion::create(file.faces[static_cast<std::size_t>(f)].loops);
+    if (!trims.ok()) {
+      return Status::error(trims.status().code, model_path(m) + " face " + std::to_string(f) +
+                                                    ": " + trims.status().message);
+    }
     loaded.initial.faces.push_back(std::move(file.faces[static_cast<std::size_t>(f)]));
     loaded.file_faces.push_back(f);
+    loaded.trims.push_back(std::move(trims).value());
   }
   if (loaded.initial.faces.empty()) {
     return Status::error(StatusCode::invalid_argument,
@@ -123,10 +129,12 @@ Status Session::rebuild_world() {
               ? world_->add_deformable(surface, loaded.spec.material, loaded.spec.boundary,
                                        loaded.spec.friction)
               : world_->add_rigid(surface, loaded.spec.friction);
-      if (!body.ok()) {
-        return Status::error(body.status().code, model_path(m) + " face " +
-                                                     std::to_string(loaded.file_faces[f]) + ": " +
-                                                     body.status().message);
+      const Status trimmed =
+          body.ok() ? world_->set_trim(body.value(), loaded.trims[f]) : body.status();
+      if (!trimmed.ok()) {
+        return Status::error(trimmed.code, model_path(m) + " face " +
+                                               std::to_string(loaded.file_faces[f]) + ": " +
+                                               trimmed.message);
       }
       loaded.bodies.push_back(body.value());
       body_owner_.emplace_back(static_cast<int>(m), static_cast<int>(f));

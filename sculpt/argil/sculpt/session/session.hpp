@@ -22,12 +22,14 @@ namespace argil::sculpt {
 
 /// A contact of the tool with one model face during a tick.
 struct ContactRecord {
-  int model = 0;                                     // index in Scene::models
-  int face = 0;                                      // face index in the model's file
-  Eigen::Vector2d uv = Eigen::Vector2d::Zero();      // on the face
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // p_WC [mm]
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit, S_u x S_v
-  double depth = 0.0;                                // [mm], positive inside the tool
+  int model = 0;                                    // index in Scene::models
+  int face = 0;                                     // face index in the model's file
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();     // on the face
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // p_WC [mm]
+  /// Unit: S_u x S_v, or on a trimmed edge the direction from the edge point
+  /// to the tool's centre.
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  double depth = 0.0;  // [mm], positive inside the tool
 };
 
 /// What one tick did, for logs and pictures.
@@ -46,17 +48,20 @@ struct TickReport {
 /// in the scene's order) and their bodies in the world.
 struct LoadedModel {
   ModelOptions spec;
-  io::Model initial;            // the named faces only, as read
-  std::vector<int> file_faces;  // face index in the file of each loaded face
-  std::vector<int> bodies;      // world body of each loaded face
+  io::Model initial;              // the named faces only, as read
+  std::vector<int> file_faces;    // face index in the file of each loaded face
+  std::vector<TrimRegion> trims;  // of each loaded face (empty: untrimmed)
+  std::vector<int> bodies;        // world body of each loaded face
 };
 
 class Session {
  public:
   /// Reads the faces the scene names (only those), builds a body for each
   /// (deformable with the model's material and boundary conditions, or rigid)
-  /// and the tool `tool_name` (empty: the scene's first tool). Errors name the
-  /// scene field ("models[1].faces[2]: face 9 is out of range ...").
+  /// with the face's trims (contact only with material) and the tool
+  /// `tool_name` (empty: the scene's first tool). Errors name the scene field
+  /// ("models[1].faces[2]: face 9 is out of range ...", "models[0] face 12:
+  /// loop 0 curve 3 ends at ...").
   static Result<Session> create(const Scene& scene, const std::string& tool_name = "");
 
   /// One haptic tick of 1 / haptic_rate seconds with the device at `sample`.

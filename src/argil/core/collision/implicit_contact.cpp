@@ -1,18 +1,13 @@
 #include "argil/core/collision/implicit_contact.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <functional>
 #include <limits>
-#include <numeric>
-#include <queue>
 #include <set>
-#include <tuple>
 
+#include "argil/core/collision/detail/closest_search.hpp"
 #include "argil/core/collision/detail/contact_regions.hpp"
 #include "argil/core/collision/detail/patch_minimize.hpp"
 #include "argil/core/collision/surface_contact.hpp"
-#include "argil/core/geometry/triangle_distance.hpp"
 
 namespace argil {
 
@@ -197,138 +192,6 @@ class ToolDescent {
   std::vector<LeafContact> leaves_;
 };
 
-/// Half the squared distance to p: smooth, Hessian I, same minimiser as |x - p|.
-PointFunction half_squared_distance_to(const Eigen::Vector3d& p) {
-  return [p](const Eigen::Vector3d& x) {
-    DistanceSample s;
-    s.value = 0.5 * (x - p).squaredNorm();
-    s.gradient = x - p;
-    s.hessian.setIdentity();
-    return s;
-  };
-}
-
-/// The best-first search of closest_point(). Entries: blocks as -(id + 1),
-/// hierarchy nodes as id >= 0.
-class ClosestSearch {
- public:
-  ClosestSearch(const SurfaceHierarchy& h, const Eigen::Vector3d& p, double eps,
-                QueryCounters& counters)
-      : h_(h),
-        p_(p),
-        f_(half_squared_distance_to(p)),
-        eps_(eps),
-        counters_(counters),
-        best_uv_(domain_of(h.surface()).lower()) {}
-
-  /// The parameters of the closest point found (within eps of the global minimum).
-  Eigen::Vector2d run() {
-    queue_.push(block_entry(node_lower(h_.block(0, &counters_).bound), 0));
-    while (!queue_.empty()) {
-      const Entry top = queue_.top();
-      queue_.pop();
-      if (top.lower >= best_distance_ - eps_) break;  // nothing left beats the best by eps
-      if (top.entry < 0) {
-        expand_block(-top.entry - 1);
-      } else {
-        visit_node(top.entry);
-      }
-    }
-    return best_uv_;
-  }
-
- private:
-  /// Equal lower bounds (0 for every node holding p) are ordered by the
-  /// node's place in the tree, not its id, so the answer does not depend on
-  /// the order in which earlier queries created nodes (ids change when the
-  /// pool is released).
-  struct Entry {
-    double lower;
-    int level;  // -1 for blocks
-    double u0, v0;
-    int entry;
-    bool operator>(const Entry& o) const {
-      return std::tie(lower, level, u0, v0, entry) >
-             std::tie(o.lower, o.level, o.u0, o.v0, o.entry);
-    }
-  };
-  static Entry block_entry(double lower, int block) {
-    return Entry{lower, -1, static_cast<double>(block), 0.0, -block - 1};
-  }
-  static Entry node_entry(double lower, const HierarchyNode& n, int id) {
-    return Entry{lower, n.level, n.rect.u0, n.rect.v0, id};
-  }
-
-  /// Lower bound of |p - S| over a node: the sphere, and the corner triangles
-  /// less the flatness (exact point-triangle distances).
-  double node_lower(const PatchBound& b) const {
-    double lower = (p_ - b.center).norm() - b.radius;
-    if (std::isfinite(b.flatness)) {
-      const auto& c = b.corners;
-      const double triangles =
-          std::min((closest_point_on_triangle(p_, c[0], c[1], c[3]) - p_).norm(),
-                   (closest_point_on_triangle(p_, c[0], c[3], c[2]) - p_).norm());
-      lower = std::max(lower, triangles - b.flatness);
-    }
-    return std::max(0.0, lower);
-  }
-
-  void offer(const Eigen::Vector3d& x, const Eigen::Vector2d& uv) {
-    const double d = (x - p_).norm();
-    if (d < best_distance_) {
-      best_distance_ = d;
-      best_uv_ = uv;
-    }
-  }
-
-  void expand_block(int id) {
-    const ElementBlock& block = h_.block(id, &counters_);
-    if (block.element_node >= 0) {
-      const HierarchyNode& n = h_.node(block.element_node, &counters_);
-      queue_.push(node_entry(node_lower(n.bound), n, block.element_node));
-      return;
-    }
-    for (int c : block.children) {
-      if (c < 0) continue;
-      const double child_lower = node_lower(h_.block(c, &counters_).bound);
-      if (child_lower < best_distance_ - eps_) queue_.push(block_entry(child_lower, c));
-    }
-  }
-
-  void visit_node(int id) {
-    const HierarchyNode& node = h_.node(id, &counters_);
-    // Patch corners lie on the surface: free upper bounds.
-    for (int k = 0; k < 4; ++k)
-      offer(node.bound.corners[static_cast<std::size_t>(k)], node.rect.corner(k));
-    const bool leaf = node.bound.flatness <= eps_ || node.bound.radius <= eps_ ||
-                      node.level >= SurfaceHierarchy::kMaxLevel;
-    if (leaf) {
-      ++counters_.leaf_pairs;
-      const PatchMinimum m = minimize_on_patch(h_.surface(), node.rect, f_, hints_of(node));
-      offer(m.derivatives.point, m.uv);
-      return;
-    }
-    // h_.child() may reallocate the node pool: `node` is not used after this.
-    for (int hu = 0; hu < 2; ++hu) {
-      for (int hv = 0; hv < 2; ++hv) {
-        const int c = h_.child(id, hu, hv);
-        const HierarchyNode& child = h_.node(c, &counters_);
-        const double child_lower = node_lower(child.bound);
-        if (child_lower < best_distance_ - eps_) queue_.push(node_entry(child_lower, child, c));
-      }
-    }
-  }
-
-  const SurfaceHierarchy& h_;
-  Eigen::Vector3d p_;
-  PointFunction f_;
-  double eps_;
-  QueryCounters& counters_;
-  double best_distance_ = std::numeric_limits<double>::infinity();
-  Eigen::Vector2d best_uv_;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
-};
-
 }  // namespace
 
 CollisionResult collide(const SurfaceHierarchy& h, const ImplicitTool& tool,
@@ -354,15 +217,8 @@ ClosestPoint closest_point(const SurfaceHierarchy& h, const Eigen::Vector3d& p,
     best.distance = best.signed_distance = std::numeric_limits<double>::quiet_NaN();
     return best;
   }
-  const Eigen::Vector2d uv = ClosestSearch(h, p, request.tolerance, best.counters).run();
-  const SurfaceDerivatives d = evaluate_derivatives(h.surface(), uv[0], uv[1], 1);
-  const Contact c = contact_at(h.surface(), uv, d, 0.0);
-  best.uv = uv;
-  best.point = c.point;
-  best.distance = (p - c.point).norm();
-  best.normal = c.normal;
-  best.signed_distance = (p - c.point).dot(best.normal) >= 0.0 ? best.distance : -best.distance;
-  return best;
+  const ClosestFound found = closest_point_search(h, p, {.eps = request.tolerance}, best.counters);
+  return closest_point_at(h.surface(), found.uv, p, best.counters);
 }
 
 }  // namespace argil

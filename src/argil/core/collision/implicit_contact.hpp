@@ -29,6 +29,9 @@ struct [[nodiscard]] ClosestPoint {
   double distance = 0.0;         // |p - S(uv)| [mm], within eps of the global minimum
   double signed_distance = 0.0;  // positive on the side the normal points to
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  /// True when the point lies on a trimmed face's edge rather than inside its
+  /// material (closest_point on a TrimmedSurface only).
+  bool on_edge = false;
   QueryCounters counters;
 };
 

@@ -18,6 +18,7 @@
 #include "argil/core/deform/deformable_body.hpp"
 #include "argil/core/deform/material.hpp"
 #include "argil/core/geometry/pose.hpp"
+#include "argil/core/geometry/trim_region.hpp"
 #include "argil/core/haptic/device_sample.hpp"
 #include "argil/core/haptic/sphere_proxy.hpp"
 #include "argil/core/haptic/surface_tool_proxy.hpp"
@@ -91,6 +92,18 @@ class HapticWorld {
   /// Adds a rigid body (collides, never deforms); `friction` as for add_deformable.
   Result<int> add_rigid(const BSplineSurface& surface, double friction);
 
+  /// Gives body `body` its trims: only (u, v) inside `region` is material.
+  /// The sphere and point tool then touch the body only inside the region or
+  /// on its edge (collide_sphere and closest_point on a TrimmedSurface, for
+  /// the proxy's moves and its contacts alike); the B-spline tool's contacts
+  /// outside it are dropped. An empty region (every body's default) makes the
+  /// whole domain material. Fails (invalid_argument, nothing changed) when
+  /// `body` is not a body of this world or the region's box misses the
+  /// body's domain. Trims live in (u, v), so deformation keeps them valid.
+  Status set_trim(int body, TrimRegion region);
+  /// Body `body`'s trims (empty: untrimmed).
+  const TrimRegion& trim(int body) const;
+
   /// One tick of dt [s] with the device at `device.X_WD` (its tick and time
   /// are not read: the world keeps no clock).
   ///  1. The proxy moves from its last pose towards the device (god-object,
@@ -144,6 +157,10 @@ class HapticWorld {
   };
   HapticWorld() = default;
   std::vector<const SurfaceHierarchy*> surfaces() const;
+  /// Every body with its trims (body_trim.cpp).
+  std::vector<TrimmedSurface> trimmed_surfaces() const;
+  /// Removes the contacts outside their body's trims (body_trim.cpp).
+  void drop_contacts_outside_trims(std::vector<std::vector<Contact>>& per_body) const;
   /// The world's tolerance checked against the documented range for a body.
   Status check_tolerance(const SurfaceHierarchy& surface) const;
   int add_body(Body body);
@@ -161,6 +178,8 @@ class HapticWorld {
   WorldOptions options_;
   std::unique_ptr<OperatorCache> cache_;
   std::vector<Body> bodies_;
+  std::vector<TrimRegion> trims_;  // per body; bodies past its end are untrimmed
+  TrimRegion untrimmed_;
   std::optional<SphereProxy> sphere_;
   std::optional<SurfaceToolProxy> surface_tool_;
   ProxyState proxy_;

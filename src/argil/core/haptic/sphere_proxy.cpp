@@ -5,17 +5,17 @@
 #include <cmath>
 #include <limits>
 
-#include "argil/core/collision/implicit_contact.hpp"
-
 namespace argil {
 
 namespace {
 
-/// True when (u, v) lies on the domain boundary: there the closest point may
-/// be reached from either side without crossing the surface.
-bool on_boundary(const BSplineSurface& s, const Eigen::Vector2d& uv) {
-  return uv.x() <= s.domain_start(Direction::u) || uv.x() >= s.domain_end(Direction::u) ||
-         uv.y() <= s.domain_start(Direction::v) || uv.y() >= s.domain_end(Direction::v);
+/// True when the closest point lies on the domain boundary or a trimmed
+/// edge: there it may be reached from either side without crossing the surface.
+bool on_boundary(const BSplineSurface& s, const ClosestPoint& cp) {
+  const Eigen::Vector2d& uv = cp.uv;
+  return cp.on_edge || uv.x() <= s.domain_start(Direction::u) ||
+         uv.x() >= s.domain_end(Direction::u) || uv.y() <= s.domain_start(Direction::v) ||
+         uv.y() >= s.domain_end(Direction::v);
 }
 
 }  // namespace
@@ -77,17 +77,17 @@ int& SphereProxy::side(std::size_t index) {
   return sides_[index];
 }
 
-SphereProxy::Push SphereProxy::push_out(const SurfaceHierarchy& surface, std::size_t index,
+SphereProxy::Push SphereProxy::push_out(const TrimmedSurface& surface, std::size_t index,
                                         const Eigen::Vector3d& c) {
   ClosestPoint cp = closest_point(surface, c, {.tolerance = 0.25 * eps_});
   if (!cp.status.ok()) return {std::move(cp.status), c, false};
+  const bool boundary = on_boundary(surface.hierarchy->surface(), cp);
   int& s = side(index);
   const double tiny = 1e-3 * eps_;  // below it the sign of a distance is noise
   if (s == 0) s = cp.signed_distance < 0.0 ? -1 : 1;
-  const bool crossed = s * cp.signed_distance < -tiny && !on_boundary(surface.surface(), cp.uv);
+  const bool crossed = s * cp.signed_distance < -tiny && !boundary;
   if (!crossed && cp.distance >= radius_) {
-    if (cp.distance > radius_ + tiny && std::abs(cp.signed_distance) > tiny &&
-        on_boundary(surface.surface(), cp.uv))
+    if (cp.distance > radius_ + tiny && std::abs(cp.signed_distance) > tiny && boundary)
       s = cp.signed_distance < 0.0 ? -1 : 1;  // went round the edge
     return {Status::success(), c, false};
   }
@@ -99,7 +99,7 @@ SphereProxy::Push SphereProxy::push_out(const SurfaceHierarchy& surface, std::si
   return {Status::success(), cp.point + direction * std::max(radius_, 2.0 * tiny), true};
 }
 
-SphereMove SphereProxy::project(const std::vector<const SurfaceHierarchy*>& surfaces,
+SphereMove SphereProxy::project(const std::vector<TrimmedSurface>& surfaces,
                                 const Eigen::Vector3d& start) {
   // Every surface's push is taken from the same centre and the pushes are
   // combined by the smallest move that satisfies them all (push_apart). Pushing
@@ -110,7 +110,7 @@ SphereMove SphereProxy::project(const std::vector<const SurfaceHierarchy*>& surf
   for (int round = 0; round < kMaxProjectionRounds; ++round) {
     pushes.clear();
     for (std::size_t b = 0; b < surfaces.size(); ++b) {
-      Push push = push_out(*surfaces[b], b, centre);
+      Push push = push_out(surfaces[b], b, centre);
       if (!push.status.ok()) return {std::move(push.status), centre};
       const Eigen::Vector3d move = push.centre - centre;
       const double length = move.norm();
@@ -122,7 +122,7 @@ SphereMove SphereProxy::project(const std::vector<const SurfaceHierarchy*>& surf
   return {Status::success(), centre};
 }
 
-SphereMove SphereProxy::move(const std::vector<const SurfaceHierarchy*>& surfaces,
+SphereMove SphereProxy::move(const std::vector<TrimmedSurface>& surfaces,
                              const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
   const double step = std::max(0.5 * radius_, 10.0 * eps_);
   const int count =
@@ -133,13 +133,13 @@ SphereMove SphereProxy::move(const std::vector<const SurfaceHierarchy*>& surface
   return at;
 }
 
-ProxyContact SphereProxy::nearest(const std::vector<const SurfaceHierarchy*>& surfaces,
+ProxyContact SphereProxy::nearest(const std::vector<TrimmedSurface>& surfaces,
                                   const Eigen::Vector3d& centre) {
   ProxyContact best;
   std::vector<double> clearances(surfaces.size());
   std::vector<Eigen::Vector3d> normals(surfaces.size());
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
-    ClosestPoint cp = closest_point(*surfaces[b], centre, {.tolerance = 0.25 * eps_});
+    ClosestPoint cp = closest_point(surfaces[b], centre, {.tolerance = 0.25 * eps_});
     if (!cp.status.ok()) return {std::move(cp.status)};
     const double clearance = cp.distance - radius_;
     const int s = side(b) == 0 ? (cp.signed_distance < 0.0 ? -1 : 1) : side(b);

@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "argil/core/hierarchy/surface_hierarchy.hpp"
+#include "argil/core/collision/trimmed_contact.hpp"
 
 namespace argil {
 
@@ -24,12 +24,17 @@ struct [[nodiscard]] ProxyContact {
 };
 
 /// Moves a sphere of radius r [mm] among surfaces, keeping it on the side of
-/// each surface it started on. Each move goes in straight substeps of at most
-/// max(r / 2, 10 eps); after each substep the centre is pushed out of every
-/// surface to distance r (closest points certified within eps / 4), so the
-/// sphere's depth is at most eps / 4 after a move, and a surface the centre
-/// crossed (the closest point is interior and on the other side) pushes it back
-/// to the side it came from. Sides change only around a surface's boundary.
+/// each surface it started on. Only material counts: on a trimmed surface the
+/// closest point is that of the material (closest_point on a TrimmedSurface),
+/// which lies on the face's edge where the centre is beyond it. Each move goes
+/// in straight substeps of at most max(r / 2, 10 eps); after each substep the
+/// centre is pushed out of every surface to distance r (closest points
+/// certified within eps / 4; on an edge, away from the edge point, so the
+/// sphere rolls over it), so the sphere's depth is at most eps / 4 after a
+/// move, and a surface the centre crossed (the closest point is interior and
+/// on the other side) pushes it back to the side it came from. Sides change
+/// only around a surface's boundary: its domain's sides and its trimmed edges
+/// (so the sphere passes over a hole's rim and through the hole).
 /// Where a move or projection left the centre. Not ok when a closest-point
 /// query failed: the centre is then the last one reached before it.
 struct [[nodiscard]] SphereMove {
@@ -54,17 +59,15 @@ class SphereProxy {
   double radius() const { return radius_; }
 
   /// Moves the centre from `from` towards `to` and returns where it stops.
-  SphereMove move(const std::vector<const SurfaceHierarchy*>& surfaces, const Eigen::Vector3d& from,
+  SphereMove move(const std::vector<TrimmedSurface>& surfaces, const Eigen::Vector3d& from,
                   const Eigen::Vector3d& to);
   /// The centre pushed out of every surface: each round takes every surface's
   /// push from the same centre and moves by push_apart() of them (at most
   /// kMaxProjectionRounds rounds; the surfaces are curved, so one round is not
   /// always enough).
-  SphereMove project(const std::vector<const SurfaceHierarchy*>& surfaces,
-                     const Eigen::Vector3d& centre);
+  SphereMove project(const std::vector<TrimmedSurface>& surfaces, const Eigen::Vector3d& centre);
   /// The nearest surface to `centre` (and updates the side record far from surfaces).
-  ProxyContact nearest(const std::vector<const SurfaceHierarchy*>& surfaces,
-                       const Eigen::Vector3d& centre);
+  ProxyContact nearest(const std::vector<TrimmedSurface>& surfaces, const Eigen::Vector3d& centre);
   /// Largest number of substeps in one move (a longer move stops early).
   static constexpr int kMaxSubsteps = 256;
   static constexpr int kMaxProjectionRounds = 8;
@@ -76,7 +79,7 @@ class SphereProxy {
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     bool moved = false;
   };
-  Push push_out(const SurfaceHierarchy& surface, std::size_t index, const Eigen::Vector3d& centre);
+  Push push_out(const TrimmedSurface& surface, std::size_t index, const Eigen::Vector3d& centre);
   int& side(std::size_t index);
 
   double radius_;

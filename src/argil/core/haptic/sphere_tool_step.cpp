@@ -1,28 +1,26 @@
 // The sphere (or point) tool's part of HapticWorld::step: the god-object
 // proxy moves, sticks or slips, and is collided with every body.
-#include "argil/core/collision/implicit_contact.hpp"
+#include "argil/core/collision/trimmed_contact.hpp"
 #include "argil/core/deform/contact_response.hpp"
-#include "argil/core/geometry/implicit_tool.hpp"
 #include "argil/core/haptic/haptic_tick.hpp"
 
 namespace argil {
 
 namespace {
 
-/// Contacts of a sphere of `radius` [mm] centred at p_WT with every surface.
+/// Contacts of a sphere of `radius` [mm] centred at p_WT with every surface's material.
 struct [[nodiscard]] SphereContacts {
   Status status;  // the first failed query's, naming its body
   std::vector<std::vector<Contact>> per_body;
 };
 
-SphereContacts sphere_contacts(const std::vector<const SurfaceHierarchy*>& surfaces,
+SphereContacts sphere_contacts(const std::vector<TrimmedSurface>& surfaces,
                                const Eigen::Vector3d& p_WT, double radius,
                                const CollisionRequest& request) {
-  const auto tool = make_sphere(p_WT, radius);
   SphereContacts out;
   out.per_body.resize(surfaces.size());
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
-    CollisionResult hit = collide(*surfaces[b], *tool, request);
+    CollisionResult hit = collide_sphere(surfaces[b], p_WT, radius, request);
     if (!hit.status.ok()) {
       out.status =
           Status::error(hit.status.code, "body " + std::to_string(b) + ": " + hit.status.message);
@@ -39,7 +37,7 @@ HapticWorld::ProxyMove HapticWorld::move_sphere(const ProxyState& previous,
                                                 const DeviceSample& device) {
   const double eps = options_.tolerance;
   const double k = options_.coupling.stiffness;
-  const std::vector<const SurfaceHierarchy*> surfs = surfaces();
+  const std::vector<TrimmedSurface> surfs = trimmed_surfaces();
   const Eigen::Vector3d& p_WD = device.X_WD.p;
   ProxyMove out;
   out.next.X_WT.R = device.X_WD.R;

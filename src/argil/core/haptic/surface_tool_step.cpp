@@ -1,5 +1,7 @@
 // The B-spline tool's part of HapticWorld::step: the tool proxy advances
-// conservatively, sticks or slips, and its contacts with every body.
+// conservatively, sticks or slips, and its contacts with every body. The
+// advance tests crossings against the whole surfaces; contacts outside a
+// body's trims are dropped (material only), for friction and load alike.
 #include "argil/core/deform/contact_response.hpp"
 #include "argil/core/haptic/haptic_tick.hpp"
 
@@ -17,6 +19,7 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
     const Pose stick{device.X_WD.R, previous.X_WT.p};
     ToolContacts at = surface_tool_->contacts(surfs, stick);
     if (!at.status.ok()) return {std::move(at.status), {}, {}, {0, 0, 0}};
+    drop_contacts_outside_trims(at.per_surface);
     double mu = -1.0;  // of the first body touched
     for (int b = 0; b < body_count() && mu < 0.0; ++b)
       if (!at.per_surface[static_cast<std::size_t>(b)].empty()) mu = friction(b);
@@ -40,6 +43,7 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
   out.next.X_WT = {device.X_WD.R, moved.X_WT.p};
   ToolContacts at = surface_tool_->contacts(surfs, moved.X_WT);
   if (!at.status.ok()) return {std::move(at.status), {}, {}, {0, 0, 0}};
+  drop_contacts_outside_trims(at.per_surface);
   out.body_contacts = std::move(at.per_surface);
   out.outward_normal = at.outward_normal;
   return out;

@@ -1,0 +1,64 @@
+// HapticWorld's trims: which part of each body's domain is material.
+#include <algorithm>
+#include <map>
+#include <string>
+
+#include "argil/core/base/number_text.hpp"
+#include "argil/core/haptic/haptic_tick.hpp"
+
+namespace argil {
+
+namespace {
+
+std::string rect_text(const ParamRect& r) {
+  return "[" + number_text(r.u0) + ", " + number_text(r.u1) + "] x [" + number_text(r.v0) + ", " +
+         number_text(r.v1) + "]";
+}
+
+}  // namespace
+
+Status HapticWorld::set_trim(int body, TrimRegion region) {
+  if (body < 0 || body >= body_count()) {
+    return Status::error(StatusCode::invalid_argument, "set_trim: body " + std::to_string(body) +
+                                                           " is not in [0, " +
+                                                           std::to_string(body_count()) + ")");
+  }
+  const ParamRect domain = domain_of(surface(body));
+  if (!region.empty() && !region.box().touches(domain)) {
+    return Status::error(StatusCode::invalid_argument,
+                         "set_trim: body " + std::to_string(body) +
+                             ": the trim loops' (u, v) box " + rect_text(region.box()) +
+                             " misses the surface's domain " + rect_text(domain));
+  }
+  if (trims_.size() < bodies_.size()) trims_.resize(bodies_.size());
+  trims_[static_cast<std::size_t>(body)] = std::move(region);
+  return Status::success();
+}
+
+const TrimRegion& HapticWorld::trim(int body) const {
+  const auto b = static_cast<std::size_t>(body);
+  return b < trims_.size() ? trims_[b] : untrimmed_;
+}
+
+std::vector<TrimmedSurface> HapticWorld::trimmed_surfaces() const {
+  std::vector<TrimmedSurface> out;
+  for (int b = 0; b < body_count(); ++b) out.push_back({&hierarchy(b), &trim(b)});
+  return out;
+}
+
+void HapticWorld::drop_contacts_outside_trims(std::vector<std::vector<Contact>>& per_body) const {
+  for (std::size_t b = 0; b < per_body.size(); ++b) {
+    const TrimRegion& region = trim(static_cast<int>(b));
+    if (region.empty()) continue;
+    std::vector<Contact>& contacts = per_body[b];
+    std::erase_if(contacts, [&](const Contact& c) { return !region.contains(c.uv_a); });
+    // Region ids stay dense, in their order of appearance.
+    std::map<int, int> renumbered;
+    for (Contact& c : contacts) {
+      const auto [at, added] = renumbered.emplace(c.region, static_cast<int>(renumbered.size()));
+      c.region = at->second;
+    }
+  }
+}
+
+}  // namespace argil
