@@ -402,8 +402,10 @@ bool boxes_touch(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const Par
 
 }  // namespace
 
-void TrimRegion::pieces_touching(const ParamRect& rect, std::vector<int>& out) const {
-  if (tree_.empty()) return;
+bool TrimRegion::pieces_touching(const ParamRect& rect, std::vector<int>& out,
+                                 std::size_t limit) const {
+  if (tree_.empty()) return true;
+  const std::size_t start = out.size();
   std::array<int, 128> stack{0};
   int top = 1;
   while (top > 0) {
@@ -414,12 +416,14 @@ void TrimRegion::pieces_touching(const ParamRect& rect, std::vector<int>& out) c
         const int piece = tree_pieces_[static_cast<std::size_t>(k)];
         const Piece& p = pieces_[static_cast<std::size_t>(piece)];
         if (boxes_touch(p.lo, p.hi, rect)) out.push_back(piece);
+        if (out.size() - start > limit) return false;
       }
       continue;
     }
     stack[static_cast<std::size_t>(top++)] = -node.count;
     stack[static_cast<std::size_t>(top++)] = node.first;
   }
+  return true;
 }
 
 bool TrimRegion::boundary_may_touch(const ParamRect& rect) const {

@@ -78,8 +78,10 @@ class TrimRegion {
   bool contains(const Eigen::Vector2d& uv) const;
 
   /// Appends to `out` the pieces whose control-point box touches `rect`
-  /// (closed): every piece of the boundary that may pass through it.
-  void pieces_touching(const ParamRect& rect, std::vector<int>& out) const;
+  /// (closed): every piece of the boundary that may pass through it. Stops
+  /// once more than `limit` are found (then false: the list is incomplete).
+  bool pieces_touching(const ParamRect& rect, std::vector<int>& out,
+                       std::size_t limit = std::numeric_limits<std::size_t>::max()) const;
   /// True when some piece's box touches `rect` (the boundary may cross it).
   bool boundary_may_touch(const ParamRect& rect) const;
 

@@ -174,6 +174,9 @@ class ClosestSearch {
   EntryQueue queue_;
 };
 
+/// Most boundary pieces an edge-search leaf takes before it is split further.
+constexpr std::size_t kLeafPieces = 8;
+
 /// The best-first search of closest_edge_point(): the same node bounds, over
 /// the nodes whose rectangle the trim boundary may touch; at a leaf every
 /// piece touching it not yet searched is searched (TrimRegion::closest_on_piece).
@@ -223,11 +226,21 @@ class EdgeSearch {
     const HierarchyNode& node = h_.node(id, &counters_);
     const ParamRect rect = reach(domain_, node.rect);
     if (is_leaf(node, eps_)) {
-      ++counters_.leaf_pairs;
-      search_pieces(node, rect);
+      pieces_.clear();
+      // A flat node under many pieces (a plate with many holes) is split
+      // further: smaller nodes bound the pieces far from p away.
+      const std::size_t limit =
+          node.level >= SurfaceHierarchy::kMaxLevel ? std::numeric_limits<std::size_t>::max()
+                                                    : kLeafPieces;
+      if (trim_.pieces_touching(rect, pieces_, limit)) {
+        if (pieces_.empty()) return;
+        ++counters_.leaf_pairs;
+        search_pieces(node);
+        return;
+      }
+    } else if (!trim_.boundary_may_touch(rect)) {
       return;
     }
-    if (!trim_.boundary_may_touch(rect)) return;
     // h_.child() may reallocate the node pool: `node` is not used after this.
     for (int hu = 0; hu < 2; ++hu) {
       for (int hv = 0; hv < 2; ++hv) {
@@ -266,11 +279,9 @@ class EdgeSearch {
     return gap.norm() - node.bound.flatness;
   }
 
-  /// The pieces touching a flat leaf, nearest bound first, each searched once
-  /// (on its whole length) unless its part here cannot beat the best.
-  void search_pieces(const HierarchyNode& node, const ParamRect& rect) {
-    pieces_.clear();
-    trim_.pieces_touching(rect, pieces_);
+  /// The pieces touching a flat leaf (in pieces_), nearest bound first, each
+  /// searched once (on its whole length) unless its part here cannot beat the best.
+  void search_pieces(const HierarchyNode& node) {
     candidates_.clear();
     for (const int k : pieces_) {
       if (searched_[static_cast<std::size_t>(k)] != 0) continue;
