@@ -42,11 +42,11 @@
 #include "argil/core/collision/triangle_intersection.hpp"  // IWYU pragma: export
 #include "argil/core/collision/trimmed_contact.hpp"        // IWYU pragma: export
 // deform
-#include "argil/core/deform/contact_response.hpp"  // IWYU pragma: export
-#include "argil/core/deform/deformable_body.hpp"   // IWYU pragma: export
+#include "argil/core/deform/contact_response.hpp"     // IWYU pragma: export
+#include "argil/core/deform/deformable_body.hpp"      // IWYU pragma: export
+#include "argil/core/deform/material.hpp"             // IWYU pragma: export
 #include "argil/core/deform/pole_stencil_matrix.hpp"  // IWYU pragma: export
-#include "argil/core/deform/shell_matrices.hpp"  // IWYU pragma: export
-#include "argil/core/deform/material.hpp"          // IWYU pragma: export
+#include "argil/core/deform/shell_matrices.hpp"       // IWYU pragma: export
 // haptic
 #include "argil/core/haptic/device_sample.hpp"       // IWYU pragma: export
 #include "argil/core/haptic/haptic_tick.hpp"         // IWYU pragma: export

@@ -339,4 +339,3 @@ TEST_CASE("gauss_legendre(n) integrates polynomials of degree 2n - 1 exactly, no
     }
   }
 }
-

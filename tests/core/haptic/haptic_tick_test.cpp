@@ -169,7 +169,8 @@ TEST_CASE("a tool dents an elastic panel, which returns to rest after it leaves"
       const argil::TickResult r = w.step(at(45, 45, 6.0 - 4.0), 1e-3);  // 4 mm into the rest
       REQUIRE(r.status.ok());
       CHECK(r.max_depth <= 0.01);
-      deepest = std::max(deepest, (w.deformable(0)->control_points() - original).cwiseAbs().maxCoeff());
+      deepest =
+          std::max(deepest, (w.deformable(0)->control_points() - original).cwiseAbs().maxCoeff());
     }
     CHECK(deepest > 0.2);  // the panel gave way
     CHECK(w.proxy().in_contact);
@@ -179,8 +180,9 @@ TEST_CASE("a tool dents an elastic panel, which returns to rest after it leaves"
       CHECK(kept < 1e-3);  // back to rest within 1 um
     } else {
       CHECK(kept > 0.1);  // the dent beyond yield stays
-      CHECK((w.deformable(0)->control_points() - w.deformable(0)->rest_control_points()).cwiseAbs().maxCoeff() <
-            1e-3);  // and it is the new rest state
+      CHECK((w.deformable(0)->control_points() - w.deformable(0)->rest_control_points())
+                .cwiseAbs()
+                .maxCoeff() < 1e-3);  // and it is the new rest state
     }
   }
 }

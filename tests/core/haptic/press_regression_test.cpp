@@ -115,8 +115,8 @@ TEST_CASE("named plates at 20 x 20 mm: the press stays local",
       const argil::Material m = *argil::material_preset(name);
       CAPTURE(plate.name, name);
       argil::test::SpherePress p = named_press(m, {0.37, 0.41});
-      p.samples = 61;       // 0.33 mm apart: finer than the 0.46 mm footprint radius
-      p.press_time = 0.3;   // the dent settles within tens of ms on these light layers
+      p.samples = 61;      // 0.33 mm apart: finer than the 0.46 mm footprint radius
+      p.press_time = 0.3;  // the dent settles within tens of ms on these light layers
       p.release_time = 0.1;
       const argil::test::PressOutcome r = argil::test::press_sphere(s, p);
       check_press(r, p);

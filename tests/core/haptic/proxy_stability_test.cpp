@@ -4,8 +4,8 @@
 // depth has no washboard at the control-point spacing. Every surface here is
 // the u/v-asymmetric structure (degree 3x2, 7x5 poles, a double knot,
 // non-uniform knots, weights), made flat or tilted.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
 
@@ -109,10 +109,9 @@ TEST_CASE("a sphere in a groove between two faces stays put, whichever face is n
     CAPTURE(slope);
     argil::HapticWorld w = sphere_world(1.0, 1e-3);
     const argil::Material foam = *argil::material_preset("foam");
-    REQUIRE(w.add_deformable(flat_asymmetric(-10.0, 10.0, 10.0, slope), foam, kHeldEdges, 0.3)
-                .ok());
-    REQUIRE(w.add_deformable(flat_asymmetric(0.0, 10.0, 10.0, slope), foam, kHeldEdges, 0.3)
-                .ok());
+    REQUIRE(
+        w.add_deformable(flat_asymmetric(-10.0, 10.0, 10.0, slope), foam, kHeldEdges, 0.3).ok());
+    REQUIRE(w.add_deformable(flat_asymmetric(0.0, 10.0, 10.0, slope), foam, kHeldEdges, 0.3).ok());
     std::vector<double> x, force;
     for (int t = 0; t < 1500; ++t) {
       // Then along the groove, easing in so the coupling's damping sees no velocity step.
@@ -138,8 +137,8 @@ TEST_CASE("a steady press does not buzz", "[haptic][proxy]") {
   for (const char* preset : {"foam", "wax", "clay", "abs"}) {
     CAPTURE(preset);
     argil::HapticWorld w = sphere_world(3.0, 1e-3);
-    REQUIRE(w.add_deformable(flat_asymmetric(0.0, 40.0, 30.0, 0.0),
-                             *argil::material_preset(preset), kHeldEdges, 0.3)
+    REQUIRE(w.add_deformable(flat_asymmetric(0.0, 40.0, 30.0, 0.0), *argil::material_preset(preset),
+                             kHeldEdges, 0.3)
                 .ok());
     std::vector<double> force;
     for (int t = 0; t < 1200; ++t) {
@@ -166,8 +165,8 @@ TEST_CASE("a drag at constant depth over a flat plate has no washboard", "[hapti
   for (const char* preset : {"foam", "wax", "abs"}) {
     CAPTURE(preset);
     argil::HapticWorld w = sphere_world(2.0, 1e-3);
-    REQUIRE(w.add_deformable(flat_asymmetric(0.0, 40.0, 30.0, 0.0),
-                             *argil::material_preset(preset), kHeldEdges, 0.0)
+    REQUIRE(w.add_deformable(flat_asymmetric(0.0, 40.0, 30.0, 0.0), *argil::material_preset(preset),
+                             kHeldEdges, 0.0)
                 .ok());
     std::vector<double> force;
     for (int t = 0; t < 4000; ++t) {

@@ -19,8 +19,7 @@ std::vector<double> contact_shares(const std::vector<Contact>& contacts, double 
   return shares;
 }
 
-Eigen::VectorXd contact_load_pattern(const BSplineSurface& s,
-                                     const std::vector<Contact>& contacts,
+Eigen::VectorXd contact_load_pattern(const BSplineSurface& s, const std::vector<Contact>& contacts,
                                      const std::vector<double>& shares) {
   assert(contacts.size() == shares.size());
   const int nu = s.count(Direction::u);

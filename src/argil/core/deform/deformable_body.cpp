@@ -60,8 +60,7 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   const ShellStiffness k = shell_stiffness(material);
   // A control point with (almost) no area, on a collapsed edge or a row of
   // coincident poles, gets 1e-3 of the mean mass so the step can move it.
-  body.masses_ = k.mass_per_area *
-                 body.shell_.area.cwiseMax(1e-3 * body.shell_.area.mean());
+  body.masses_ = k.mass_per_area * body.shell_.area.cwiseMax(1e-3 * body.shell_.area.mean());
   body.fixed_ = held_poles(nu, nv, conditions);
   // Elastic terms: A Membrane + D Bending + D Joints.
   const int ru0 = body.shell_.foundation.reach_u(), rv0 = body.shell_.foundation.reach_v();
@@ -95,9 +94,9 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   // gives the same result to the last bit.
   const long long band_u = static_cast<long long>(ru) * nv + rv;
   const long long band_v = static_cast<long long>(rv) * nu + ru;
-  const bool by_u = band_u != band_v ? band_u < band_v
-                                     : std::pair(nu, surface.degree[0]) >=
-                                           std::pair(nv, surface.degree[1]);
+  const bool by_u = band_u != band_v
+                        ? band_u < band_v
+                        : std::pair(nu, surface.degree[0]) >= std::pair(nv, surface.degree[1]);
   body.bandwidth_ = by_u ? ru * nv + rv : rv * nu + ru;
   const Eigen::Index n = static_cast<Eigen::Index>(nu) * nv;
   body.order_.resize(static_cast<std::size_t>(n));
@@ -131,7 +130,9 @@ SymmetricBandMatrix DeformableBody::step_matrix(double dt) const {
   const Eigen::Index n = masses_.size();
   SymmetricBandMatrix a(static_cast<int>(n), bandwidth_);
   const double scale = dt * material_.damping + dt * dt;  // multiplies K (springs and dashpots)
-  const auto is_fixed = [&](Eigen::Index pole) { return fixed_[static_cast<std::size_t>(pole)] != 0; };
+  const auto is_fixed = [&](Eigen::Index pole) {
+    return fixed_[static_cast<std::size_t>(pole)] != 0;
+  };
   const int nu = stiffness_.count_u(), nv = stiffness_.count_v();
   const int ru = stiffness_.reach_u(), rv = stiffness_.reach_v();
   for (int i = 0; i < nu; ++i) {

@@ -35,7 +35,8 @@ ShellStiffness shell_stiffness(const Material& m) {
 
 Status validate(const Material& m) {
   const MaterialRange& r = kMaterialRange;
-  if (!r.density.contains(m.density)) return out_of_range("density", m.density, r.density, "kg/m^3");
+  if (!r.density.contains(m.density))
+    return out_of_range("density", m.density, r.density, "kg/m^3");
   if (!r.thickness.contains(m.thickness))
     return out_of_range("thickness", m.thickness, r.thickness, "mm");
   if (!r.youngs_modulus.contains(m.youngs_modulus))
@@ -53,24 +54,60 @@ Status validate(const Material& m) {
 const std::vector<MaterialPreset>& material_presets() {
   constexpr double elastic = std::numeric_limits<double>::infinity();
   static const std::vector<MaterialPreset> presets = {
-      {"clay", "industrial design clay, a 5 mm layer on a rigid core; keeps dents",
-       {.density = 1700, .thickness = 5, .youngs_modulus = 0.5, .poisson_ratio = 0.45,
-        .foundation_stiffness = layer_foundation(0.5, 5), .damping = 1e-3, .yield = 0.02}},
-      {"wax", "modelling wax, a 3 mm layer on a rigid core; stiff, keeps dents",
-       {.density = 950, .thickness = 3, .youngs_modulus = 50, .poisson_ratio = 0.4,
-        .foundation_stiffness = layer_foundation(50, 3), .damping = 1e-3, .yield = 0.005}},
-      {"foam", "soft polyurethane foam, a 10 mm layer; elastic, springs back",
-       {.density = 30, .thickness = 10, .youngs_modulus = 0.05, .poisson_ratio = 0.3,
-        .foundation_stiffness = layer_foundation(0.05, 10), .damping = 1e-3, .yield = elastic}},
-      {"sheet_steel", "1 mm steel sheet on a stiff backing; elastic",
-       {.density = 7850, .thickness = 1, .youngs_modulus = 210000, .poisson_ratio = 0.3,
-        .foundation_stiffness = 10, .damping = 1e-3, .yield = elastic}},
-      {"aluminium", "1 mm aluminium sheet on a stiff backing; elastic",
-       {.density = 2700, .thickness = 1, .youngs_modulus = 70000, .poisson_ratio = 0.33,
-        .foundation_stiffness = 10, .damping = 1e-3, .yield = elastic}},
-      {"abs", "2 mm ABS plastic shell on a stiff backing; elastic",
-       {.density = 1040, .thickness = 2, .youngs_modulus = 2300, .poisson_ratio = 0.35,
-        .foundation_stiffness = 10, .damping = 1e-3, .yield = elastic}},
+      {"clay",
+       "industrial design clay, a 5 mm layer on a rigid core; keeps dents",
+       {.density = 1700,
+        .thickness = 5,
+        .youngs_modulus = 0.5,
+        .poisson_ratio = 0.45,
+        .foundation_stiffness = layer_foundation(0.5, 5),
+        .damping = 1e-3,
+        .yield = 0.02}},
+      {"wax",
+       "modelling wax, a 3 mm layer on a rigid core; stiff, keeps dents",
+       {.density = 950,
+        .thickness = 3,
+        .youngs_modulus = 50,
+        .poisson_ratio = 0.4,
+        .foundation_stiffness = layer_foundation(50, 3),
+        .damping = 1e-3,
+        .yield = 0.005}},
+      {"foam",
+       "soft polyurethane foam, a 10 mm layer; elastic, springs back",
+       {.density = 30,
+        .thickness = 10,
+        .youngs_modulus = 0.05,
+        .poisson_ratio = 0.3,
+        .foundation_stiffness = layer_foundation(0.05, 10),
+        .damping = 1e-3,
+        .yield = elastic}},
+      {"sheet_steel",
+       "1 mm steel sheet on a stiff backing; elastic",
+       {.density = 7850,
+        .thickness = 1,
+        .youngs_modulus = 210000,
+        .poisson_ratio = 0.3,
+        .foundation_stiffness = 10,
+        .damping = 1e-3,
+        .yield = elastic}},
+      {"aluminium",
+       "1 mm aluminium sheet on a stiff backing; elastic",
+       {.density = 2700,
+        .thickness = 1,
+        .youngs_modulus = 70000,
+        .poisson_ratio = 0.33,
+        .foundation_stiffness = 10,
+        .damping = 1e-3,
+        .yield = elastic}},
+      {"abs",
+       "2 mm ABS plastic shell on a stiff backing; elastic",
+       {.density = 1040,
+        .thickness = 2,
+        .youngs_modulus = 2300,
+        .poisson_ratio = 0.35,
+        .foundation_stiffness = 10,
+        .damping = 1e-3,
+        .yield = elastic}},
   };
   return presets;
 }

@@ -52,9 +52,9 @@ struct Material {
 
 /// Stiffnesses a material gives a shell.
 struct ShellStiffness {
-  double membrane = 0.0;    // A = E h / (1 - nu^2) [N/mm]
-  double bending = 0.0;     // D = E h^3 / (12 (1 - nu^2)) [N mm]
-  double foundation = 0.0;  // k_a [N/mm^3]
+  double membrane = 0.0;       // A = E h / (1 - nu^2) [N/mm]
+  double bending = 0.0;        // D = E h^3 / (12 (1 - nu^2)) [N mm]
+  double foundation = 0.0;     // k_a [N/mm^3]
   double mass_per_area = 0.0;  // rho h [kg/mm^2]
 };
 ShellStiffness shell_stiffness(const Material& material);
@@ -62,12 +62,12 @@ ShellStiffness shell_stiffness(const Material& material);
 /// Documented range of each Material field, in the field's unit. validate()
 /// and the scene reader both check against these, so they agree.
 struct MaterialRange {
-  Interval density{1e-3, 1e5};                // [kg/m^3]; aerogel 1, osmium 22600
-  Interval thickness{1e-6, 1e4};              // [mm]
-  Interval youngs_modulus{0.0, 1e7};          // [MPa], 0 = no membrane or bending
+  Interval density{1e-3, 1e5};                                // [kg/m^3]; aerogel 1, osmium 22600
+  Interval thickness{1e-6, 1e4};                              // [mm]
+  Interval youngs_modulus{0.0, 1e7};                          // [MPa], 0 = no membrane or bending
   Interval poisson_ratio{0.0, 0.5, IntervalEnds::open_high};  // [-]
-  Interval foundation_stiffness{0.0, 1e9};    // [N/mm^3], 0 = free
-  Interval damping{0.0, 1.0};                 // [s]
+  Interval foundation_stiffness{0.0, 1e9};                    // [N/mm^3], 0 = free
+  Interval damping{0.0, 1.0};                                 // [s]
   /// [mm]; the closed upper end is +infinity, purely elastic.
   Interval yield{1e-9, std::numeric_limits<double>::infinity()};
   /// Smallest ratio (m' + h^2 k_a a) / (h^2 k) of a control point at the

@@ -27,9 +27,7 @@ class PoleStencilMatrix {
   /// |di| <= reach_u, |dj| <= reach_v. Callers add both (a, b) and (b, a).
   void add(int i, int j, int di, int dj, double value) { entry(i, j, di, dj) += value; }
   /// Entry between pole (i, j) and pole (i + di, j + dj).
-  double at(int i, int j, int di, int dj) const {
-    return values_[index(i, j, di, dj)];
-  }
+  double at(int i, int j, int di, int dj) const { return values_[index(i, j, di, dj)]; }
   double diagonal(Eigen::Index pole) const;
 
   /// K x for x with one row per pole (row i * count_v + j), any columns.

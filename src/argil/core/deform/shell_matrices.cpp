@@ -37,8 +37,8 @@ LocalBasis local_basis(const BSplineSurface& s, int su, int sv, double u, double
   for (int a = 0; a <= p; ++a) {
     for (int b = 0; b <= q; ++b) {
       const int k = a * (q + 1) + b;
-      const double w = s.is_rational() ? s.weights[s.pole_index(out.first_u + a, out.first_v + b)]
-                                       : 1.0;
+      const double w =
+          s.is_rational() ? s.weights[s.pole_index(out.first_u + a, out.first_v + b)] : 1.0;
       n0[k] = bu(0, a) * bv(0, b) * w;
       nu[k] = bu(1, a) * bv(0, b) * w;
       nv[k] = bu(0, a) * bv(1, b) * w;
@@ -126,7 +126,7 @@ void integrate_area(const BSplineSurface& s, ShellMatrices& out) {
   const detail::QuadratureRule ru = detail::gauss_legendre(quadrature_points(s, 0));
   const detail::QuadratureRule rv = detail::gauss_legendre(quadrature_points(s, 1));
   const int n = (p + 1) * (q + 1);
-  Eigen::Matrix2Xd grad(2, n), flux(2, n);  // gradient, and g^-1 times it
+  Eigen::Matrix2Xd grad(2, n), flux(2, n);                          // gradient, and g^-1 times it
   std::vector<Eigen::Matrix2d> shape(static_cast<std::size_t>(n));  // g^-1 H
   for (const int su : spans(s, 0)) {
     const double u0 = s.knots[0][su], du = s.knots[0][su + 1] - u0;
@@ -184,7 +184,8 @@ void integrate_joints(const BSplineSurface& s, int direction, ShellMatrices& out
   const int p = s.degree[d];
   const Eigen::VectorXd& t = s.knots[d];
   const int count = static_cast<int>(t.size()) - p - 1;
-  const detail::QuadratureRule rule = detail::gauss_legendre(quadrature_points(s, static_cast<int>(e)));
+  const detail::QuadratureRule rule =
+      detail::gauss_legendre(quadrature_points(s, static_cast<int>(e)));
   // A degree-1 direction is all C0 lines (a faceted face): its joints are its
   // only bending, so they take the material's stiffness, not a stiff joint's.
   const double joint_stiffness = p == 1 ? 1.0 : kJointStiffness;

@@ -229,9 +229,9 @@ class EdgeSearch {
       pieces_.clear();
       // A flat node under many pieces (a plate with many holes) is split
       // further: smaller nodes bound the pieces far from p away.
-      const std::size_t limit =
-          node.level >= SurfaceHierarchy::kMaxLevel ? std::numeric_limits<std::size_t>::max()
-                                                    : kLeafPieces;
+      const std::size_t limit = node.level >= SurfaceHierarchy::kMaxLevel
+                                    ? std::numeric_limits<std::size_t>::max()
+                                    : kLeafPieces;
       if (trim_.pieces_touching(rect, pieces_, limit)) {
         if (pieces_.empty()) return;
         ++counters_.leaf_pairs;
