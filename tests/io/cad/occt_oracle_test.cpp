@@ -1,25 +1,11 @@
 // OpenCASCADE as the independent oracle: face counts, surface points, trims and
 // orientation of imported faces; validity, entities and units of exported files.
-#include <BRepBndLib.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
-#include <Bnd_Box.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
-#include <GeomLProp_SLProps.hxx>
-#include <Geom_BSplineSurface.hxx>
-#include <Geom_RectangularTrimmedSurface.hxx>
-#include <IGESControl_Controller.hxx>
-#include <IGESControl_Reader.hxx>
-#include <Interface_Static.hxx>
-#include <Message.hxx>
-#include <Message_Messenger.hxx>
-#include <Message_PrinterOStream.hxx>
-#include <STEPControl_Reader.hxx>
-#include <TColStd_SequenceOfAsciiString.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
-#include <TopoDS_Face.hxx>
 
 #include <catch2/catch.hpp>
 #include <random>
@@ -27,6 +13,7 @@
 
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/io.hpp"
+#include "occt_reader.hpp"
 #include "support/random_surface.hpp"
 #include "surface_projection.hpp"
 #include "test_files.hpp"
@@ -34,48 +21,9 @@
 namespace argil::io {
 namespace {
 
-struct OcctShape {
-  std::vector<TopoDS_Face> faces;
-  double diagonal_mm = 0.0;
-  std::string step_length_unit;  // STEP only
-};
-
-// Plain OpenCASCADE reading, no argil code involved.
-OcctShape occt_read(const std::filesystem::path& path) {
-  Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
-  OcctShape out;
-  TopoDS_Shape shape;
-  if (cad_format_for(path) == CadFormat::step) {
-    Interface_Static::SetCVal("xstep.cascade.unit", "MM");
-    STEPControl_Reader reader;
-    REQUIRE(reader.ReadFile(path.c_str()) == IFSelect_RetDone);
-    reader.TransferRoots();
-    shape = reader.OneShape();
-    TColStd_SequenceOfAsciiString lengths, angles, solids;
-    reader.FileUnits(lengths, angles, solids);
-    if (lengths.Length() > 0) out.step_length_unit = lengths(1).ToCString();
-  } else {
-    IGESControl_Controller::Init();
-    Interface_Static::SetCVal("xstep.cascade.unit", "MM");
-    IGESControl_Reader reader;
-    REQUIRE(reader.ReadFile(path.c_str()) == IFSelect_RetDone);
-    reader.TransferRoots();
-    shape = reader.OneShape();
-  }
-  for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next()) {
-    out.faces.push_back(TopoDS::Face(e.Current()));
-  }
-  Bnd_Box box;
-  BRepBndLib::Add(shape, box);
-  out.diagonal_mm = std::sqrt(box.SquareExtent());
-  return out;
-}
-
-Handle(Geom_BSplineSurface) as_bspline(Handle(Geom_Surface) surface) {
-  const auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(surface);
-  if (!trimmed.IsNull()) surface = trimmed->BasisSurface();
-  return Handle(Geom_BSplineSurface)::DownCast(surface);
-}
+using test::as_bspline;
+using test::occt_read;
+using test::OcctShape;
 
 Eigen::Vector3d to_eigen(const gp_XYZ& p) { return {p.X(), p.Y(), p.Z()}; }
 
