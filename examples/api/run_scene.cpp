@@ -47,5 +47,7 @@ int main(int argc, char** argv) {
   std::printf("tick CPU time p50 %.1f us, p99.9 %.1f us\n", done.cpu_timing.p50 * 1e6,
               done.cpu_timing.p999 * 1e6);
   for (const auto& file : done.files) std::printf("  %s\n", file.c_str());
-  return done.start == sculpt::RunStart::resumed ? 0 : 1;
+  // An ok run may still have outputs it could not write (a face STEP cannot take).
+  for (const sculpt::OutputFailure& failed : done.failed_outputs) report_error(failed.status);
+  return done.start == sculpt::RunStart::resumed && done.failed_outputs.empty() ? 0 : 1;
 }

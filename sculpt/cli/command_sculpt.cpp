@@ -110,7 +110,10 @@ const CommandDeclaration& sculpt_command() {
       .description =
           "Writes the sculpted surfaces (STEP, IGES, JSON), forces.csv, contacts.csv,\n"
           "timing.json, recorded.csv and pictures to DIR. An interrupted run resumes\n"
-          "from DIR/session.journal. The material presets a scene can name: argil materials.",
+          "from DIR/session.journal. An output that cannot be written (a sculpted face\n"
+          "STEP or IGES cannot take) is named on stderr with exit status 1; the other\n"
+          "outputs are written all the same. The material presets a scene can name:\n"
+          "argil materials.",
       .options = {{.name = "--script",
                    .argument = "S",
                    .kind = ValueKind::text,
@@ -161,7 +164,14 @@ int run_sculpt(const std::vector<std::string>& args) {
     return fail(error.message);
   }
   print_report(o, report.value());
-  return kExitOk;
+  // Every other output is written; each missing one is an error of the run.
+  const std::vector<OutputFailure>& failed = report.value().failed_outputs;
+  for (const OutputFailure& f : failed)
+    std::fprintf(stderr, "argil sculpt: %s\n", f.status.message.c_str());
+  if (failed.empty()) return kExitOk;
+  std::fprintf(stderr, "argil sculpt: %zu of %zu outputs not written\n", failed.size(),
+               failed.size() + report.value().files.size());
+  return kExitFailure;
 }
 
 }  // namespace argil::cli

@@ -6,10 +6,8 @@
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomLProp_SLProps.hxx>
 #include <Geom_BSplineSurface.hxx>
-#include <Geom_RectangularTrimmedSurface.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
-#include <TopoDS_Face.hxx>
 
 #include <catch2/catch.hpp>
 #include <random>
@@ -17,7 +15,7 @@
 
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/io.hpp"
-#include "occt_read.hpp"
+#include "occt_reader.hpp"
 #include "support/random_surface.hpp"
 #include "surface_projection.hpp"
 #include "test_files.hpp"
@@ -25,11 +23,9 @@
 namespace argil::io {
 namespace {
 
-Handle(Geom_BSplineSurface) as_bspline(Handle(Geom_Surface) surface) {
-  const auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(surface);
-  if (!trimmed.IsNull()) surface = trimmed->BasisSurface();
-  return Handle(Geom_BSplineSurface)::DownCast(surface);
-}
+using test::as_bspline;
+using test::occt_read;
+using test::OcctShape;
 
 Eigen::Vector3d to_eigen(const gp_XYZ& p) { return {p.X(), p.Y(), p.Z()}; }
 

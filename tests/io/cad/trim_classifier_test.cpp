@@ -6,7 +6,6 @@
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom_BSplineSurface.hxx>
-#include <Geom_RectangularTrimmedSurface.hxx>
 #include <TopoDS.hxx>
 #include <gp_Pnt2d.hxx>
 
@@ -14,7 +13,7 @@
 #include <random>
 
 #include "argil/io.hpp"
-#include "occt_read.hpp"
+#include "occt_reader.hpp"
 #include "support/trim_loops.hpp"
 #include "test_files.hpp"
 
@@ -25,10 +24,7 @@ namespace {
 /// to B-splines the way the importer converts analytic faces.
 TopoDS_Face as_imported(const TopoDS_Face& oriented) {
   TopoDS_Face face = TopoDS::Face(oriented.Oriented(TopAbs_FORWARD));
-  Handle(Geom_Surface) surface = BRep_Tool::Surface(face);
-  const auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(surface);
-  if (!trimmed.IsNull()) surface = trimmed->BasisSurface();
-  if (!Handle(Geom_BSplineSurface)::DownCast(surface).IsNull()) return face;
+  if (!test::as_bspline(BRep_Tool::Surface(face)).IsNull()) return face;
   BRepBuilderAPI_NurbsConvert convert(face, true);
   return TopoDS::Face(convert.Shape().Oriented(TopAbs_FORWARD));
 }
@@ -82,7 +78,7 @@ void compare_point(const TopoDS_Face& face, const FaceRecord& record, const Trim
 Agreement classify_faces(const std::filesystem::path& path) {
   const Result<Model> model = read_model(path);
   REQUIRE(model.status().message == "");
-  const OcctShape occt = occt_read(path);
+  const test::OcctShape occt = test::occt_read(path);
   REQUIRE(model.value().faces.size() == occt.faces.size());
   Agreement out;
   std::mt19937_64 rng(17);

@@ -188,5 +188,60 @@ TEST_CASE("a bad tolerance option is invalid_argument and writes nothing", "[run
   }
 }
 
+TEST_CASE("a face STEP and IGES cannot take fails those two exports by name, the rest is written",
+          "[run][export]") {
+  // bad_export.json: the plate pressed three times, and a rigid face whose trim
+  // loop crosses itself (a bow tie), which no valid CAD face can carry.
+  const fs::path out = kWork / "bad-export";
+  fs::remove_all(out);
+  const RunOptions options{
+      .scene = fs::path(ARGIL_SOURCE_DIR) / "tests/data/sculpt/bad_export.json",
+      .out = out,
+      .fresh = true};
+  const RunReport r = run_ok(options);
+  CHECK(r.strokes == 3);
+  REQUIRE(r.failed_outputs.size() == 2);
+  for (const auto& [failed, name] : {std::pair{r.failed_outputs[0], "bow_tie.step"},
+                                     std::pair{r.failed_outputs[1], "bow_tie.iges"}}) {
+    CHECK(failed.file == out / name);
+    CHECK(failed.status.code == StatusCode::invalid_surface);
+    CHECK_THAT(failed.status.message, Catch::StartsWith((out / name).string() + ": 1 of 1 faces"));
+    CHECK_THAT(failed.status.message,
+               Catch::Contains("face 0 (\"bow tie\") fails BRepCheck_Analyzer"));
+    CHECK_THAT(failed.status.message,
+               Catch::Contains("loop 0 (wire): BRepCheck_SelfIntersectingWire"));
+    CHECK_FALSE(fs::exists(out / name));
+  }
+  const std::vector<fs::path> expected = {
+      out / "plate.step", out / "plate.iges",   out / "plate.json",  out / "bow_tie.json",
+      out / "forces.csv", out / "contacts.csv", out / "timing.json", out / "recorded.csv",
+      out / "before.png", out / "after.png",    out / "force.png",   out / "session.journal"};
+  CHECK(r.files == expected);
+  for (const fs::path& file : expected) {
+    INFO(file);
+    CHECK(fs::file_size(file) > 0);
+  }
+  // The sculpted plate is in the STEP file as in the JSON one, and the journal is
+  // finished: the next run starts afresh.
+  const Result<io::Model> step = io::read_model(out / "plate.step");
+  const Result<io::Model> json = io::read_model(out / "plate.json");
+  REQUIRE(step.ok());
+  REQUIRE(json.ok());
+  CHECK(step.value().faces[0].surface.control_points ==
+        json.value().faces[0].surface.control_points);
+  RunOptions again = options;
+  again.fresh = false;
+  again.outputs = OutputOptions{.step = false,
+                                .iges = false,
+                                .json = true,
+                                .forces = false,
+                                .contacts = false,
+                                .timing = false,
+                                .pictures = false};
+  const RunReport second = run_ok(again);
+  CHECK(second.start == RunStart::previous_finished);
+  CHECK(second.failed_outputs.empty());
+}
+
 }  // namespace
 }  // namespace argil::sculpt

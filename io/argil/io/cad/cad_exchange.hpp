@@ -48,12 +48,45 @@ struct CadReadOptions {
 Result<Model> read_cad(const std::filesystem::path& path, CadFormat format,
                        const CadReadOptions& options = {});
 
+/// How write_cad() builds the faces it writes.
+struct CadWriteOptions {
+  /// eps [mm], the length under which the caller treats two points as one (a
+  /// session's contact tolerance); 0: none given. The export tolerance is
+  /// export_tolerance(model, tolerance_mm).
+  double tolerance_mm = 0.0;
+  /// Read the written file back with OpenCASCADE's own reader before it
+  /// replaces the target, and refuse it unless every face comes back as one
+  /// BRepCheck-valid face. false: skip that read (a faster export whose faces
+  /// passed BRepCheck as built, but are not known to survive the file).
+  bool read_back = true;
+};
+
+/// Export tolerances relative to the model size (the diagonal of model_box()).
+inline constexpr double kExportRelativeTolerance = 1e-7;
+/// The smallest export tolerance [mm]: OpenCASCADE's Precision::Confusion(),
+/// below which its algorithms treat lengths as zero.
+inline constexpr double kMinExportTolerance = 1e-7;
+
+/// The tolerance write_cad() builds edges at [mm]: the accuracy the 3D edge
+/// curves are approximated to, the largest 3D image a trim curve may have and
+/// still be a degenerated edge, and the least tolerance of any edge or vertex:
+/// min(eps, kExportRelativeTolerance * model size), or the relative term alone
+/// when eps <= 0, and never below kMinExportTolerance.
+double export_tolerance(const Model& model, double eps_mm);
+
 /// Writes all faces as B-spline faces in millimetres (declared in the file):
 /// STEP as B_SPLINE_SURFACE_WITH_KNOTS (rational: the complex entity) in
 /// ADVANCED_FACE, IGES as entity 128 inside 144. Numbers carry 17 significant
 /// digits, so knots, weights and control points read back bit-exactly (values
-/// below 1e-99 in magnitude are written as 0). The shape must pass
-/// BRepCheck_Analyzer, else nothing is written. The write is atomic.
-Status write_cad(const Model& model, const std::filesystem::path& path, CadFormat format);
+/// below 1e-99 in magnitude are written as 0).
+/// Each face keeps its (u, v) trims; its edges, vertices and tolerances are
+/// built from the surface as it is (docs/io.md, "Export"). Every face must pass
+/// BRepCheck_Analyzer as built and, with `options.read_back`, again as
+/// OpenCASCADE reads it from the written file. Otherwise nothing is written
+/// and the error (invalid_surface) names every failing face, its index, source
+/// entity and name, with what BRepCheck_Analyzer reported per loop, curve or
+/// edge. The write is atomic: the target is complete or untouched.
+Status write_cad(const Model& model, const std::filesystem::path& path, CadFormat format,
+                 const CadWriteOptions& options = {});
 
 }  // namespace argil::io

@@ -35,7 +35,7 @@ Result<Model> read_model(const std::filesystem::path& path) {
 
 Status write_model(const Model& model, const std::filesystem::path& path,
                    const WriteOptions& options) {
-  if (const auto cad = cad_format_for(path)) return write_cad(model, path, *cad);
+  if (const auto cad = cad_format_for(path)) return write_cad(model, path, *cad, options.cad);
   if (is_json(path)) return write_json(model, path);
   if (const auto mesh_format = mesh_format_for(path)) {
     Result<TriangleMesh> mesh = tessellate(model, options.tessellation);

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "argil/core/base/status.hpp"
+#include "argil/io/cad/cad_exchange.hpp"
 #include "argil/io/mesh/tessellate.hpp"
 #include "argil/io/model/model.hpp"
 
@@ -17,6 +18,8 @@ Result<Model> read_model(const std::filesystem::path& path);
 struct WriteOptions {
   /// Used for mesh formats only.
   TessellationOptions tessellation;
+  /// Used for STEP and IGES only.
+  CadWriteOptions cad;
 };
 
 /// Writes .step/.stp, .iges/.igs, .json, or a tessellation as .stl, .obj, .ply,

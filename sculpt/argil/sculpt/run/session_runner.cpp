@@ -119,10 +119,10 @@ Result<RunReport> run_session(const RunOptions& options) {
   report.stopped = ended.value() == detail::LoopEnd::stopped;
   if (report.stopped) return report;
 
-  Result<std::vector<std::filesystem::path>> files =
+  detail::RunOutputs outputs =
       detail::write_run_outputs(in, session, before, state, report.wall_timing, report.cpu_timing);
-  if (!files.ok()) return files.status();
-  report.files = std::move(files).value();
+  report.files = std::move(outputs.files);
+  report.failed_outputs = std::move(outputs.failures);
   const Status finished = journal.value().writer.finish();
   if (!finished.ok()) return finished;
   report.files.push_back(in.out / kJournalName);

@@ -42,6 +42,13 @@ struct RunOptions {
   long long progress_every = 1;
 };
 
+/// An output a finished run could not write. The others were written; this one
+/// was not (an existing file of that name is left as it was).
+struct OutputFailure {
+  std::filesystem::path file{};  // the output; for the pictures, the output folder
+  Status status{};               // why: names the file and, for STEP and IGES, every failing face
+};
+
 /// What a run did.
 struct RunReport {
   std::filesystem::path out{};  // the output folder
@@ -56,9 +63,10 @@ struct RunReport {
   int strokes = 0;                   // journalled strokes, resumed ones included
   int strokes_resumed = 0;           // of them, replayed from the journal
   bool stopped = false;              // on_progress asked to stop: the journal is left unfinished
-  std::vector<std::filesystem::path> files{};  // written, in order; the journal last
-  TimingSummary wall_timing{};                 // wall time of each live Session::step [s]
-  TimingSummary cpu_timing{};                  // the ticking thread's CPU time of each [s]
+  std::vector<std::filesystem::path> files{};   // written, in order; the journal last
+  std::vector<OutputFailure> failed_outputs{};  // not written; empty when every output was
+  TimingSummary wall_timing{};                  // wall time of each live Session::step [s]
+  TimingSummary cpu_timing{};                   // the ticking thread's CPU time of each [s]
   /// The scene's (Scene::warnings), then what the run recovered from.
   std::vector<std::string> warnings{};
 };
@@ -69,8 +77,12 @@ struct RunReport {
 /// at fault. Codes: io_error, parse_error, invalid_argument for bad input;
 /// failed_precondition when the folder's journal cannot be continued (another
 /// run's, damaged, or not replaying to its recorded states): a fresh run would
-/// proceed. The surfaces depend only on the inputs: a resumed run ends with
-/// control points bit-identical to an uninterrupted one.
+/// proceed. A run that reaches its end writes every output it can: one that
+/// fails (a sculpted face STEP or IGES cannot take) is listed in
+/// `failed_outputs` of an ok report, the others and the finished journal are
+/// written, so a caller must check both. The surfaces depend only on the
+/// inputs: a resumed run ends with control points bit-identical to an
+/// uninterrupted one.
 Result<RunReport> run_session(const RunOptions& options);
 
 }  // namespace argil::sculpt

@@ -10,10 +10,20 @@
 namespace argil::sculpt::detail {
 namespace {
 
-using Files = std::vector<std::filesystem::path>;
+/// Records one output: written, or failed with why.
+void record(RunOutputs& outputs, const std::filesystem::path& path, const Status& written) {
+  if (written.ok()) {
+    outputs.files.push_back(path);
+  } else {
+    outputs.failures.push_back({path, written});
+  }
+}
 
-/// The sculpted models, each exported in the formats asked for.
-Result<std::vector<io::Model>> write_models(const RunInputs& in, Session& session, Files& files) {
+/// The sculpted models, each exported in the formats asked for; a format that
+/// fails does not stop the others. STEP and IGES edges are built at the scene's eps.
+std::vector<io::Model> write_models(const RunInputs& in, Session& session, RunOutputs& outputs) {
+  io::WriteOptions options;
+  options.cad.tolerance_mm = in.scene.tolerance;
   std::vector<io::Model> after;
   for (int m = 0; m < static_cast<int>(session.models().size()); ++m) {
     const std::string& name = session.models()[static_cast<std::size_t>(m)].spec.name;
@@ -23,41 +33,35 @@ Result<std::vector<io::Model>> write_models(const RunInputs& in, Session& sessio
           std::pair{in.outputs.json, ".json"}}) {
       if (!wanted) continue;
       const std::filesystem::path path = in.out / (name + extension);
-      const Status written = io::write_model(after.back(), path);
-      if (!written.ok()) return written;
-      files.push_back(path);
+      record(outputs, path, io::write_model(after.back(), path, options));
     }
   }
   return after;
 }
 
-Status write_file(const std::filesystem::path& path, const std::string& bytes, Files& files) {
-  const Status written = io::write_bytes_atomically(path, bytes);
-  if (written.ok()) files.push_back(path);
-  return written;
+void write_file(const std::filesystem::path& path, const std::string& bytes, RunOutputs& outputs) {
+  record(outputs, path, io::write_bytes_atomically(path, bytes));
 }
 
-Status write_logs(const RunInputs& in, const Session& session, const RunState& state,
-                  const TimingSummary& wall, const TimingSummary& cpu, Files& files) {
+void write_logs(const RunInputs& in, const Session& session, const RunState& state,
+                const TimingSummary& wall, const TimingSummary& cpu, RunOutputs& outputs) {
   std::vector<std::string> model_names;
   for (const LoadedModel& loaded : session.models()) model_names.push_back(loaded.spec.name);
-  Status s = Status::success();
-  if (in.outputs.forces) s = write_file(in.out / "forces.csv", state.log.forces_csv(), files);
-  if (s.ok() && in.outputs.contacts) {
-    s = write_file(in.out / "contacts.csv", state.log.contacts_csv(model_names), files);
+  if (in.outputs.forces) write_file(in.out / "forces.csv", state.log.forces_csv(), outputs);
+  if (in.outputs.contacts) {
+    write_file(in.out / "contacts.csv", state.log.contacts_csv(model_names), outputs);
   }
-  if (s.ok() && in.outputs.timing) {
-    s = write_file(in.out / "timing.json", timing_json(wall, cpu, in.scene_path.string()), files);
+  if (in.outputs.timing) {
+    write_file(in.out / "timing.json", timing_json(wall, cpu, in.scene_path.string()), outputs);
   }
-  if (!s.ok()) return s;
   const std::filesystem::path recorded = in.out / kRecordedScriptName;
-  s = write_script(record_script(state.received, session.tool().name), recorded);
-  if (s.ok()) files.push_back(recorded);
-  return s;
+  record(outputs, recorded,
+         write_script(record_script(state.received, session.tool().name), recorded));
 }
 
-Status write_pictures(const RunInputs& in, const std::vector<io::Model>& before,
-                      const std::vector<io::Model>& after, const RunState& state, Files& files) {
+void write_pictures(const RunInputs& in, const std::vector<io::Model>& before,
+                    const std::vector<io::Model>& after, const RunState& state,
+                    RunOutputs& outputs) {
   SessionPicturesRequest pictures;
   pictures.times = state.log.times();
   pictures.forces = state.log.forces();
@@ -70,31 +74,27 @@ Status write_pictures(const RunInputs& in, const std::vector<io::Model>& before,
     pictures.path.positions.push_back(s.X_WD.p);
     pictures.path.engaged.push_back(s.engaged);
   }
-  const Status s = write_session_pictures(pictures, in.out);
-  if (!s.ok()) return s;
-  for (const char* name : {kBeforePicture, kAfterPicture, kForcePicture}) {
-    files.push_back(in.out / name);
+  const Status drawn = write_session_pictures(pictures, in.out);
+  if (!drawn.ok()) {
+    // The three pictures are drawn together: the failure is the folder's.
+    outputs.failures.push_back({in.out, drawn});
+    return;
   }
-  return Status::success();
+  for (const char* name : {kBeforePicture, kAfterPicture, kForcePicture}) {
+    outputs.files.push_back(in.out / name);
+  }
 }
 
 }  // namespace
 
-Result<std::vector<std::filesystem::path>> write_run_outputs(const RunInputs& in, Session& session,
-                                                             const std::vector<io::Model>& before,
-                                                             const RunState& state,
-                                                             const TimingSummary& wall,
-                                                             const TimingSummary& cpu) {
-  Files files;
-  Result<std::vector<io::Model>> after = write_models(in, session, files);
-  if (!after.ok()) return after.status();
-  const Status logged = write_logs(in, session, state, wall, cpu, files);
-  if (!logged.ok()) return logged;
-  if (in.outputs.pictures) {
-    const Status drawn = write_pictures(in, before, after.value(), state, files);
-    if (!drawn.ok()) return drawn;
-  }
-  return files;
+RunOutputs write_run_outputs(const RunInputs& in, Session& session,
+                             const std::vector<io::Model>& before, const RunState& state,
+                             const TimingSummary& wall, const TimingSummary& cpu) {
+  RunOutputs outputs;
+  const std::vector<io::Model> after = write_models(in, session, outputs);
+  write_logs(in, session, state, wall, cpu, outputs);
+  if (in.outputs.pictures) write_pictures(in, before, after, state, outputs);
+  return outputs;
 }
 
 }  // namespace argil::sculpt::detail

@@ -16,14 +16,19 @@ namespace argil::sculpt::detail {
 /// File name of the recorded script in the output folder.
 inline constexpr const char* kRecordedScriptName = "recorded.csv";
 
+/// What a finished run wrote into its output folder, and what it could not.
+struct RunOutputs {
+  std::vector<std::filesystem::path> files;  // written, in order
+  std::vector<OutputFailure> failures;       // not written, in order
+};
+
 /// Writes what `in.outputs` asks for into `in.out`: each model's sculpted
 /// faces (STEP, IGES, JSON), forces.csv, contacts.csv, timing.json, always
-/// recorded.csv, and the pictures (`before` holds each model as loaded).
-/// Returns the files written, in that order.
-Result<std::vector<std::filesystem::path>> write_run_outputs(const RunInputs& in, Session& session,
-                                                             const std::vector<io::Model>& before,
-                                                             const RunState& state,
-                                                             const TimingSummary& wall,
-                                                             const TimingSummary& cpu);
+/// recorded.csv, and the pictures (`before` holds each model as loaded). An
+/// output that fails (a face STEP cannot take, a full disk) is recorded and the
+/// others are still written.
+RunOutputs write_run_outputs(const RunInputs& in, Session& session,
+                             const std::vector<io::Model>& before, const RunState& state,
+                             const TimingSummary& wall, const TimingSummary& cpu);
 
 }  // namespace argil::sculpt::detail

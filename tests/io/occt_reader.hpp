@@ -1,9 +1,12 @@
 #pragma once
-// Plain OpenCASCADE reading of a STEP or IGES file, no argil code involved:
-// the oracle side of the IO tests that compare with OCCT.
+// Plain OpenCASCADE reading of a STEP or IGES file, no argil code involved: the
+// oracle for what argil writes. Only targets that link argil_occt include it.
 
 #include <BRepBndLib.hxx>
+#include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Reader.hxx>
 #include <Interface_Static.hxx>
@@ -22,9 +25,9 @@
 #include <string>
 #include <vector>
 
-#include "argil/io.hpp"
+#include "argil/io/cad/cad_exchange.hpp"
 
-namespace argil::io {
+namespace argil::test {
 
 struct OcctShape {
   std::vector<TopoDS_Face> faces;
@@ -32,12 +35,12 @@ struct OcctShape {
   std::string step_length_unit;  // STEP only
 };
 
-// Plain OpenCASCADE reading, no argil code involved.
+/// Every face of the file in TopExp_Explorer order, in millimetres.
 inline OcctShape occt_read(const std::filesystem::path& path) {
   Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
   OcctShape out;
   TopoDS_Shape shape;
-  if (cad_format_for(path) == CadFormat::step) {
+  if (io::cad_format_for(path) == io::CadFormat::step) {
     Interface_Static::SetCVal("xstep.cascade.unit", "MM");
     STEPControl_Reader reader;
     REQUIRE(reader.ReadFile(path.c_str()) == IFSelect_RetDone);
@@ -63,4 +66,11 @@ inline OcctShape occt_read(const std::filesystem::path& path) {
   return out;
 }
 
-}  // namespace argil::io
+/// The B-spline surface under a face's surface (through a rectangular trim), or null.
+inline Handle(Geom_BSplineSurface) as_bspline(Handle(Geom_Surface) surface) {
+  const auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(surface);
+  if (!trimmed.IsNull()) surface = trimmed->BasisSurface();
+  return Handle(Geom_BSplineSurface)::DownCast(surface);
+}
+
+}  // namespace argil::test
