@@ -42,6 +42,7 @@
 #include "argil/core/collision/triangle_intersection.hpp"  // IWYU pragma: export
 #include "argil/core/collision/trimmed_contact.hpp"        // IWYU pragma: export
 // deform
+#include "argil/core/deform/contact_footprint.hpp"    // IWYU pragma: export
 #include "argil/core/deform/contact_response.hpp"     // IWYU pragma: export
 #include "argil/core/deform/deformable_body.hpp"      // IWYU pragma: export
 #include "argil/core/deform/material.hpp"             // IWYU pragma: export

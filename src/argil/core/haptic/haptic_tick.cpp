@@ -6,6 +6,7 @@
 #include <string>
 
 #include "argil/core/base/number_text.hpp"
+#include "argil/core/deform/contact_footprint.hpp"
 #include "argil/core/deform/contact_response.hpp"
 
 namespace argil {
@@ -227,9 +228,16 @@ HapticWorld::Coupling HapticWorld::step_bodies(
     if (!bodies_[b].deformable) continue;
     DeformableBody& body = *bodies_[b].deformable;
     Eigen::VectorXd pattern;
-    if (pressing && !body_contacts[b].empty())
-      pattern = contact_load_pattern(body.surface(), body_contacts[b],
-                                     contact_shares(body_contacts[b], eps));
+    if (pressing && !body_contacts[b].empty()) {
+      // A sphere presses over its contact disc, sized by last tick's force.
+      const double disc =
+          sphere_ ? sphere_contact_radius(sphere_->radius(), bodies_[b].pressing_force,
+                                          body.material().foundation_stiffness)
+                  : 0.0;
+      pattern = footprint_load_pattern(body.surface(), body_contacts[b],
+                                       contact_shares(body_contacts[b], eps), disc,
+                                       trim(static_cast<int>(b)));
+    }
     Result<LoadPreview> p = body.begin_step(dt, {}, pattern);
     if (!p.ok()) return {p.status(), {0, 0, 0}, {0, 0, 0}, false};
     previews[b] = p.value();
@@ -256,11 +264,14 @@ HapticWorld::Coupling HapticWorld::step_bodies(
     const ClampedForce f = clamp_force(-spring, options_.coupling.max_force);
     out = {Status::success(), f.force, {0, 0, 0}, f.clamped};
   }
-  for (std::size_t b = 0; b < bodies_.size(); ++b)
-    if (bodies_[b].deformable)
-      bodies_[b].deformable->finish_step(total_weight > 0.0
-                                             ? Eigen::Vector3d(load * (weight[b] / total_weight))
-                                             : Eigen::Vector3d::Zero());
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    if (!bodies_[b].deformable) continue;
+    const Eigen::Vector3d carried = total_weight > 0.0
+                                        ? Eigen::Vector3d(load * (weight[b] / total_weight))
+                                        : Eigen::Vector3d::Zero();
+    bodies_[b].deformable->finish_step(carried);
+    bodies_[b].pressing_force = carried.norm();
+  }
   return out;
 }
 

@@ -139,6 +139,8 @@ class HapticWorld {
     std::optional<DeformableBody> deformable;
     std::optional<SurfaceHierarchy> rigid;
     double friction = 0.0;
+    /// The force it carried last tick [N]: sets the sphere's contact disc.
+    double pressing_force = 0.0;
   };
   /// The proxy's move this tick (steps 1-2) and its contacts with every body.
   struct [[nodiscard]] ProxyMove {
