@@ -114,11 +114,9 @@ void check_resolution(const BSplineSurface& s, const Eigen::Vector2d& uv, double
 
 }  // namespace
 
-// Known gap, kept visible: [!shouldfail] passes while the model misses this
-// target and fails (asking for the tag to go) once it meets it. See
-// docs/deformation.md, Limits.
-TEST_CASE("a G1 join of two C0 pieces stays G1 under a press on and near the line",
-          "[deformation][joins][!shouldfail]") {
+/// Presses a G1 join of two C0 pieces on and near the line with `m`: the
+/// kink it leaves is at most 5% of how far the dent turns the normals.
+void check_g1_join(const NamedMaterial& m) {
   const BSplineSurface s = two_pieces(0.0);
   REQUIRE(argil::validate(s).ok());
   REQUIRE(largest_kink(s) < 1e-9);  // G1 to rounding
@@ -126,21 +124,36 @@ TEST_CASE("a G1 join of two C0 pieces stays G1 under a press on and near the lin
   const argil::SurfaceDerivatives a = argil::evaluate_derivatives(s, 0.5, 0.5 - 1e-12, 1);
   const argil::SurfaceDerivatives b = argil::evaluate_derivatives(s, 0.5, 0.5 + 1e-12, 1);
   REQUIRE((a.dv - b.dv).norm() > 0.1 * a.dv.norm());
-  for (const NamedMaterial& m : clays())
-    for (const double v : {0.5, 0.52, 0.46}) {
-      CAPTURE(m.name, v);
-      const argil::test::SpherePress p = press_at({0.45, v}, 2.0, 0.8, m.material);
-      const argil::test::PressOutcome r = argil::test::press_sphere(s, p);
-      INFO(r.error);
-      REQUIRE(r.error.empty());
-      REQUIRE(r.finite);
-      const double kink = largest_kink(after(s, r.pressed));
-      // A join that stays G1 kinks by a small fraction of how far the dent
-      // itself turns the normals: 5%.
-      CAPTURE(kink, r.normal_turn, r.dent);
-      REQUIRE(r.normal_turn > 0.0);
-      CHECK(kink <= 0.05 * r.normal_turn);
-    }
+  for (const double v : {0.5, 0.52, 0.46}) {
+    CAPTURE(m.name, v);
+    const argil::test::SpherePress p = press_at({0.45, v}, 2.0, 0.8, m.material);
+    const argil::test::PressOutcome r = argil::test::press_sphere(s, p);
+    INFO(r.error);
+    REQUIRE(r.error.empty());
+    REQUIRE(r.finite);
+    const double kink = largest_kink(after(s, r.pressed));
+    // A join that stays G1 kinks by a small fraction of how far the dent
+    // itself turns the normals: 5%.
+    CAPTURE(kink, r.normal_turn, r.dent);
+    REQUIRE(r.normal_turn > 0.0);
+    CHECK(kink <= 0.05 * r.normal_turn);
+  }
+}
+
+TEST_CASE("a G1 join of two C0 pieces stays G1 under a plastic press on and near the line",
+          "[deformation][joins]") {
+  // Plastic flow moves the rest poles of each row across the join together
+  // (measured: kink 0.4 to 0.7% of the normal turn; 120 to 180% before).
+  check_g1_join(clays()[0]);
+}
+
+// Known gap, kept visible: [!shouldfail] passes while the model misses this
+// target and fails (asking for the tag to go) once it meets it. See
+// docs/deformation.md, Limits. The joint term is a penalty: elastic clay
+// kinks the join by 10 to 15% of the dent's normal turn (0.07 of 0.46 degrees).
+TEST_CASE("a G1 join of two C0 pieces stays G1 under an elastic press on and near the line",
+          "[deformation][joins][!shouldfail]") {
+  check_g1_join(clays()[1]);
 }
 
 // Known gap, kept visible: [!shouldfail] passes while the model misses this

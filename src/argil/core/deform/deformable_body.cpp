@@ -40,16 +40,29 @@ void DeformableBody::plastic_flow(const ControlNet& points) {
   // patterns the surface barely shows.
   const ControlNet stretch = points - rest_;
   const double cap = kPlasticStretchCap * material_.yield;
+  ControlNet flow(rest_.rows(), 3);
   for (Eigen::Index i = 0; i < rest_.rows(); ++i) {
     Eigen::RowVector3d surface = Eigen::RowVector3d::Zero();
     for (const auto& [j, w] : greville_basis_[static_cast<std::size_t>(i)])
       surface += w * stretch.row(j);
     const double at_surface = surface.norm();
     const double own = stretch.row(i).norm();
-    double flow = at_surface > material_.yield ? 1.0 - material_.yield / at_surface : 0.0;
-    if (own > cap) flow = std::max(flow, 1.0 - cap / own);
-    rest_.row(i) += flow * stretch.row(i);
+    double f = at_surface > material_.yield ? 1.0 - material_.yield / at_surface : 0.0;
+    if (own > cap) f = std::max(f, 1.0 - cap / own);
+    flow.row(i) = f * stretch.row(i);
   }
+  // Across a C0 join the three poles of a row move so the join keeps its
+  // angle: the smallest change to their flows with (after - on) = ratio (on -
+  // before), the same condition the joint term holds the displacement to.
+  for (const JoinRow& r : join_rows_) {
+    const Eigen::RowVector3d miss = (flow.row(r.after) - flow.row(r.on)) -
+                                    r.ratio * (flow.row(r.on) - flow.row(r.before));
+    const double c2 = r.ratio * r.ratio + (1.0 + r.ratio) * (1.0 + r.ratio) + 1.0;
+    flow.row(r.before) -= (r.ratio / c2) * miss;
+    flow.row(r.on) += ((1.0 + r.ratio) / c2) * miss;
+    flow.row(r.after) -= (1.0 / c2) * miss;
+  }
+  rest_ += flow;
 }
 
 DeformableBody::DeformableBody(SurfaceHierarchy hierarchy, const Material& material)
@@ -120,6 +133,34 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   body.bandwidth_ = std::min<int>(body.bandwidth_, static_cast<int>(n) - 1);
   body.bandwidth_ = std::max(body.bandwidth_, 0);
   body.rest_ = surface.control_points;
+  for (int d = 0; d < 2; ++d) {
+    const int p = surface.degree[static_cast<std::size_t>(d)];
+    if (p < 2) continue;  // degree 1: every knot is a fold line of the facets
+    const Eigen::VectorXd& t = surface.knots[static_cast<std::size_t>(d)];
+    const int count = d == 0 ? nu : nv, across = d == 0 ? nv : nu;
+    for (int line = p + 1; line < count;) {
+      int m = 1;
+      while (line + m < count && t[line + m] == t[line]) ++m;
+      if (m == p) {  // a C0 join: pole line - 1 lies on it
+        for (int e = 0; e < across; ++e) {
+          const auto pole = [&](int i) {
+            return static_cast<int>(d == 0 ? surface.pole_index(i, e) : surface.pole_index(e, i));
+          };
+          JoinRow r{pole(line - 2), pole(line - 1), pole(line), 0.0};
+          const double before = (surface.control_points.row(r.on) -
+                                 surface.control_points.row(r.before)).norm();
+          const double after = (surface.control_points.row(r.after) -
+                                surface.control_points.row(r.on)).norm();
+          const auto held = [&](int i) { return body.fixed_[static_cast<std::size_t>(i)] != 0; };
+          if (!(before > 0.0 && after > 0.0) || held(r.before) || held(r.on) || held(r.after))
+            continue;
+          r.ratio = after / before;
+          body.join_rows_.push_back(r);
+        }
+      }
+      line += m;
+    }
+  }
   {
     const Eigen::VectorXd gu = greville_abscissae(surface.degree[0], surface.knots[0]);
     const Eigen::VectorXd gv = greville_abscissae(surface.degree[1], surface.knots[1]);

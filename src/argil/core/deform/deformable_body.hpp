@@ -122,6 +122,15 @@ class DeformableBody {
   /// Per control point: the poles and basis values at its Greville point,
   /// where plastic flow measures the surface's stretch.
   std::vector<std::vector<std::pair<int, double>>> greville_basis_;
+  /// Across every C0 knot line of a direction of degree >= 2, per row of
+  /// poles across it: the pole before the line, the one on it, the one after,
+  /// and |P_after - P_on| / |P_on - P_before| at rest. Plastic flow keeps
+  /// (dr_after - dr_on) = ratio (dr_on - dr_before) so a G1 join stays G1.
+  struct JoinRow {
+    int before, on, after;
+    double ratio;
+  };
+  std::vector<JoinRow> join_rows_;
   /// Solve order: the pole of each unknown, row-major in the direction that
   /// gives the narrower band.
   std::vector<Eigen::Index> order_;
