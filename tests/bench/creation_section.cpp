@@ -1,7 +1,7 @@
 // One-off cost of a deformable body (docs/benchmarks.md, "Creating a body"):
 // the shell matrices by Gauss quadrature, DeformableBody::create (which
 // integrates them again, builds the hierarchy and checks the conditioning),
-// and the first step, which factorises the step matrix.
+// (which factorises the step matrix at the haptic step), and the first step.
 #include <cstdio>
 
 #include "bench_timing.hpp"
@@ -52,7 +52,7 @@ void creation_section(const std::vector<BenchFace>& faces, int repeats) {
       "median of %d creations):\n\n",
       repeats, kCreationsPerRun);
   std::printf(
-      "| Face | Net | Poles | Shell matrices | create | First step (factorises) | "
+      "| Face | Net | Poles | Shell matrices | create (factorises) | First step | "
       "Later step |\n|---|---|---:|---:|---:|---:|---:|\n");
   for (const BenchFace& f : faces) {
     std::vector<double> shell, create, first, next;
