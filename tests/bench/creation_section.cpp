@@ -1,7 +1,7 @@
 // One-off cost of a deformable body (docs/benchmarks.md, "Creating a body"):
 // the shell matrices by Gauss quadrature, DeformableBody::create (which
-// integrates them again, builds the hierarchy and checks the conditioning),
-// (which factorises the step matrix at the haptic step), and the first step.
+// integrates them again, builds the hierarchy, checks the conditioning and
+// factorises the step matrix at the haptic step), and the first step.
 #include <cstdio>
 
 #include "bench_timing.hpp"
