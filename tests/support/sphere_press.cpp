@@ -27,7 +27,10 @@ double normal_turn_bound(double displacement, double radius) {
   const double d = std::min(displacement, radius);
   const double footprint = std::sqrt(std::max(2.0 * radius * d - d * d, 0.0));
   if (footprint <= 0.0) return 0.0;
-  return std::atan(2.0 * d / footprint);
+  if (d >= radius) return 0.5 * M_PI;  // sunk to its equator: the imprint's wall is vertical
+  // The smooth bell, or the sphere's own imprint (a plastic dent that took
+  // its shape), whose wall at the footprint's rim slopes a / (r - d).
+  return std::max(std::atan(2.0 * d / footprint), std::atan(footprint / (radius - d)));
 }
 
 double largest_normal_turn(const BSplineSurface& before, const BSplineSurface& after, int samples,

@@ -64,10 +64,13 @@ struct PressOutcome {
 };
 
 /// The bound on how far a sphere of `radius` pressing a dent `displacement`
-/// deep can turn the surface normal: atan(2 delta / a), a = sqrt(2 r delta -
-/// delta^2) the radius of the sphere's footprint at that depth. A dent delta
-/// deep is at least a footprint wide, so its mean slope is at most delta / a;
-/// a smooth bell profile's steepest slope is pi/2 of its mean, hence 2.
+/// deep can turn the surface normal, a = sqrt(2 r delta - delta^2) the radius
+/// of the sphere's footprint at that depth: the larger of atan(2 delta / a)
+/// (a dent delta deep is at least a footprint wide, so its mean slope is at
+/// most delta / a; a smooth bell's steepest slope is pi/2 of its mean, hence
+/// 2) and atan(a / (r - delta)), the slope of the sphere's own imprint at its
+/// rim, which a plastic dent that took the sphere's shape reaches (the two
+/// agree, sqrt(2 delta / r), for shallow dents); pi/2 once delta reaches r.
 double normal_turn_bound(double displacement, double radius);
 
 /// Runs the press. The face is added with `press.conditions` and `press.friction`.

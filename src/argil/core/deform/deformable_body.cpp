@@ -62,7 +62,15 @@ void DeformableBody::plastic_flow(const ControlNet& points) {
     flow.row(r.on) += ((1.0 + r.ratio) / c2) * miss;
     flow.row(r.after) -= (1.0 / c2) * miss;
   }
-  rest_ += flow;
+  // Flow dissipates: it may not raise the stored energy 1/2 U^T K U, U = P -
+  // P_rest (moving rest points one by one can, where a neighbour stretched
+  // more). Along the flow the energy is a parabola in its fraction; take the
+  // largest fraction up to 1 that does not raise it.
+  const ControlNet k_flow = stiffness_.multiply(flow);
+  const double slope = (k_flow.array() * stretch.array()).sum();  // dE/dalpha = -slope + alpha curve
+  const double curve = (k_flow.array() * flow.array()).sum();
+  const double fraction = curve > 0.0 ? std::clamp(2.0 * slope / curve, 0.0, 1.0) : 1.0;
+  rest_ += fraction * flow;
 }
 
 DeformableBody::DeformableBody(SurfaceHierarchy hierarchy, const Material& material)

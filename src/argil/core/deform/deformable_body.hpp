@@ -50,7 +50,8 @@ inline constexpr double kPlasticStretchCap = 3.0;
 /// moves P_rest where the surface's stretch at a control point's Greville
 /// point exceeds the yield (that point's rest follows it by the excess
 /// fraction) and where a control point is farther than kPlasticStretchCap
-/// yields from its rest.
+/// yields from its rest; the rows across a C0 join flow together, and the
+/// flow is cut short where it would raise the stored energy.
 /// The weights of a rational face do not change.
 class DeformableBody {
  public:
