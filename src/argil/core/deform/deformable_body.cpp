@@ -35,42 +35,50 @@ void DeformableBody::plastic_flow(const ControlNet& points) {
   // The surface yields where it stretched past the yield: measured at each
   // control point's Greville point (a positive average of the poles'
   // stretches, nothing inverted), so the flow follows the surface, not the
-  // net's spacing. The control point's own stretch is held within
-  // kPlasticStretchCap yields too, so a high-degree net cannot drift in
-  // patterns the surface barely shows.
+  // net's spacing.
   const ControlNet stretch = points - rest_;
-  const double cap = kPlasticStretchCap * material_.yield;
-  ControlNet flow(rest_.rows(), 3);
+  ControlNet flow = ControlNet::Zero(rest_.rows(), 3);
+  bool flows = false;
   for (Eigen::Index i = 0; i < rest_.rows(); ++i) {
     Eigen::RowVector3d surface = Eigen::RowVector3d::Zero();
     for (const auto& [j, w] : greville_basis_[static_cast<std::size_t>(i)])
       surface += w * stretch.row(j);
     const double at_surface = surface.norm();
-    const double own = stretch.row(i).norm();
-    double f = at_surface > material_.yield ? 1.0 - material_.yield / at_surface : 0.0;
-    if (own > cap) f = std::max(f, 1.0 - cap / own);
-    flow.row(i) = f * stretch.row(i);
+    if (!(at_surface > material_.yield)) continue;
+    flow.row(i) = (1.0 - material_.yield / at_surface) * stretch.row(i);
+    flows = true;
   }
-  // Across a C0 join the three poles of a row move so the join keeps its
-  // angle: the smallest change to their flows with (after - on) = ratio (on -
-  // before), the same condition the joint term holds the displacement to.
-  for (const JoinRow& r : join_rows_) {
-    const Eigen::RowVector3d miss = (flow.row(r.after) - flow.row(r.on)) -
-                                    r.ratio * (flow.row(r.on) - flow.row(r.before));
-    const double c2 = r.ratio * r.ratio + (1.0 + r.ratio) * (1.0 + r.ratio) + 1.0;
-    flow.row(r.before) -= (r.ratio / c2) * miss;
-    flow.row(r.on) += ((1.0 + r.ratio) / c2) * miss;
-    flow.row(r.after) -= (1.0 / c2) * miss;
+  if (flows) {
+    // Across a C0 join the three poles of a row move so the join keeps its
+    // angle: the smallest change to their flows with (after - on) = ratio (on
+    // - before), the same condition the joint term holds the displacement to.
+    for (const JoinRow& r : join_rows_) {
+      const Eigen::RowVector3d miss = (flow.row(r.after) - flow.row(r.on)) -
+                                      r.ratio * (flow.row(r.on) - flow.row(r.before));
+      const double c2 = r.ratio * r.ratio + (1.0 + r.ratio) * (1.0 + r.ratio) + 1.0;
+      flow.row(r.before) -= (r.ratio / c2) * miss;
+      flow.row(r.on) += ((1.0 + r.ratio) / c2) * miss;
+      flow.row(r.after) -= (1.0 / c2) * miss;
+    }
+    // Flow dissipates: it may not raise the stored energy 1/2 U^T K U, U = P
+    // - P_rest (moving rest points one by one can, where a neighbour
+    // stretched more). Along the flow the energy is a parabola in its
+    // fraction alpha, E0 - alpha flow.K U + alpha^2 / 2 flow.K flow; take the
+    // largest alpha up to 1 that does not raise it.
+    const ControlNet k_flow = stiffness_.multiply(flow);
+    const double along = (k_flow.array() * stretch.array()).sum();
+    const double curve = (k_flow.array() * flow.array()).sum();
+    const double fraction = curve > 0.0 ? std::clamp(2.0 * along / curve, 0.0, 1.0) : 1.0;
+    rest_ += fraction * flow;
   }
-  // Flow dissipates: it may not raise the stored energy 1/2 U^T K U, U = P -
-  // P_rest (moving rest points one by one can, where a neighbour stretched
-  // more). Along the flow the energy is a parabola in its fraction; take the
-  // largest fraction up to 1 that does not raise it.
-  const ControlNet k_flow = stiffness_.multiply(flow);
-  const double slope = (k_flow.array() * stretch.array()).sum();  // dE/dalpha = -slope + alpha curve
-  const double curve = (k_flow.array() * flow.array()).sum();
-  const double fraction = curve > 0.0 ? std::clamp(2.0 * slope / curve, 0.0, 1.0) : 1.0;
-  rest_ += fraction * flow;
+  // Every control point's own stretch stays within kPlasticStretchCap yields,
+  // so a high-degree net cannot drift in patterns the surface barely shows.
+  const double cap = kPlasticStretchCap * material_.yield;
+  for (Eigen::Index i = 0; i < rest_.rows(); ++i) {
+    const Eigen::RowVector3d own = points.row(i) - rest_.row(i);
+    const double length = own.norm();
+    if (length > cap) rest_.row(i) += (1.0 - cap / length) * own;
+  }
 }
 
 DeformableBody::DeformableBody(SurfaceHierarchy hierarchy, const Material& material)
