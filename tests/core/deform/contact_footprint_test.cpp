@@ -107,10 +107,9 @@ TEST_CASE("a disc's load pattern transposes with the net", "[deformation][load]"
   const BSplineSurface t = argil::test::transposed(s);
   const int nu = s.count(Direction::u), nv = s.count(Direction::v);
   for (const Eigen::Vector2d& uv : {Eigen::Vector2d(0.55, 0.7), Eigen::Vector2d(0.2, -0.4)}) {
-    const Eigen::VectorXd g =
-        argil::footprint_load_pattern(s, {contact_at(s, uv)}, {1.0}, 2.5, {});
-    const Eigen::VectorXd h = argil::footprint_load_pattern(
-        t, {contact_at(t, {uv.y(), uv.x()})}, {1.0}, 2.5, {});
+    const Eigen::VectorXd g = argil::footprint_load_pattern(s, {contact_at(s, uv)}, {1.0}, 2.5, {});
+    const Eigen::VectorXd h =
+        argil::footprint_load_pattern(t, {contact_at(t, {uv.y(), uv.x()})}, {1.0}, 2.5, {});
     double gap = 0.0;
     for (int i = 0; i < nu; ++i)
       for (int j = 0; j < nv; ++j)

@@ -140,8 +140,8 @@ TEST_CASE("a material too stiff for its mass is accepted with its elastic terms 
   argil::ControlNet push = argil::ControlNet::Zero(body.masses().size(), 3);
   push(3, 2) = 1e-9;
   REQUIRE(body.step(argil::kHapticStep, push).ok());
-  const double rounding = 64.0 * std::numeric_limits<double>::epsilon() /
-                          argil::kMaterialRange.min_inertia_ratio;
+  const double rounding =
+      64.0 * std::numeric_limits<double>::epsilon() / argil::kMaterialRange.min_inertia_ratio;
   double last = energy();
   for (int t = 0; t < 100; ++t) {
     REQUIRE(body.step(argil::kHapticStep).ok());

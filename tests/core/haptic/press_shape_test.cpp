@@ -209,9 +209,10 @@ BSplineSurface flat_panel(int spans) {
 // A 2 mm sphere pressed 0.5 mm into clay rests on a disc about 1.9 mm across
 // (its radius at 0.45 N); the bending length of clay is 2.8 mm. A net with
 // 1 mm spans resolves that; the same press on its refinements agrees.
-TEST_CASE("resolution independence: a flat panel that resolves the press, and its 2x, 4x "
-          "refinements",
-          "[deformation][resolution]") {
+TEST_CASE(
+    "resolution independence: a flat panel that resolves the press, and its 2x, 4x "
+    "refinements",
+    "[deformation][resolution]") {
   check_resolution(flat_panel(20), {0.43, 0.56}, 2.0, 0.5);
 }
 

@@ -175,12 +175,11 @@ TEST_CASE("resolution independence: real faces and their 2x, 4x refinements",
   };
   argil::Material elastic = *argil::material_preset("clay");
   elastic.yield = std::numeric_limits<double>::infinity();
-  for (const RealFace& f :
-       {RealFace{"surf114.igs", 1, 0}, RealFace{"as1-oc-214.stp", 5, 2}}) {
+  for (const RealFace& f : {RealFace{"surf114.igs", 1, 0}, RealFace{"as1-oc-214.stp", 5, 2}}) {
     const auto model = argil::io::read_model(argil::test::shared_data(f.file));
     REQUIRE(model.ok());
-    const BSplineSurface s = argil::test::halved_spans(model.value().faces.at(f.face).surface,
-                                                       f.halvings);
+    const BSplineSurface s =
+        argil::test::halved_spans(model.value().faces.at(f.face).surface, f.halvings);
     for (const argil::Material& m : {*argil::material_preset("clay"), elastic}) {
       const argil::test::SpherePress p = press_for(s, m);
       const argil::test::PressOutcome base = argil::test::press_sphere(s, p);

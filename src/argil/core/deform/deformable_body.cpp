@@ -53,8 +53,8 @@ void DeformableBody::plastic_flow(const ControlNet& points) {
     // angle: the smallest change to their flows with (after - on) = ratio (on
     // - before), the same condition the joint term holds the displacement to.
     for (const JoinRow& r : join_rows_) {
-      const Eigen::RowVector3d miss = (flow.row(r.after) - flow.row(r.on)) -
-                                      r.ratio * (flow.row(r.on) - flow.row(r.before));
+      const Eigen::RowVector3d miss =
+          (flow.row(r.after) - flow.row(r.on)) - r.ratio * (flow.row(r.on) - flow.row(r.before));
       const double c2 = r.ratio * r.ratio + (1.0 + r.ratio) * (1.0 + r.ratio) + 1.0;
       flow.row(r.before) -= (r.ratio / c2) * miss;
       flow.row(r.on) += ((1.0 + r.ratio) / c2) * miss;
@@ -163,10 +163,10 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
             return static_cast<int>(d == 0 ? surface.pole_index(i, e) : surface.pole_index(e, i));
           };
           JoinRow r{pole(line - 2), pole(line - 1), pole(line), 0.0};
-          const double before = (surface.control_points.row(r.on) -
-                                 surface.control_points.row(r.before)).norm();
-          const double after = (surface.control_points.row(r.after) -
-                                surface.control_points.row(r.on)).norm();
+          const double before =
+              (surface.control_points.row(r.on) - surface.control_points.row(r.before)).norm();
+          const double after =
+              (surface.control_points.row(r.after) - surface.control_points.row(r.on)).norm();
           const auto held = [&](int i) { return body.fixed_[static_cast<std::size_t>(i)] != 0; };
           if (!(before > 0.0 && after > 0.0) || held(r.before) || held(r.on) || held(r.after))
             continue;

@@ -230,10 +230,10 @@ HapticWorld::Coupling HapticWorld::step_bodies(
     Eigen::VectorXd pattern;
     if (pressing && !body_contacts[b].empty()) {
       // A sphere presses over its contact disc, sized by last tick's force.
-      const double disc =
-          sphere_ ? sphere_contact_radius(sphere_->radius(), bodies_[b].pressing_force,
-                                          body.material().foundation_stiffness)
-                  : 0.0;
+      const double disc = sphere_
+                              ? sphere_contact_radius(sphere_->radius(), bodies_[b].pressing_force,
+                                                      body.material().foundation_stiffness)
+                              : 0.0;
       pattern = footprint_load_pattern(body.surface(), body_contacts[b],
                                        contact_shares(body_contacts[b], eps), disc,
                                        trim(static_cast<int>(b)));
