@@ -1,18 +1,41 @@
 #include "argil/core/deform/deformable_body.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <string>
 #include <utility>
 
 #include "argil/core/base/number_text.hpp"
-#include "argil/core/deform/contact_response.hpp"
+#include "argil/core/geometry/basis.hpp"
 #include "argil/core/operators/surface_operators.hpp"
 
 namespace argil {
 
 namespace {
+
+/// The poles whose basis is non-zero at (u, v) with their (rational) basis values.
+std::vector<std::pair<int, double>> basis_at(const BSplineSurface& s, double u, double v) {
+  const int nu = s.count(Direction::u), nv = s.count(Direction::v);
+  const int p = s.degree[0], q = s.degree[1];
+  const int su = find_span(p, s.knots[0], nu, u), sv = find_span(q, s.knots[1], nv, v);
+  Eigen::MatrixXd bu(1, p + 1), bv(1, q + 1);
+  basis_derivatives(p, s.knots[0], su, u, 0, bu);
+  basis_derivatives(q, s.knots[1], sv, v, 0, bv);
+  std::vector<std::pair<int, double>> out;
+  double sum = 0.0;
+  for (int a = 0; a <= p; ++a)
+    for (int b = 0; b <= q; ++b) {
+      const int pole = static_cast<int>(s.pole_index(su - p + a, sv - q + b));
+      const double w = bu(0, a) * bv(0, b) * (s.is_rational() ? s.weights[pole] : 1.0);
+      if (w == 0.0) continue;
+      out.emplace_back(pole, w);
+      sum += w;
+    }
+  for (auto& entry : out) entry.second /= sum;
+  return out;
+}
 
 /// Which control points the boundary conditions hold (one flag per pole).
 std::vector<char> held_poles(int nu, int nv, const BoundaryConditions& c) {
@@ -32,20 +55,29 @@ std::vector<char> held_poles(int nu, int nv, const BoundaryConditions& c) {
 }  // namespace
 
 void DeformableBody::plastic_flow(const ControlNet& points) {
-  // The surface yields where it stretched past the yield: measured at each
-  // control point's Greville point (a positive average of the poles'
-  // stretches, nothing inverted), so the flow follows the surface, not the
-  // net's spacing.
+  // The surface yields where it stretched past the yield: measured over each
+  // control point's cell around its Greville point (3 x 3 samples, each a
+  // positive average of the poles' stretches: nothing inverted), so the flow
+  // follows the surface wherever the tool is, not the net's spacing. The
+  // surface stretches no more than its poles (convex hull), so cells whose
+  // poles all stay within the yield are skipped.
   const ControlNet stretch = points - rest_;
+  const Eigen::VectorXd pole_stretch = stretch.rowwise().norm();
   ControlNet flow = ControlNet::Zero(rest_.rows(), 3);
   bool flows = false;
   for (Eigen::Index i = 0; i < rest_.rows(); ++i) {
-    Eigen::RowVector3d surface = Eigen::RowVector3d::Zero();
-    for (const auto& [j, w] : greville_basis_[static_cast<std::size_t>(i)])
-      surface += w * stretch.row(j);
-    const double at_surface = surface.norm();
-    if (!(at_surface > material_.yield)) continue;
-    flow.row(i) = (1.0 - material_.yield / at_surface) * stretch.row(i);
+    const YieldCell& cell = yield_cells_[static_cast<std::size_t>(i)];
+    double bound = 0.0;
+    for (const int j : cell.poles) bound = std::max(bound, pole_stretch[j]);
+    if (!(bound > material_.yield)) continue;
+    double largest = 0.0;
+    for (const auto& sample : cell.samples) {
+      Eigen::RowVector3d surface = Eigen::RowVector3d::Zero();
+      for (const auto& [j, w] : sample) surface += w * stretch.row(j);
+      largest = std::max(largest, surface.norm());
+    }
+    if (!(largest > material_.yield)) continue;
+    flow.row(i) = (1.0 - material_.yield / largest) * stretch.row(i);
     flows = true;
   }
   if (flows) {
@@ -180,15 +212,24 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   {
     const Eigen::VectorXd gu = greville_abscissae(surface.degree[0], surface.knots[0]);
     const Eigen::VectorXd gv = greville_abscissae(surface.degree[1], surface.knots[1]);
-    body.greville_basis_.resize(static_cast<std::size_t>(n));
+    // The three abscissae of pole i's cell along one direction.
+    const auto cell = [](const Eigen::VectorXd& g, int i) {
+      const Eigen::Index last = g.size() - 1;
+      const double lo = i > 0 ? 0.5 * (g[i - 1] + g[i]) : g[0];
+      const double hi = i < last ? 0.5 * (g[i] + g[i + 1]) : g[last];
+      return std::array<double, 3>{lo, g[i], hi};
+    };
+    body.yield_cells_.resize(static_cast<std::size_t>(n));
     for (int i = 0; i < nu; ++i)
       for (int j = 0; j < nv; ++j) {
-        Contact c;
-        c.uv_a = {gu[i], gv[j]};
-        const Eigen::VectorXd w = contact_load_pattern(surface, {c}, {1.0});
-        auto& list = body.greville_basis_[static_cast<std::size_t>(surface.pole_index(i, j))];
-        for (Eigen::Index m = 0; m < w.size(); ++m)
-          if (w[m] != 0.0) list.emplace_back(static_cast<int>(m), w[m]);
+        YieldCell& c = body.yield_cells_[static_cast<std::size_t>(surface.pole_index(i, j))];
+        for (const double u : cell(gu, i))
+          for (const double v : cell(gv, j)) {
+            c.samples.push_back(basis_at(surface, u, v));
+            for (const auto& [pole, w] : c.samples.back()) c.poles.push_back(pole);
+          }
+        std::sort(c.poles.begin(), c.poles.end());
+        c.poles.erase(std::unique(c.poles.begin(), c.poles.end()), c.poles.end());
       }
   }
   body.velocities_ = ControlNet::Zero(n, 3);

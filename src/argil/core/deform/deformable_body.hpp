@@ -47,9 +47,9 @@ inline constexpr double kPlasticStretchCap = 3.0;
 /// (implicit Euler, unconditionally stable for M' > 0, K, C >= 0; without
 /// external force the energy 0.5 V^T M' V + 0.5 U^T K U never increases).
 /// Held control points keep P = P_rest and V = 0. After the step, plasticity
-/// moves P_rest where the surface's stretch at a control point's Greville
-/// point exceeds the yield (that point's rest follows it by the excess
-/// fraction) and where a control point is farther than kPlasticStretchCap
+/// moves P_rest where the surface's stretch over a control point's cell
+/// around its Greville point exceeds the yield (that point's rest follows it
+/// by the excess fraction) and where a control point is farther than kPlasticStretchCap
 /// yields from its rest; the rows across a C0 join flow together, and the
 /// flow is cut short where it would raise the stored energy.
 /// The weights of a rational face do not change.
@@ -120,9 +120,15 @@ class DeformableBody {
   std::vector<char> fixed_;
   Eigen::VectorXd masses_;
   ControlNet rest_, velocities_;
-  /// Per control point: the poles and basis values at its Greville point,
-  /// where plastic flow measures the surface's stretch.
-  std::vector<std::vector<std::pair<int, double>>> greville_basis_;
+  /// Where plastic flow measures the surface's stretch for one control point:
+  /// a 3 x 3 grid over its cell (from halfway to the previous Greville point
+  /// to halfway to the next, each way), each sample as the poles and basis
+  /// values there; and every pole those samples involve.
+  struct YieldCell {
+    std::vector<std::vector<std::pair<int, double>>> samples;
+    std::vector<int> poles;
+  };
+  std::vector<YieldCell> yield_cells_;
   /// Across every C0 knot line of a direction of degree >= 2, per row of
   /// poles across it: the pole before the line, the one on it, the one after,
   /// and |P_after - P_on| / |P_on - P_before| at rest. Plastic flow keeps
