@@ -262,19 +262,51 @@ TEST_CASE("friction outside [0, kMaxFriction] is refused for deformable and rigi
   CHECK(w.friction(edge.value()) == argil::kMaxFriction);
 }
 
-TEST_CASE("a collision query that fails makes the tick fail and leaves the proxy", "[haptic]") {
-  // A B-spline tool 0.01 mm wide: a tolerance of 0.05 mm exceeds its size, so
-  // every surface-surface query of the tick is outside the documented range.
-  argil::BSplineSurface tool = sheet(4, 0.003, 0.0);
-  const double eps = 0.05;
-  argil::HapticWorld w = world(argil::SurfaceToolShape{tool}, eps, 20.0);
-  REQUIRE(w.add_rigid(sheet(10, 10.0, 0.0), 0.3).ok());
-  const argil::ProxyState before = w.proxy();
-  const argil::TickResult r = w.step(at(30, 40, 1.0), 1e-3);
-  CHECK_FALSE(r.status.ok());
-  CHECK(r.status.code == argil::StatusCode::invalid_argument);
-  CHECK(r.status.message.find("tolerance") != std::string::npos);
-  CHECK(w.proxy().X_WT.p == before.X_WT.p);
+TEST_CASE("a B-spline tool smaller than the tolerance is refused when the world is made",
+          "[haptic]") {
+  // The reported case: a tool 0.017 mm across at eps 0.05 mm touched nothing
+  // and went through a flat floor to z = -5 with status ok. Now no world is
+  // made with it, and the message names the tool's size and the tolerance.
+  const argil::BSplineSurface tool = sheet(4, 0.004, 0.0);
+  REQUIRE(argil::control_point_box(tool).diagonal() == Approx(0.017).epsilon(0.01));
+  argil::WorldOptions o;
+  o.tolerance = 0.05;
+  const auto w = argil::HapticWorld::create(argil::SurfaceToolShape{tool}, o);
+  REQUIRE_FALSE(w.ok());
+  CHECK(w.status().code == argil::StatusCode::invalid_argument);
+  CHECK_THAT(w.status().message, Catch::Contains("tool surface: a tool 0.01697") &&
+                                     Catch::Contains("too small for the tolerance") &&
+                                     Catch::Contains("tolerance 0.05 mm"));
+  // The same tool at a tolerance it resolves stops on the floor.
+  o.tolerance = 1e-3;
+  auto fine = argil::HapticWorld::create(argil::SurfaceToolShape{tool}, o);
+  REQUIRE(fine.ok());
+  REQUIRE(fine.value().add_rigid(sheet(10, 10.0, 0.0), 0.0).ok());
+  REQUIRE(fine.value().step(at(30, 40, 1.0), 1e-3).status.ok());
+  argil::TickResult r;
+  for (int t = 1; t <= 60; ++t) {
+    r = fine.value().step(at(30, 40, 1.0 - 6.0 * t / 60.0), 1e-3);  // down to z = -5
+    REQUIRE(r.status.ok());
+  }
+  CHECK(r.proxy.in_contact);
+  CHECK(r.proxy.X_WT.p.z() > -1e-3);  // on the floor, not through it
+  CHECK(r.force.z() > 1.0);
+}
+
+TEST_CASE("a collision query that fails stops the tool's move with its status", "[haptic]") {
+  // A model surface 0.01 mm wide: a tolerance of 0.05 mm exceeds its size, so
+  // the tool's queries against it are outside the documented range.
+  argil::BSplineSurface tool = sheet(4, 4.0, 0.0);
+  argil::OperatorCache cache;
+  auto proxy = argil::SurfaceToolProxy::create(tool, 0.05, cache);
+  REQUIRE(proxy.ok());
+  const argil::SurfaceHierarchy tiny =
+      argil::SurfaceHierarchy::build(sheet(4, 0.003, 0.0), cache).value();
+  const argil::ToolMove m = proxy.value().move({&tiny}, argil::Pose::at({0, 0, 1}),
+                                                argil::Pose::at({0, 0, -1}));
+  CHECK_FALSE(m.status.ok());
+  CHECK(m.status.code == argil::StatusCode::invalid_argument);
+  CHECK(m.status.message.find("tolerance") != std::string::npos);
 }
 
 TEST_CASE("world options name the rejected max_contacts value", "[haptic]") {

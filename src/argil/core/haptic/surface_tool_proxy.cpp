@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "argil/core/base/number_text.hpp"
+#include "argil/core/collision/contact.hpp"
 #include "argil/core/collision/surface_intersection.hpp"
 
 namespace argil {
@@ -17,6 +19,14 @@ Result<SurfaceToolProxy> SurfaceToolProxy::create(const BSplineSurface& tool, do
                                                   OperatorCache& cache) {
   Result<SurfaceHierarchy> h = SurfaceHierarchy::build(tool, cache);
   if (!h.ok()) return h.status();
+  // Every query of the tool runs at eps: a tool that eps cannot resolve (eps
+  // above its size) would touch nothing and pass through every surface.
+  if (Status s = check_request({.tolerance = eps}, h.value()); !s.ok()) {
+    s.message = "a tool " + number_text(control_point_box(tool).diagonal()) +
+                " mm across (its control points' box) is too small for the tolerance: " +
+                s.message;
+    return s;
+  }
   return SurfaceToolProxy(tool, std::move(h).value(), eps);
 }
 

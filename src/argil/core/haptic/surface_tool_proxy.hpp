@@ -42,7 +42,9 @@ struct [[nodiscard]] ToolMove {
 /// surface moved into the tool) is first pushed out along the contact normal.
 class SurfaceToolProxy {
  public:
-  /// `tool` in its own frame T; fails when it does not validate.
+  /// `tool` in its own frame T; fails when it does not validate, or with
+  /// invalid_argument when eps is outside the range its queries allow for it
+  /// (check_request): a tool smaller than eps would pass through surfaces.
   static Result<SurfaceToolProxy> create(const BSplineSurface& tool, double eps,
                                          OperatorCache& cache);
 
