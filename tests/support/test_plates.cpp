@@ -28,4 +28,17 @@ BSplineSurface flat_plate(const PlateShape& shape) {
   return s;
 }
 
+BSplineSurface flat_bicubic_panel(double size, int spans) {
+  BSplineSurface s;
+  s.degree = {3, 3};
+  s.knots = {piece_knots(3, spans, 1), piece_knots(3, spans, 1)};
+  const Eigen::VectorXd g = greville_abscissae(3, s.knots[0]);
+  s.control_points.resize(g.size() * g.size(), 3);
+  for (Eigen::Index i = 0; i < g.size(); ++i)
+    for (Eigen::Index j = 0; j < g.size(); ++j)
+      s.control_points.row(s.pole_index(static_cast<int>(i), static_cast<int>(j))) << size * g[i],
+          size * g[j], 0.0;
+  return s;
+}
+
 }  // namespace argil::test

@@ -26,4 +26,8 @@ Eigen::VectorXd piece_knots(int degree, int pieces, int join);
 /// The flat plate of `shape` in z = 0.
 BSplineSurface flat_plate(const PlateShape& shape);
 
+/// A flat bicubic `size` x `size` mm panel in z = 0 with `spans` equal knot
+/// spans each way, its poles at the Greville abscissae (x = size u exactly).
+BSplineSurface flat_bicubic_panel(double size, int spans);
+
 }  // namespace argil::test

@@ -302,8 +302,8 @@ TEST_CASE("a collision query that fails stops the tool's move with its status", 
   REQUIRE(proxy.ok());
   const argil::SurfaceHierarchy tiny =
       argil::SurfaceHierarchy::build(sheet(4, 0.003, 0.0), cache).value();
-  const argil::ToolMove m = proxy.value().move({&tiny}, argil::Pose::at({0, 0, 1}),
-                                                argil::Pose::at({0, 0, -1}));
+  const argil::ToolMove m =
+      proxy.value().move({&tiny}, argil::Pose::at({0, 0, 1}), argil::Pose::at({0, 0, -1}));
   CHECK_FALSE(m.status.ok());
   CHECK(m.status.code == argil::StatusCode::invalid_argument);
   CHECK(m.status.message.find("tolerance") != std::string::npos);

@@ -192,20 +192,6 @@ TEST_CASE("a crease keeps its angle under a press on and near it",
     }
 }
 
-/// The 20 x 20 mm flat bicubic panel with `spans` knot spans per direction.
-BSplineSurface flat_panel(int spans) {
-  BSplineSurface s;
-  s.degree = {3, 3};
-  s.knots = {argil::test::piece_knots(3, spans, 1), argil::test::piece_knots(3, spans, 1)};
-  const Eigen::VectorXd g = argil::greville_abscissae(3, s.knots[0]);
-  s.control_points.resize(g.size() * g.size(), 3);
-  for (Eigen::Index i = 0; i < g.size(); ++i)
-    for (Eigen::Index j = 0; j < g.size(); ++j)
-      s.control_points.row(s.pole_index(static_cast<int>(i), static_cast<int>(j))) << 20.0 * g[i],
-          20.0 * g[j], 0.0;
-  return s;
-}
-
 // A 2 mm sphere pressed 0.5 mm into clay rests on a disc about 1.9 mm across
 // (its radius at 0.45 N); the bending length of clay is 2.8 mm. A net with
 // 1 mm spans resolves that; the same press on its refinements agrees.
@@ -213,7 +199,7 @@ TEST_CASE(
     "resolution independence: a flat panel that resolves the press, and its 2x, 4x "
     "refinements",
     "[deformation][resolution]") {
-  check_resolution(flat_panel(20), {0.43, 0.56}, 2.0, 0.5);
+  check_resolution(argil::test::flat_bicubic_panel(20.0, 20), {0.43, 0.56}, 2.0, 0.5);
 }
 
 TEST_CASE("resolution independence: the asymmetric surface and its 2x, 4x refinements",
@@ -234,5 +220,5 @@ TEST_CASE("resolution independence: the asymmetric surface and its 2x, 4x refine
 // such faces where the tool works is the next step.
 TEST_CASE("resolution independence: a panel coarser than the press",
           "[deformation][resolution][!shouldfail]") {
-  check_resolution(flat_panel(5), {0.43, 0.56}, 2.0, 0.5);
+  check_resolution(argil::test::flat_bicubic_panel(20.0, 5), {0.43, 0.56}, 2.0, 0.5);
 }

@@ -191,15 +191,7 @@ TEST_CASE("a clay drag at constant depth over a plate that resolves it has no wa
   // points (on the control-point stretch the force rose and fell at the pole
   // spacing, by 106% of its mean on the plate above). A 24 x 24 mm bicubic
   // plate with 1 mm spans under a 2 mm sphere, dragged over 8 mm (8 spans).
-  BSplineSurface s;
-  s.degree = {3, 3};
-  s.knots = {argil::test::piece_knots(3, 24, 1), argil::test::piece_knots(3, 24, 1)};
-  const Eigen::VectorXd g = argil::greville_abscissae(3, s.knots[0]);
-  s.control_points.resize(g.size() * g.size(), 3);
-  for (Eigen::Index i = 0; i < g.size(); ++i)
-    for (Eigen::Index j = 0; j < g.size(); ++j)
-      s.control_points.row(s.pole_index(static_cast<int>(i), static_cast<int>(j))) << 24.0 * g[i],
-          24.0 * g[j], 0.0;
+  const BSplineSurface s = argil::test::flat_bicubic_panel(24.0, 24);
   argil::HapticWorld w = sphere_world(2.0, 1e-3);
   REQUIRE(w.add_deformable(s, *argil::material_preset("clay"), kHeldEdges, 0.0).ok());
   std::vector<double> force;

@@ -19,35 +19,37 @@ std::vector<double> contact_shares(const std::vector<Contact>& contacts, double 
   return shares;
 }
 
+std::vector<std::pair<int, double>> basis_at(const BSplineSurface& s, const Eigen::Vector2d& uv) {
+  const int nu = s.count(Direction::u), nv = s.count(Direction::v);
+  const int p = s.degree[0], q = s.degree[1];
+  const int su = find_span(p, s.knots[0], nu, uv.x()), sv = find_span(q, s.knots[1], nv, uv.y());
+  Eigen::MatrixXd bu(1, p + 1), bv(1, q + 1);
+  basis_derivatives(p, s.knots[0], su, uv.x(), 0, bu);
+  basis_derivatives(q, s.knots[1], sv, uv.y(), 0, bv);
+  std::vector<std::pair<int, double>> out;
+  double sum = 0.0;
+  for (int a = 0; a <= p; ++a)
+    for (int b = 0; b <= q; ++b) {
+      const int pole = static_cast<int>(s.pole_index(su - p + a, sv - q + b));
+      const double w = bu(0, a) * bv(0, b) * (s.is_rational() ? s.weights[pole] : 1.0);
+      if (w == 0.0) continue;
+      out.emplace_back(pole, w);
+      sum += w;
+    }
+  for (auto& entry : out) entry.second /= sum;
+  return out;
+}
+
 Eigen::VectorXd contact_load_pattern(const BSplineSurface& s, const std::vector<Contact>& contacts,
                                      const std::vector<double>& shares) {
   assert(contacts.size() == shares.size());
-  const int nu = s.count(Direction::u);
-  const int nv = s.count(Direction::v);
-  const int p = s.degree[0];
-  const int q = s.degree[1];
-  Eigen::VectorXd pattern = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nu) * nv);
-  Eigen::MatrixXd bu(1, p + 1), bv(1, q + 1);
-  Eigen::MatrixXd local(p + 1, q + 1);
+  Eigen::VectorXd pattern = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.count(Direction::u)) *
+                                                  s.count(Direction::v));
   for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const double u =
-        std::clamp(contacts[k].uv_a.x(), s.domain_start(Direction::u), s.domain_end(Direction::u));
-    const double v =
-        std::clamp(contacts[k].uv_a.y(), s.domain_start(Direction::v), s.domain_end(Direction::v));
-    const int su = find_span(p, s.knots[0], nu, u);
-    const int sv = find_span(q, s.knots[1], nv, v);
-    basis_derivatives(p, s.knots[0], su, u, 0, bu);
-    basis_derivatives(q, s.knots[1], sv, v, 0, bv);
-    double sum = 0.0;
-    for (int a = 0; a <= p; ++a)
-      for (int b = 0; b <= q; ++b) {
-        const double w = s.is_rational() ? s.weights[s.pole_index(su - p + a, sv - q + b)] : 1.0;
-        local(a, b) = bu(0, a) * bv(0, b) * w;
-        sum += local(a, b);
-      }
-    for (int a = 0; a <= p; ++a)
-      for (int b = 0; b <= q; ++b)
-        pattern[s.pole_index(su - p + a, sv - q + b)] += shares[k] * local(a, b) / sum;
+    const Eigen::Vector2d uv(
+        std::clamp(contacts[k].uv_a.x(), s.domain_start(Direction::u), s.domain_end(Direction::u)),
+        std::clamp(contacts[k].uv_a.y(), s.domain_start(Direction::v), s.domain_end(Direction::v)));
+    for (const auto& [pole, w] : basis_at(s, uv)) pattern[pole] += shares[k] * w;
   }
   return pattern;
 }

@@ -4,6 +4,7 @@
 // friction into stick and slip.
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 #include "argil/core/collision/contact.hpp"
@@ -15,6 +16,11 @@ namespace argil {
 /// depth + eps (touching within eps counts, so every reported contact carries
 /// some). Empty for no contacts.
 std::vector<double> contact_shares(const std::vector<Contact>& contacts, double eps);
+
+/// The rational basis R_i(u, v) at a point of the domain: the poles whose
+/// basis is non-zero there, with their values (non-negative, summing to 1).
+std::vector<std::pair<int, double>> basis_at(const BSplineSurface& surface,
+                                             const Eigen::Vector2d& uv);
 
 /// Control-point weights g (n_u * n_v entries, row i * n_v + j) of a unit
 /// force applied at the contacts' points S(uv_a) with the given shares:

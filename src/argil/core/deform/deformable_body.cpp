@@ -8,34 +8,12 @@
 #include <utility>
 
 #include "argil/core/base/number_text.hpp"
-#include "argil/core/geometry/basis.hpp"
+#include "argil/core/deform/contact_response.hpp"
 #include "argil/core/operators/surface_operators.hpp"
 
 namespace argil {
 
 namespace {
-
-/// The poles whose basis is non-zero at (u, v) with their (rational) basis values.
-std::vector<std::pair<int, double>> basis_at(const BSplineSurface& s, double u, double v) {
-  const int nu = s.count(Direction::u), nv = s.count(Direction::v);
-  const int p = s.degree[0], q = s.degree[1];
-  const int su = find_span(p, s.knots[0], nu, u), sv = find_span(q, s.knots[1], nv, v);
-  Eigen::MatrixXd bu(1, p + 1), bv(1, q + 1);
-  basis_derivatives(p, s.knots[0], su, u, 0, bu);
-  basis_derivatives(q, s.knots[1], sv, v, 0, bv);
-  std::vector<std::pair<int, double>> out;
-  double sum = 0.0;
-  for (int a = 0; a <= p; ++a)
-    for (int b = 0; b <= q; ++b) {
-      const int pole = static_cast<int>(s.pole_index(su - p + a, sv - q + b));
-      const double w = bu(0, a) * bv(0, b) * (s.is_rational() ? s.weights[pole] : 1.0);
-      if (w == 0.0) continue;
-      out.emplace_back(pole, w);
-      sum += w;
-    }
-  for (auto& entry : out) entry.second /= sum;
-  return out;
-}
 
 /// Which control points the boundary conditions hold (one flag per pole).
 std::vector<char> held_poles(int nu, int nv, const BoundaryConditions& c) {
@@ -225,7 +203,7 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
         YieldCell& c = body.yield_cells_[static_cast<std::size_t>(surface.pole_index(i, j))];
         for (const double u : cell(gu, i))
           for (const double v : cell(gv, j)) {
-            c.samples.push_back(basis_at(surface, u, v));
+            c.samples.push_back(basis_at(surface, {u, v}));
             for (const auto& [pole, w] : c.samples.back()) c.poles.push_back(pole);
           }
         std::sort(c.poles.begin(), c.poles.end());

@@ -23,8 +23,7 @@ Result<SurfaceToolProxy> SurfaceToolProxy::create(const BSplineSurface& tool, do
   // above its size) would touch nothing and pass through every surface.
   if (Status s = check_request({.tolerance = eps}, h.value()); !s.ok()) {
     s.message = "a tool " + number_text(control_point_box(tool).diagonal()) +
-                " mm across (its control points' box) is too small for the tolerance: " +
-                s.message;
+                " mm across (its control points' box) is too small for the tolerance: " + s.message;
     return s;
   }
   return SurfaceToolProxy(tool, std::move(h).value(), eps);
