@@ -89,6 +89,14 @@ void DeformableBody::plastic_flow(const ControlNet& points) {
     const double length = own.norm();
     if (length > cap) rest_.row(i) += (1.0 - cap / length) * own;
   }
+  // The cap acts pole by pole; a tied join's `on` pole keeps its row's
+  // proportions (its stretch the tie's blend of its neighbours').
+  for (const JoinRow& r : join_rows_) {
+    if (!r.tied) continue;
+    const double l = r.lambda();
+    rest_.row(r.on) = points.row(r.on) - l * (points.row(r.before) - rest_.row(r.before)) -
+                      (1.0 - l) * (points.row(r.after) - rest_.row(r.after));
+  }
 }
 
 DeformableBody::DeformableBody(SurfaceHierarchy hierarchy, const Material& material)
@@ -136,7 +144,10 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   body.stiffness_.add_scaled(elastic, body.elastic_scale_);
 
   // Solve order: the narrower band of the two row-major orders.
-  const int ru = body.stiffness_.reach_u(), rv = body.stiffness_.reach_v();
+  // A tie couples a join's neighbours to everything its `on` pole touches.
+  body.join_rows_ = join_rows(surface, body.fixed_);
+  const std::array<int, 2> tied = tie_reach(body.join_rows_);
+  const int ru = body.stiffness_.reach_u() + tied[0], rv = body.stiffness_.reach_v() + tied[1];
   // Ties go to the direction with more poles (then the higher degree) as the
   // slow index, so a transposed net is solved in the same physical order and
   // gives the same result to the last bit.
@@ -159,34 +170,6 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   body.bandwidth_ = std::min<int>(body.bandwidth_, static_cast<int>(n) - 1);
   body.bandwidth_ = std::max(body.bandwidth_, 0);
   body.rest_ = surface.control_points;
-  for (int d = 0; d < 2; ++d) {
-    const int p = surface.degree[static_cast<std::size_t>(d)];
-    if (p < 2) continue;  // degree 1: every knot is a fold line of the facets
-    const Eigen::VectorXd& t = surface.knots[static_cast<std::size_t>(d)];
-    const int count = d == 0 ? nu : nv, across = d == 0 ? nv : nu;
-    for (int line = p + 1; line < count;) {
-      int m = 1;
-      while (line + m < count && t[line + m] == t[line]) ++m;
-      if (m == p) {  // a C0 join: pole line - 1 lies on it
-        for (int e = 0; e < across; ++e) {
-          const auto pole = [&](int i) {
-            return static_cast<int>(d == 0 ? surface.pole_index(i, e) : surface.pole_index(e, i));
-          };
-          JoinRow r{pole(line - 2), pole(line - 1), pole(line), 0.0};
-          const double before =
-              (surface.control_points.row(r.on) - surface.control_points.row(r.before)).norm();
-          const double after =
-              (surface.control_points.row(r.after) - surface.control_points.row(r.on)).norm();
-          const auto held = [&](int i) { return body.fixed_[static_cast<std::size_t>(i)] != 0; };
-          if (!(before > 0.0 && after > 0.0) || held(r.before) || held(r.on) || held(r.after))
-            continue;
-          r.ratio = after / before;
-          body.join_rows_.push_back(r);
-        }
-      }
-      line += m;
-    }
-  }
   {
     const Eigen::VectorXd gu = greville_abscissae(surface.degree[0], surface.knots[0]);
     const Eigen::VectorXd gv = greville_abscissae(surface.degree[1], surface.knots[1]);
@@ -256,6 +239,7 @@ SymmetricBandMatrix DeformableBody::step_matrix(double dt) const {
       }
     }
   }
+  tie_matrix(a, join_rows_, rank_);
   return a;
 }
 
@@ -300,7 +284,9 @@ Result<LoadPreview> DeformableBody::begin_step(double dt, const ControlNet& forc
     for (int c = 0; c < 3; ++c) work_(r, c) = m * velocities_(i, c) + dt * force(i, c);
     if (has_pattern_) work_(r, 3) = pattern[i];
   }
+  tie_load(work_, join_rows_, rank_);
   solver_->solve_in_place(work_);
+  untie_solution(work_, join_rows_, rank_);
   LoadPreview preview;
   if (has_pattern_) {
     for (Eigen::Index r = 0; r < n; ++r) {

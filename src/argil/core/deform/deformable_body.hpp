@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "argil/core/deform/join_rows.hpp"
 #include "argil/core/deform/material.hpp"
 #include "argil/core/deform/pole_stencil_matrix.hpp"
 #include "argil/core/deform/shell_matrices.hpp"
@@ -46,7 +47,8 @@ inline constexpr double kPlasticStretchCap = 3.0;
 ///   (M' + h C + h^2 K) V+ = M' V + h (f - K (P - P_rest)),  P+ = P + h V+
 /// (implicit Euler, unconditionally stable for M' > 0, K, C >= 0; without
 /// external force the energy 0.5 V^T M' V + 0.5 U^T K U never increases).
-/// Held control points keep P = P_rest and V = 0. After the step, plasticity
+/// Held control points keep P = P_rest and V = 0; the pole on a G1 join moves
+/// with its row's neighbours (join_rows.hpp), so the join stays G1. After the step, plasticity
 /// moves P_rest where the surface's stretch over a control point's cell
 /// around its Greville point exceeds the yield (that point's rest follows it
 /// by the excess fraction) and where a control point is farther than kPlasticStretchCap
@@ -129,14 +131,8 @@ class DeformableBody {
     std::vector<int> poles;
   };
   std::vector<YieldCell> yield_cells_;
-  /// Across every C0 knot line of a direction of degree >= 2, per row of
-  /// poles across it: the pole before the line, the one on it, the one after,
-  /// and |P_after - P_on| / |P_on - P_before| at rest. Plastic flow keeps
-  /// (dr_after - dr_on) = ratio (dr_on - dr_before) so a G1 join stays G1.
-  struct JoinRow {
-    int before, on, after;
-    double ratio;
-  };
+  /// The rows of poles across the face's C0 knot lines (join_rows.hpp): the
+  /// step ties the G1 ones; plastic flow keeps every row's proportions.
   std::vector<JoinRow> join_rows_;
   /// Solve order: the pole of each unknown, row-major in the direction that
   /// gives the narrower band.
