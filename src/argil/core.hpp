@@ -17,10 +17,12 @@
 #include "argil/core/geometry/bezier.hpp"             // IWYU pragma: export
 #include "argil/core/geometry/bspline_curve.hpp"      // IWYU pragma: export
 #include "argil/core/geometry/bspline_surface.hpp"    // IWYU pragma: export
+#include "argil/core/geometry/degree_elevation.hpp"   // IWYU pragma: export
 #include "argil/core/geometry/evaluate.hpp"           // IWYU pragma: export
 #include "argil/core/geometry/implicit_tool.hpp"      // IWYU pragma: export
 #include "argil/core/geometry/knot_insertion.hpp"     // IWYU pragma: export
 #include "argil/core/geometry/knot_vector.hpp"        // IWYU pragma: export
+#include "argil/core/geometry/local_refinement.hpp"   // IWYU pragma: export
 #include "argil/core/geometry/param_rect.hpp"         // IWYU pragma: export
 #include "argil/core/geometry/pose.hpp"               // IWYU pragma: export
 #include "argil/core/geometry/triangle_distance.hpp"  // IWYU pragma: export

@@ -24,35 +24,11 @@ namespace {
 
 using argil::BSplineSurface;
 
-/// An OpenCASCADE surface back as an argil surface (knots expanded, poles row i * n_v + j).
-BSplineSurface from_occt(const Handle(Geom_BSplineSurface) & g) {
-  BSplineSurface s;
-  s.degree = {g->UDegree(), g->VDegree()};
-  const auto knots = [](const TColStd_Array1OfReal& values, const TColStd_Array1OfInteger& mults) {
-    std::vector<double> k;
-    for (int i = values.Lower(); i <= values.Upper(); ++i)
-      for (int m = 0; m < mults(i); ++m) k.push_back(values(i));
-    return Eigen::VectorXd(
-        Eigen::Map<Eigen::VectorXd>(k.data(), static_cast<Eigen::Index>(k.size())));
-  };
-  s.knots = {knots(g->UKnots(), g->UMultiplicities()), knots(g->VKnots(), g->VMultiplicities())};
-  const int nu = g->NbUPoles(), nv = g->NbVPoles();
-  s.control_points.resize(nu * nv, 3);
-  if (g->IsURational() || g->IsVRational()) s.weights.resize(nu * nv);
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const gp_Pnt p = g->Pole(i + 1, j + 1);
-      s.control_points.row(s.pole_index(i, j)) << p.X(), p.Y(), p.Z();
-      if (s.is_rational()) s.weights[s.pole_index(i, j)] = g->Weight(i + 1, j + 1);
-    }
-  return s;
-}
-
 /// `s` raised by one degree in both directions by OpenCASCADE (the same surface).
 BSplineSurface elevated(const BSplineSurface& s) {
   Handle(Geom_BSplineSurface) g = argil::test::to_occt(s);
   g->IncreaseDegree(s.degree[0] + 1, s.degree[1] + 1);
-  return from_occt(g);
+  return argil::test::from_occt(g);
 }
 
 /// The flat plate with an affine parametrisation: exact Gauss quadrature.
