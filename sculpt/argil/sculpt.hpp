@@ -12,6 +12,7 @@
 // script
 #include "argil/sculpt/script/script.hpp"  // IWYU pragma: export
 // session
+#include "argil/sculpt/session/face_refinement.hpp"  // IWYU pragma: export
 #include "argil/sculpt/session/journal.hpp"  // IWYU pragma: export
 #include "argil/sculpt/session/session.hpp"  // IWYU pragma: export
 // output

@@ -87,6 +87,9 @@ void print_report(const Options& o, const RunReport& report) {
     std::fprintf(stderr, "argil sculpt: %s\n", w.c_str());
   std::printf("argil sculpt: %s, %lld ticks at %g Hz, %d strokes, tool %s\n", o.scene.c_str(),
               report.ticks, report.haptic_rate, report.strokes, report.tool.c_str());
+  if (!report.refinements.empty())
+    std::printf("refined for the tool (exactly: the shape does not change):\n");
+  for (const std::string& r : report.refinements) std::printf("  %s\n", r.c_str());
   const TimingSummary& wall = report.wall_timing;
   const TimingSummary& cpu = report.cpu_timing;
   if (wall.ticks > 0) {

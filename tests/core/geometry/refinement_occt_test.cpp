@@ -30,8 +30,8 @@ double largest_deviation(const BSplineSurface& s, const BSplineSurface& original
   double worst = 0.0;
   for (const Eigen::Vector2d& uv : at) {
     const gp_Pnt p = g->Value(uv.x(), uv.y());
-    worst = std::max(worst, (argil::evaluate(s, uv.x(), uv.y()) -
-                             Eigen::Vector3d(p.X(), p.Y(), p.Z())).norm());
+    worst = std::max(
+        worst, (argil::evaluate(s, uv.x(), uv.y()) - Eigen::Vector3d(p.X(), p.Y(), p.Z())).norm());
   }
   return worst / argil::control_point_box(original).diagonal();
 }
@@ -101,10 +101,9 @@ TEST_CASE("refining a region keeps the surface and shortens the spans it overlap
       return s.domain_start(d) + f * (s.domain_end(d) - s.domain_start(d));
     };
     const double a = unit(rng), b = unit(rng), c = unit(rng), d = unit(rng);
-    const argil::ParamRect region{within(Direction::u, std::min(a, b)),
-                                  within(Direction::u, std::max(a, b)),
-                                  within(Direction::v, std::min(c, d)),
-                                  within(Direction::v, std::max(c, d))};
+    const argil::ParamRect region{
+        within(Direction::u, std::min(a, b)), within(Direction::u, std::max(a, b)),
+        within(Direction::v, std::min(c, d)), within(Direction::v, std::max(c, d))};
     argil::RefinementGoal goal;
     goal.resolution = size / 15.0;
     goal.max_count = 400;
@@ -173,8 +172,8 @@ TEST_CASE("the region near a path holds every point of the face within reach", "
   for (const BSplineSurface& s : cases(rng)) {
     const argil::Box3 box = argil::control_point_box(s);
     const auto inside_box = [&]() {
-      return Eigen::Vector3d(box.min + box.extent().cwiseProduct(Eigen::Vector3d(
-                                           unit(rng), unit(rng), unit(rng))));
+      return Eigen::Vector3d(
+          box.min + box.extent().cwiseProduct(Eigen::Vector3d(unit(rng), unit(rng), unit(rng))));
     };
     const std::vector<Eigen::Vector3d> path = {inside_box(), inside_box(), inside_box()};
     const double reach = 0.1 * box.diagonal();

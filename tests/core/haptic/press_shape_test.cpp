@@ -221,3 +221,19 @@ TEST_CASE("resolution independence: a panel coarser than the press",
           "[deformation][resolution][!shouldfail]") {
   check_resolution(argil::test::flat_bicubic_panel(20.0, 5), {0.43, 0.56}, 2.0, 0.5);
 }
+
+// What a session does with that coarse panel before its first tick
+// (refine_region to the default resolution, the sphere's radius): the
+// refined panel agrees with its own 2x and 4x refinements within 5%
+// (measured: clay dent 4.5%, force 2.4%; elastic clay dent 1.7%).
+TEST_CASE("resolution independence: a coarse panel refined to the sphere's radius",
+          "[deformation][resolution]") {
+  const BSplineSurface coarse = argil::test::flat_bicubic_panel(20.0, 5);
+  argil::RefinementGoal goal;
+  goal.resolution = 2.0;
+  const argil::Result<argil::Refinement> refined =
+      argil::refine_region(coarse, {0.0, 1.0, 0.0, 1.0}, goal);
+  REQUIRE(refined.ok());
+  REQUIRE(refined.value().surface.count(Direction::u) == 13);  // 10 spans of 2 mm
+  check_resolution(refined.value().surface, {0.43, 0.56}, 2.0, 0.5);
+}

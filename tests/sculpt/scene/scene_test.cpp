@@ -95,6 +95,7 @@ TEST_CASE("a material given field by field defaults to elastic with 1e-3 s dampi
   CHECK(std::isinf(m.yield));
   CHECK(r.value().models[0].friction == 0.3);
   CHECK(r.value().haptic_rate == 1000.0);
+  CHECK_FALSE(r.value().resolution.has_value());  // derived from the tool
 }
 
 /// The good scene with one substitution (`from` must occur once).
@@ -122,6 +123,10 @@ TEST_CASE("bad scenes give an error naming the field", "[scene][bad-input]") {
       {edited("\"tolerance\": 0.05", "\"tolerance\": null"), "tolerance: null where a number"},
       {edited("\"haptic_rate\": 500", "\"haptic_rate\": -1000"),
        "haptic_rate: must be > 0 Hz, got -1000 Hz"},
+      {edited("\"haptic_rate\": 500", "\"haptic_rate\": 500, \"resolution\": -2"),
+       "resolution: must be >= 0 mm, got -2 mm"},
+      {edited("\"haptic_rate\": 500", "\"haptic_rate\": 500, \"resolution\": \"fine\""),
+       "resolution: expected a number"},
       {edited("\"haptic_rate\": 500", "\"haptic_rate\": 0"),
        "haptic_rate: must be > 0 Hz, got 0 Hz"},
       {edited("\"haptic_rate\": 500", "\"haptic_rate\": 1e9"),

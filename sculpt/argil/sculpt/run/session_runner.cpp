@@ -65,7 +65,9 @@ Status resume(Session& session, const OpenedJournal& journal, const RunInputs& i
 
 /// The session with the scene's models loaded, and the output folder made.
 Result<Session> prepare(const RunInputs& in) {
-  Result<Session> created = Session::create(in.scene, in.script.tool);
+  std::vector<Eigen::Vector3d> path;
+  for (const Keyframe& k : in.script.keyframes) path.push_back(k.X_WD.p);
+  Result<Session> created = Session::create(in.scene, in.script.tool, path);
   if (!created.ok()) {
     return Status::error(created.status().code,
                          in.scene_path.string() + ": " + created.status().message);
@@ -106,6 +108,8 @@ Result<RunReport> run_session(const RunOptions& options) {
                    .tool = session.tool().name,
                    .haptic_rate = in.scene.haptic_rate,
                    .ticks = sampler.tick_count()};
+  for (const FaceRefinement& r : session.refinements())
+    report.refinements.push_back(refinement_text(r));
   RunState state;
   const Status resumed = resume(session, journal.value(), in, state, report);
   if (!resumed.ok()) return resumed;

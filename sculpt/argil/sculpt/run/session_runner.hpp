@@ -67,6 +67,8 @@ struct RunReport {
   std::vector<OutputFailure> failed_outputs{};  // not written; empty when every output was
   TimingSummary wall_timing{};                  // wall time of each live Session::step [s]
   TimingSummary cpu_timing{};                   // the ticking thread's CPU time of each [s]
+  /// The faces refined for the tool before the first tick (refinement_text()).
+  std::vector<std::string> refinements{};
   /// The scene's (Scene::warnings), then what the run recovered from.
   std::vector<std::string> warnings{};
 };

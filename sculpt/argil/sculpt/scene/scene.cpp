@@ -31,7 +31,7 @@ class SceneReader {
   bool scene(const Json& root, Scene& out) {
     if (!r_.only_known(root, "",
                        {"format", "version", "units", "tolerance", "haptic_rate", "coupling",
-                        "models", "tools", "outputs", "script"})) {
+                        "models", "tools", "outputs", "script", "resolution"})) {
       return false;
     }
     if (!header(root, out.version)) return false;
@@ -52,6 +52,12 @@ class SceneReader {
     }
     if (const Json* coupling = r_.member(root, "", "coupling", false)) {
       if (!this->coupling(*coupling, out.coupling)) return false;
+    }
+    if (const Json* resolution = r_.member(root, "", "resolution", false)) {
+      double value = 0.0;
+      if (!r_.positive(*resolution, "resolution", value, {.unit = "mm", .allow_zero = true}))
+        return false;
+      out.resolution = value;
     }
     if (!models(root, out.models) || !tools(root, out.tools)) return false;
     out.warnings = std::move(warnings_);

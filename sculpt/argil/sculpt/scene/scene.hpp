@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -66,6 +67,10 @@ struct Scene {
   double tolerance = 0.0;            // eps [mm], > 0
   double haptic_rate = 1000.0;       // [Hz]
   CouplingOptions coupling;          // read directly from "coupling"
+  /// Longest knot span [mm] wanted on a deformable face where the tool
+  /// works (docs/deformation.md, Refinement); 0 turns refinement off; unset:
+  /// derived from the tool (a sphere's radius; none for a point).
+  std::optional<double> resolution;
   OutputOptions outputs;
   std::filesystem::path script;       // default script, resolved; empty: none
   int version = kSceneFormatVersion;  // the file's schema version

@@ -86,7 +86,8 @@ Result<LoadedModel> load_model(const Scene& scene, std::size_t m) {
 
 }  // namespace
 
-Result<Session> Session::create(const Scene& scene, const std::string& tool_name) {
+Result<Session> Session::create(const Scene& scene, const std::string& tool_name,
+                                const std::vector<Eigen::Vector3d>& tool_path) {
   Session s;
   s.scene_ = scene;
   s.tool_index_ = scene.tool_index(tool_name);
@@ -103,6 +104,10 @@ Result<Session> Session::create(const Scene& scene, const std::string& tool_name
     if (!loaded.ok()) return loaded.status();
     s.models_.push_back(std::move(loaded).value());
   }
+  Result<std::vector<FaceRefinement>> refined = refine_faces(
+      s.models_, s.tool_shape_, refinement_resolution(scene, s.tool_shape_), tool_path);
+  if (!refined.ok()) return refined.status();
+  s.refinements_ = std::move(refined).value();
   const Status built = s.rebuild_world();
   if (!built.ok()) return built;
   return s;

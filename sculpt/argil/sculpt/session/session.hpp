@@ -17,6 +17,7 @@
 #include "argil/io/model/model.hpp"
 #include "argil/sculpt/scene/scene.hpp"
 #include "argil/sculpt/script/script.hpp"
+#include "argil/sculpt/session/face_refinement.hpp"
 
 namespace argil::sculpt {
 
@@ -62,7 +63,11 @@ class Session {
   /// `tool_name` (empty: the scene's first tool). Errors name the scene field
   /// ("models[1].faces[2]: face 9 is out of range ...", "models[0] face 12:
   /// loop 0 curve 3 ends at ...").
-  static Result<Session> create(const Scene& scene, const std::string& tool_name = "");
+  /// With `tool_path` (the device positions the script visits, in order),
+  /// the deformable faces that path comes near are first refined exactly to
+  /// the scene's resolution (face_refinement.hpp; refinements()).
+  static Result<Session> create(const Scene& scene, const std::string& tool_name = "",
+                                const std::vector<Eigen::Vector3d>& tool_path = {});
 
   /// One haptic tick of 1 / haptic_rate seconds with the device at `sample`.
   /// An engaged sample after a released one starts a stroke; a released one
@@ -85,6 +90,8 @@ class Session {
   Status redo();
 
   const Scene& scene() const { return scene_; }
+  /// The faces create() refined for the tool's path.
+  const std::vector<FaceRefinement>& refinements() const { return refinements_; }
   const std::vector<LoadedModel>& models() const { return models_; }
   /// Model `index` with every face's current (sculpted) surface.
   io::Model current_model(int index) const;
@@ -114,6 +121,7 @@ class Session {
   int tool_index_ = 0;
   ToolShape tool_shape_;
   std::vector<LoadedModel> models_;
+  std::vector<FaceRefinement> refinements_;
   std::vector<std::pair<int, int>> body_owner_;  // body -> (model, loaded face)
   std::optional<HapticWorld> world_;
   std::vector<DeviceSample> history_;  // every sample the current state results from

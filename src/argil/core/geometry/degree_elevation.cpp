@@ -21,8 +21,7 @@ Eigen::VectorXd elevated_knots(const Eigen::VectorXd& t, int times) {
 }
 
 /// Row k: the values at x of the `count` basis functions of (degree, knots).
-Eigen::MatrixXd basis_matrix(int degree, const Eigen::VectorXd& knots,
-                             const Eigen::VectorXd& x) {
+Eigen::MatrixXd basis_matrix(int degree, const Eigen::VectorXd& knots, const Eigen::VectorXd& x) {
   const int count = static_cast<int>(knots.size()) - degree - 1;
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(x.size(), count);
   Eigen::MatrixXd values(1, degree + 1);
@@ -42,8 +41,7 @@ Result<BSplineSurface> elevate_degree(const BSplineSurface& surface, Direction d
     return Status::error(StatusCode::invalid_argument,
                          "degree elevation of " + std::string(to_string(d)) + " by " +
                              std::to_string(times) + ": the degree must stay in [1, " +
-                             std::to_string(kMaxElevatedDegree) + "], it is " +
-                             std::to_string(p));
+                             std::to_string(kMaxElevatedDegree) + "], it is " + std::to_string(p));
   }
   if (times == 0) return surface;
   const Eigen::VectorXd& t = surface.knots_in(d);

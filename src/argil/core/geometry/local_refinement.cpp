@@ -140,7 +140,7 @@ Result<Refinement> refine_region(const BSplineSurface& surface, const ParamRect&
       const int room = std::max(0, goal.max_count - out.surface.count(d));
       if (added() > room) {
         report.capped = true;
-        if (pass > 0) continue;  // the first pass set how fine this direction goes
+        if (pass > 0) continue;            // the first pass set how fine this direction goes
         while (added() > room) r *= 1.05;  // coarsen until the net fits
       }
       for (std::size_t k = 0; k < spans.size(); ++k) {

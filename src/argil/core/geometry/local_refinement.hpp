@@ -50,8 +50,7 @@ struct Refinement {
 /// chord is added to the reach, so a face the path passes within `reach` of is
 /// not missed.
 std::optional<ParamRect> region_near_path(const BSplineSurface& surface,
-                                          const std::vector<Eigen::Vector3d>& path,
-                                          double reach);
+                                          const std::vector<Eigen::Vector3d>& path, double reach);
 
 /// `surface` elevated to goal.min_degree and its spans that overlap `region`
 /// split evenly into spans at most goal.resolution long (length along the span
