@@ -6,8 +6,10 @@
 //    Ventilator.stp when it imports), all with the clay preset;
 //  - refine: dent depth and peak force against exact refinement of the face,
 //    foam and clay;
-//  - create: the one-off cost of a deformable body.
-// Arguments: [ticks] [ticks|refine|create|all] [case filter]: the filter is a
+//  - create: the one-off cost of a deformable body;
+//  - sleep: untouched faces 50 mm from a pressed plate, sleep on and off
+//    (at most 2000 ticks a run, 300 with sleep off).
+// Arguments: [ticks] [ticks|refine|create|sleep|all] [case filter]: the filter is a
 // substring of the case names; CAD files are read only when it is empty or
 // names the file.
 #include <cstdio>
@@ -81,9 +83,9 @@ int main(int argc, char** argv) {
   const int ticks = argc > 1 ? std::atoi(argv[1]) : 10000;
   const std::string section = argc > 2 ? argv[2] : "all";
   const std::string filter = argc > 3 ? argv[3] : "";
-  if (ticks < 1 ||
-      (section != "all" && section != "ticks" && section != "refine" && section != "create")) {
-    std::fprintf(stderr, "usage: %s [ticks >= 1] [ticks|refine|create|all] [case filter]\n",
+  if (ticks < 1 || (section != "all" && section != "ticks" && section != "refine" &&
+                    section != "create" && section != "sleep")) {
+    std::fprintf(stderr, "usage: %s [ticks >= 1] [ticks|refine|create|sleep|all] [case filter]\n",
                  argv[0]);
     return 2;
   }
@@ -154,5 +156,7 @@ int main(int argc, char** argv) {
     std::erase_if(faces, [&](const auto& f) { return !wanted(f.name, filter); });
     argil::bench::creation_section(faces, kRepeats);
   }
+  if (section == "all" || section == "sleep")
+    argil::bench::sleep_section(std::min(ticks, 2000), std::min(ticks, 300), kRepeats);
   return 0;
 }

@@ -37,4 +37,10 @@ void refinement_section(const std::vector<RefinementCase>& cases);
 /// with the factorisation), medians over `repeats` runs of a few creations.
 void creation_section(const std::vector<BenchFace>& faces, int repeats);
 
+/// Per-tick CPU time of a sphere pressing a small plate while other faces
+/// (deformable or rigid) lie untouched 50 mm away, with WorldOptions::sleep
+/// and cull on and off, `repeats` runs of `ticks_on` and `ticks_off` ticks (a
+/// 128x128 face awake costs ~30 ms a tick: fewer ticks with sleep off).
+void sleep_section(int ticks_on, int ticks_off, int repeats);
+
 }  // namespace argil::bench

@@ -211,6 +211,16 @@ double DeformableBody::potential_energy() const {
   return 0.5 * stiffness_.quadratic_form(control_points() - rest_);
 }
 
+double DeformableBody::last_step_motion() const {
+  return velocities_.rows() > 0 ? step_dt_ * velocities_.rowwise().norm().maxCoeff() : 0.0;
+}
+
+bool DeformableBody::settled(double distance) const {
+  if (!(last_step_motion() < distance)) return false;
+  const ControlNet stretch = control_points() - rest_;
+  return stretch.rows() == 0 || stretch.rowwise().norm().maxCoeff() < distance;
+}
+
 SymmetricBandMatrix DeformableBody::step_matrix(double dt) const {
   const Eigen::Index n = masses_.size();
   SymmetricBandMatrix a(static_cast<int>(n), bandwidth_);

@@ -106,6 +106,19 @@ class DeformableBody {
   /// Completes the step with pattern force F [N] (control-point force g_i F).
   void finish_step(const Eigen::Vector3d& pattern_force);
 
+  /// Largest distance a control point moved over the last step [mm] (0 before
+  /// the first): the surface moved no farther (convex hull, fixed weights).
+  double last_step_motion() const;
+  /// Whether the body is at rest to within `distance` [mm]: every control
+  /// point within `distance` of its rest position (the unloaded equilibrium:
+  /// K is positive definite on the free points whenever the foundation or a
+  /// held point anchors the face) and moved less than `distance` over the last
+  /// step.
+  bool settled(double distance) const;
+  /// Sets every velocity to zero: a body put to sleep wakes from a state that
+  /// does not depend on how long it slept.
+  void halt() { velocities_.setZero(); }
+
  private:
   DeformableBody(SurfaceHierarchy hierarchy, const Material& material);
   Status factorize(double dt);

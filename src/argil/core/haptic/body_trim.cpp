@@ -40,9 +40,10 @@ const TrimRegion& HapticWorld::trim(int body) const {
   return b < trims_.size() ? trims_[b] : untrimmed_;
 }
 
-std::vector<TrimmedSurface> HapticWorld::trimmed_surfaces() const {
+std::vector<TrimmedSurface> HapticWorld::trimmed_surfaces(const std::vector<char>& reach) const {
   std::vector<TrimmedSurface> out;
-  for (int b = 0; b < body_count(); ++b) out.push_back({&hierarchy(b), &trim(b)});
+  for (int b = 0; b < body_count(); ++b)
+    out.push_back({reach[static_cast<std::size_t>(b)] ? &hierarchy(b) : nullptr, &trim(b)});
   return out;
 }
 

@@ -75,6 +75,7 @@ Result<HapticWorld> HapticWorld::create(const ToolShape& tool, const WorldOption
           "tool.radius " + number_text(sphere->radius) + " mm must be finite and at least 0 mm");
     }
     world.sphere_.emplace(sphere->radius, options.tolerance);
+    world.tool_reach_ = sphere->radius;
     return world;
   }
   Result<SurfaceToolProxy> proxy = SurfaceToolProxy::create(
@@ -85,6 +86,9 @@ Result<HapticWorld> HapticWorld::create(const ToolShape& tool, const WorldOption
     return s;
   }
   world.surface_tool_.emplace(std::move(proxy).value());
+  // Its push-out out of a surface that moved into it goes up to 4 tool sizes.
+  const ControlNet& points = std::get<SurfaceToolShape>(tool).surface.control_points;
+  world.tool_reach_ = points.rowwise().norm().maxCoeff() + 4.0 * world.surface_tool_->size();
   return world;
 }
 
@@ -112,6 +116,8 @@ Result<int> HapticWorld::add_rigid(const BSplineSurface& surface, double frictio
 }
 
 int HapticWorld::add_body(Body body) {
+  body.bound =
+      control_point_box(body.deformable ? body.deformable->surface() : body.rigid->surface());
   bodies_.push_back(std::move(body));
   return body_count() - 1;
 }
@@ -147,16 +153,19 @@ void HapticWorld::set_node_budget(int body, std::size_t nodes) {
   }
 }
 
-std::vector<const SurfaceHierarchy*> HapticWorld::surfaces() const {
+std::vector<const SurfaceHierarchy*> HapticWorld::surfaces(const std::vector<char>& reach) const {
   std::vector<const SurfaceHierarchy*> out;
-  for (int b = 0; b < body_count(); ++b) out.push_back(&hierarchy(b));
+  for (int b = 0; b < body_count(); ++b)
+    out.push_back(reach[static_cast<std::size_t>(b)] ? &hierarchy(b) : nullptr);
   return out;
 }
 
 Status HapticWorld::relax(double dt) {
   for (Body& b : bodies_)
-    if (b.deformable)
+    if (b.deformable && !b.asleep)
       if (Status s = b.deformable->step(dt); !s.ok()) return s;
+  // No tool: every body is out of reach.
+  settle(std::vector<char>(bodies_.size(), 0));
   return Status::success();
 }
 
@@ -185,9 +194,13 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
     if (sphere_) sphere_.emplace(sphere_->radius(), options_.tolerance);  // forget the sides
   }
   engaged_ = true;
+  const std::vector<char> reach = reachable(previous, device);
+  wake(reach);
 
   // 1-2. Proxy: frictionless target, then stick or slip from the last pose.
-  ProxyMove move = sphere_ ? move_sphere(previous, device) : move_surface_tool(previous, device);
+  const std::vector<char> queried = options_.cull ? reach : std::vector<char>(reach.size(), 1);
+  ProxyMove move = sphere_ ? move_sphere(previous, device, queried)
+                           : move_surface_tool(previous, device, queried);
   if (!move.status.ok()) {
     r.status = std::move(move.status);
     return r;
@@ -207,6 +220,7 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
     r.status = std::move(load.status);
     return r;
   }
+  settle(reach);
   r.force = load.force;
   r.body_force = load.body_force;
   r.clamped = load.clamped;
@@ -225,7 +239,7 @@ HapticWorld::Coupling HapticWorld::step_bodies(
   const double eps = options_.tolerance;
   std::vector<LoadPreview> previews(bodies_.size());
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    if (!bodies_[b].deformable) continue;
+    if (!bodies_[b].deformable || bodies_[b].asleep) continue;
     DeformableBody& body = *bodies_[b].deformable;
     Eigen::VectorXd pattern;
     if (pressing && !body_contacts[b].empty()) {
@@ -265,7 +279,7 @@ HapticWorld::Coupling HapticWorld::step_bodies(
     out = {Status::success(), f.force, {0, 0, 0}, f.clamped};
   }
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    if (!bodies_[b].deformable) continue;
+    if (!bodies_[b].deformable || bodies_[b].asleep) continue;
     const Eigen::Vector3d carried = total_weight > 0.0
                                         ? Eigen::Vector3d(load * (weight[b] / total_weight))
                                         : Eigen::Vector3d::Zero();

@@ -73,7 +73,20 @@ struct WorldOptions {
   double tolerance = 0.01;
   CouplingOptions coupling;
   int max_contacts = 64;  // per body and tick
+  /// Bodies out of the tool's reach this tick are left out of the proxy's
+  /// queries (body_sleep.cpp); the results are the same to the last bit.
+  bool cull = true;
+  /// A deformable body out of the tool's reach that has settled sleeps (is
+  /// not stepped) until the tool comes within reach (body_sleep.cpp).
+  /// False, with cull false: every body is queried and stepped every tick
+  /// (the reference tests and benchmarks compare against).
+  bool sleep = true;
 };
+
+/// A deformable body out of the tool's reach sleeps once every control point
+/// is within this fraction of eps of its rest position and moved less than
+/// it over the last tick.
+inline constexpr double kSleepFraction = 1e-2;
 
 /// Bodies (deformable or rigid) and one tool.
 class HapticWorld {
@@ -116,7 +129,9 @@ class HapticWorld {
   ///     (contact_shares), solved backwards in time against the bodies'
   ///     compliance (implicit_coupling_force), clamped, and applied through
   ///     load patterns through the basis (contact_load_pattern).
-  ///  4. Every deformable body steps (DeformableBody): its control points move.
+  ///  4. Every deformable body steps (DeformableBody): its control points
+  ///     move; one out of the tool's reach that has settled sleeps instead
+  ///     (WorldOptions::sleep).
   ///  Strategies: sphere_tool_step.cpp (god-object sphere), surface_tool_step.cpp
   ///  (B-spline tool, conservative advancement).
   TickResult step(const DeviceSample& device, double dt);
@@ -132,6 +147,9 @@ class HapticWorld {
   /// Largest node count of body `body`'s lazy hierarchy (SurfaceHierarchy::set_node_budget).
   void set_node_budget(int body, std::size_t nodes);
   const ProxyState& proxy() const { return proxy_; }
+  /// Whether body `body` sleeps: settled, out of the tool's reach, not stepped
+  /// (always false for a rigid body, which never steps).
+  bool asleep(int body) const { return bodies_[static_cast<std::size_t>(body)].asleep; }
   const WorldOptions& options() const { return options_; }
 
  private:
@@ -141,6 +159,10 @@ class HapticWorld {
     double friction = 0.0;
     /// The force it carried last tick [N]: sets the sphere's contact disc.
     double pressing_force = 0.0;
+    /// Box of the control points as they are now: encloses the surface.
+    Box3 bound;
+    bool asleep = false;
+    bool in_reach = true;  // last tick
   };
   /// The proxy's move this tick (steps 1-2) and its contacts with every body.
   struct [[nodiscard]] ProxyMove {
@@ -158,9 +180,19 @@ class HapticWorld {
     bool clamped = false;
   };
   HapticWorld() = default;
-  std::vector<const SurfaceHierarchy*> surfaces() const;
-  /// Every body with its trims (body_trim.cpp).
-  std::vector<TrimmedSurface> trimmed_surfaces() const;
+  /// Every body's hierarchy; null where `reach` is 0 (the proxies skip it).
+  std::vector<const SurfaceHierarchy*> surfaces(const std::vector<char>& reach) const;
+  /// Every body with its trims (body_trim.cpp); a null hierarchy where `reach` is 0.
+  std::vector<TrimmedSurface> trimmed_surfaces(const std::vector<char>& reach) const;
+  /// Which bodies the tool can reach this tick from `previous` towards the
+  /// device (body_sleep.cpp): all of them without WorldOptions::sleep.
+  std::vector<char> reachable(const ProxyState& previous, const DeviceSample& device) const;
+  /// Wakes the bodies in reach; a sphere proxy records its side of a body
+  /// that comes back into reach afresh.
+  void wake(const std::vector<char>& reach);
+  /// After the bodies stepped: the largest motion, the bounds, and which
+  /// bodies out of reach fall asleep.
+  void settle(const std::vector<char>& reach);
   /// Removes the contacts outside their body's trims (body_trim.cpp).
   void drop_contacts_outside_trims(std::vector<std::vector<Contact>>& per_body) const;
   /// The world's tolerance checked against the documented range for a body.
@@ -168,11 +200,13 @@ class HapticWorld {
   int add_body(Body body);
   /// Steps every deformable body without tool load.
   Status relax(double dt);
-  ProxyMove move_sphere(const ProxyState& previous, const DeviceSample& device);
-  ProxyMove move_surface_tool(const ProxyState& previous, const DeviceSample& device);
+  ProxyMove move_sphere(const ProxyState& previous, const DeviceSample& device,
+                        const std::vector<char>& reach);
+  ProxyMove move_surface_tool(const ProxyState& previous, const DeviceSample& device,
+                              const std::vector<char>& reach);
   /// Shares `spring` (the coupling force on the device side, pressing when
   /// `pressing`) among the bodies by `weight`, solves it backwards in time and
-  /// steps every deformable body.
+  /// steps every deformable body that is awake.
   Coupling step_bodies(const std::vector<std::vector<Contact>>& body_contacts,
                        const std::vector<double>& weight, const Eigen::Vector3d& spring,
                        bool pressing, double dt);
@@ -185,6 +219,12 @@ class HapticWorld {
   std::optional<SphereProxy> sphere_;
   std::optional<SurfaceToolProxy> surface_tool_;
   ProxyState proxy_;
+  /// Radius about the tool frame's origin that holds the tool at any pose,
+  /// plus how far a B-spline tool's push-out may move it [mm].
+  double tool_reach_ = 0.0;
+  /// Largest control-point move of any body last tick [mm]: how far a surface
+  /// can have pushed into the proxy since.
+  double motion_ = 0.0;
   bool engaged_ = false;
   Eigen::Vector3d last_device_ = Eigen::Vector3d::Zero();
 };

@@ -110,6 +110,7 @@ SphereMove SphereProxy::project(const std::vector<TrimmedSurface>& surfaces,
   for (int round = 0; round < kMaxProjectionRounds; ++round) {
     pushes.clear();
     for (std::size_t b = 0; b < surfaces.size(); ++b) {
+      if (!surfaces[b].hierarchy) continue;
       Push push = push_out(surfaces[b], b, centre);
       if (!push.status.ok()) return {std::move(push.status), centre};
       const Eigen::Vector3d move = push.centre - centre;
@@ -138,7 +139,12 @@ ProxyContact SphereProxy::nearest(const std::vector<TrimmedSurface>& surfaces,
   ProxyContact best;
   std::vector<double> clearances(surfaces.size());
   std::vector<Eigen::Vector3d> normals(surfaces.size());
+  std::vector<char> skipped(surfaces.size(), 0);
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
+    if (!surfaces[b].hierarchy) {
+      skipped[b] = 1;
+      continue;
+    }
     ClosestPoint cp = closest_point(surfaces[b], centre, {.tolerance = 0.25 * eps_});
     if (!cp.status.ok()) return {std::move(cp.status)};
     const double clearance = cp.distance - radius_;
@@ -158,6 +164,7 @@ ProxyContact SphereProxy::nearest(const std::vector<TrimmedSurface>& surfaces,
   // instead of jumping between the faces' normals.
   Eigen::Vector3d blend = Eigen::Vector3d::Zero();
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
+    if (skipped[b]) continue;
     const double weight = best.clearance + eps_ - clearances[b];
     if (weight > 0.0) blend += weight * normals[b];
   }

@@ -53,6 +53,8 @@ struct PushConstraint {
 /// god-object's constraint planes, solved together).
 Eigen::Vector3d push_apart(const std::vector<PushConstraint>& pushes);
 
+/// A surface whose hierarchy is null is out of the proxy's reach this tick:
+/// every query skips it and its side record is kept.
 class SphereProxy {
  public:
   SphereProxy(double radius, double eps) : radius_(radius), eps_(eps) {}
@@ -68,6 +70,12 @@ class SphereProxy {
   SphereMove project(const std::vector<TrimmedSurface>& surfaces, const Eigen::Vector3d& centre);
   /// The nearest surface to `centre` (and updates the side record far from surfaces).
   ProxyContact nearest(const std::vector<TrimmedSurface>& surfaces, const Eigen::Vector3d& centre);
+  /// Forgets which side of surface `index` the centre is on: the next query
+  /// records it from the sign of the signed distance (for a surface the
+  /// proxy did not query for a while, from far away).
+  void forget_side(std::size_t index) {
+    if (index < sides_.size()) sides_[index] = 0;
+  }
   /// Largest number of substeps in one move (a longer move stops early).
   static constexpr int kMaxSubsteps = 256;
   static constexpr int kMaxProjectionRounds = 8;

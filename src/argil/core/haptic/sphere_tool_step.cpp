@@ -20,6 +20,7 @@ SphereContacts sphere_contacts(const std::vector<TrimmedSurface>& surfaces,
   SphereContacts out;
   out.per_body.resize(surfaces.size());
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
+    if (!surfaces[b].hierarchy) continue;  // out of reach
     CollisionResult hit = collide_sphere(surfaces[b], p_WT, radius, request);
     if (!hit.status.ok()) {
       out.status =
@@ -34,10 +35,11 @@ SphereContacts sphere_contacts(const std::vector<TrimmedSurface>& surfaces,
 }  // namespace
 
 HapticWorld::ProxyMove HapticWorld::move_sphere(const ProxyState& previous,
-                                                const DeviceSample& device) {
+                                                const DeviceSample& device,
+                                                const std::vector<char>& reach) {
   const double eps = options_.tolerance;
   const double k = options_.coupling.stiffness;
-  const std::vector<TrimmedSurface> surfs = trimmed_surfaces();
+  const std::vector<TrimmedSurface> surfs = trimmed_surfaces(reach);
   const Eigen::Vector3d& p_WD = device.X_WD.p;
   ProxyMove out;
   out.next.X_WT.R = device.X_WD.R;

@@ -44,6 +44,7 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
   ToolContacts out;
   out.per_surface.resize(surfaces.size());
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
+    if (!surfaces[b]) continue;  // out of reach
     CollisionResult r =
         collide(*surfaces[b], posed_,
                 {.tolerance = eps_, .max_contacts = 64, .refine = false, .compute_depth = false});
@@ -73,6 +74,7 @@ SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
                                  .compute_depth = false,
                                  .first_crossing_only = true};
   for (const SurfaceHierarchy* surface : surfaces) {
+    if (!surface) continue;
     CollisionResult r = collide(*surface, posed_, request);
     // A failed query counts as crossing: the proxy must not move where it
     // cannot prove it is clear.

@@ -40,6 +40,8 @@ struct [[nodiscard]] ToolMove {
 /// (sliding). So after a move the tool crosses no surface (touching within
 /// eps counts as contact, not crossing). A start pose that crosses (the
 /// surface moved into the tool) is first pushed out along the contact normal.
+/// A null surface is out of the tool's reach this tick: every query skips it
+/// (its contacts stay empty).
 class SurfaceToolProxy {
  public:
   /// `tool` in its own frame T; fails when it does not validate, or with

@@ -8,8 +8,9 @@
 namespace argil {
 
 HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous,
-                                                      const DeviceSample& device) {
-  const std::vector<const SurfaceHierarchy*> surfs = surfaces();
+                                                      const DeviceSample& device,
+                                                      const std::vector<char>& reach) {
+  const std::vector<const SurfaceHierarchy*> surfs = surfaces(reach);
   const double k = options_.coupling.stiffness;
   ProxyMove out;
   ToolMove moved = surface_tool_->move(surfs, previous.X_WT, device.X_WD);
