@@ -8,8 +8,9 @@
 //    foam and clay;
 //  - create: the one-off cost of a deformable body;
 //  - sleep: untouched faces 50 mm from a pressed plate, sleep on and off
-//    (at most 2000 ticks a run, 300 with sleep off).
-// Arguments: [ticks] [ticks|refine|create|sleep|all] [case filter]: the filter is a
+//    (at most 2000 ticks a run, 300 with sleep off);
+//  - resolve: the one-off cost of refining every face of the real files for a tool.
+// Arguments: [ticks] [ticks|refine|create|sleep|resolve|all] [case filter]: the filter is a
 // substring of the case names; CAD files are read only when it is empty or
 // names the file.
 #include <cstdio>
@@ -84,8 +85,9 @@ int main(int argc, char** argv) {
   const std::string section = argc > 2 ? argv[2] : "all";
   const std::string filter = argc > 3 ? argv[3] : "";
   if (ticks < 1 || (section != "all" && section != "ticks" && section != "refine" &&
-                    section != "create" && section != "sleep")) {
-    std::fprintf(stderr, "usage: %s [ticks >= 1] [ticks|refine|create|sleep|all] [case filter]\n",
+                    section != "create" && section != "sleep" && section != "resolve")) {
+    std::fprintf(stderr,
+                 "usage: %s [ticks >= 1] [ticks|refine|create|sleep|resolve|all] [case filter]\n",
                  argv[0]);
     return 2;
   }
@@ -155,6 +157,12 @@ int main(int argc, char** argv) {
     }
     std::erase_if(faces, [&](const auto& f) { return !wanted(f.name, filter); });
     argil::bench::creation_section(faces, kRepeats);
+  }
+  if (section == "all" || section == "resolve") {
+    std::vector<std::string> files = {"screw.step", "bearing.iges", "as1-oc-214.stp", "surf114.igs",
+                                      "11752.stp"};
+    std::erase_if(files, [&](const auto& f) { return !wanted(f, filter); });
+    argil::bench::tool_refinement_section(files, 1.0 / 30.0);
   }
   if (section == "all" || section == "sleep")
     argil::bench::sleep_section(std::min(ticks, 2000), std::min(ticks, 300), kRepeats);

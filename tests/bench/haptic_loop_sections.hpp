@@ -43,4 +43,10 @@ void creation_section(const std::vector<BenchFace>& faces, int repeats);
 /// 128x128 face awake costs ~30 ms a tick: fewer ticks with sleep off).
 void sleep_section(int ticks_on, int ticks_off, int repeats);
 
+/// The one-off cost of refining every face of each file (tests/data) over
+/// its whole domain for a tool whose radius is `size_fraction` of the part's
+/// size (refine_region; region_near_path timed on a path through each face's
+/// middle): per file the faces refined, poles before and after, and CPU time.
+void tool_refinement_section(const std::vector<std::string>& files, double size_fraction);
+
 }  // namespace argil::bench
