@@ -84,18 +84,25 @@ constexpr double kRelativeEps = 1e-6;
 // SISL's computational resolution: relative rounding of doubles.
 constexpr double kSislResolution = 1e-15;
 
-/// argil: hierarchies built once; every iteration sets the control points
-/// again, so every node's Bezier net and bounds are recomputed when reached
-/// (node topology is reused, as it is between haptic ticks).
+/// argil: hierarchies built once; every iteration sets new control points
+/// (the pair and the pair moved together by a thousandth of its size, in
+/// turn: the same intersection, every pole changed), so every node's Bezier
+/// net and bounds are recomputed when reached (node topology is reused, as it
+/// is between haptic ticks; unchanged points would refresh nothing).
 void run_argil(benchmark::State& state, const Scene& s, double relative_eps) {
   argil::OperatorCache cache;
   argil::SurfaceHierarchy ha = argil::SurfaceHierarchy::build(s.a, cache).value();
   argil::SurfaceHierarchy hb = argil::SurfaceHierarchy::build(s.b, cache).value();
   const argil::CollisionRequest request{.tolerance = relative_eps * s.size, .refine = true};
   argil::CollisionResult r;
+  const Eigen::RowVector3d shift(1e-3 * s.size, 0.0, 0.0);
+  const argil::ControlNet a[2] = {s.a.control_points, s.a.control_points.rowwise() + shift};
+  const argil::ControlNet b[2] = {s.b.control_points, s.b.control_points.rowwise() + shift};
+  int turn = 0;
   for (auto _ : state) {
-    ha.set_control_points(s.a.control_points);
-    hb.set_control_points(s.b.control_points);
+    turn = 1 - turn;
+    ha.set_control_points(a[turn]);
+    hb.set_control_points(b[turn]);
     r = argil::collide(ha, hb, request);
     benchmark::DoNotOptimize(r.curves.data());
   }

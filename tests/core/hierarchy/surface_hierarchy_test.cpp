@@ -188,4 +188,60 @@ TEST_CASE("after set_control_points the grown nodes bound the new net's samples"
   }
 }
 
+TEST_CASE("moving one control point makes only the elements of its support stale", "[hierarchy]") {
+  OperatorCache cache;
+  std::mt19937_64 rng(99);
+  std::normal_distribution<double> push(0.0, 1.0);
+  for (const BSplineSurface& s : test_surfaces()) {
+    Result<SurfaceHierarchy> built = SurfaceHierarchy::build(s, cache);
+    REQUIRE(built.ok());
+    SurfaceHierarchy h = std::move(built).value();
+    const std::vector<int> ids = grow(h);
+    // The same points again: nothing is stale, nothing refreshes.
+    const std::uint64_t version = h.version();
+    h.set_control_points(s.control_points, s.weights);
+    CHECK(h.version() == version);
+    CHECK(h.stale_elements() == 0);
+    QueryCounters same;
+    for (int id : ids) (void)h.node(id, &same);
+    CHECK(same.nodes_refreshed == 0);
+    // One interior pole moved: the elements whose span holds it go stale.
+    const int nu = s.count(Direction::u), nv = s.count(Direction::v);
+    const int pi = nu / 2, pj = nv / 2;
+    BSplineSurface moved = s;
+    moved.control_points.row(moved.pole_index(pi, pj)) +=
+        0.1 * control_point_box(s).diagonal() * Eigen::RowVector3d(push(rng), push(rng), push(rng));
+    h.set_control_points(moved.control_points, moved.weights);
+    int expected = 0;
+    const int p = s.degree[0], q = s.degree[1];
+    std::vector<char> touched;
+    for (int eu = p; eu < nu; ++eu) {
+      if (!(s.knots[0][eu] < s.knots[0][eu + 1])) continue;
+      for (int ev = q; ev < nv; ++ev) {
+        if (!(s.knots[1][ev] < s.knots[1][ev + 1])) continue;
+        const bool in = eu - p <= pi && pi <= eu && ev - q <= pj && pj <= ev;
+        expected += in ? 1 : 0;
+        touched.push_back(in ? 1 : 0);
+      }
+    }
+    CHECK(h.stale_elements() == expected);
+    CHECK(expected < static_cast<int>(h.roots().size()) + 1);
+    // Nodes of untouched elements refresh nothing; every bound holds the moved surface.
+    QueryCounters untouched;
+    for (int id : ids) {
+      const HierarchyNode& n = h.node(id);
+      const std::size_t element = static_cast<std::size_t>(n.element_u) *
+                                      static_cast<std::size_t>(h.operators().v->element_count()) +
+                                  static_cast<std::size_t>(n.element_v);
+      if (!touched[element]) (void)h.node(id, &untouched);
+    }
+    CHECK(untouched.nodes_refreshed == 0);
+    for (int id : ids) check_node_contains_samples(h, id, moved);
+    const ElementBlock& top = h.block(0);
+    const Eigen::Vector3d far = moved.control_points.row(moved.pole_index(pi, pj)).transpose();
+    CHECK((top.bound.box.min.array() <= far.array()).all());
+    CHECK((far.array() <= top.bound.box.max.array()).all());
+  }
+}
+
 }  // namespace argil

@@ -28,6 +28,7 @@ Result<SurfaceHierarchy> SurfaceHierarchy::build(const BSplineSurface& surface,
       h.nodes_.push_back(std::move(n));
     }
   }
+  h.element_version_.assign(h.roots_.size(), h.version_);
   h.build_block(0, static_cast<int>(xu.spans.size()), 0, static_cast<int>(xv.spans.size()));
   return h;
 }
@@ -66,7 +67,7 @@ int SurfaceHierarchy::build_block(int eu0, int eu1, int ev0, int ev1) {
 const ElementBlock& SurfaceHierarchy::block(int id, QueryCounters* counters) const {
   ElementBlock& b = blocks_[static_cast<std::size_t>(id)];
   if (counters) ++counters->nodes_visited;
-  if (b.version == version_) return b;
+  if (b.fresh) return b;
   const int p = surface_.degree[0];
   const int q = surface_.degree[1];
   const int i0 = ops_.u->extraction().spans[static_cast<std::size_t>(b.eu0)] - p;
@@ -88,7 +89,7 @@ const ElementBlock& SurfaceHierarchy::block(int id, QueryCounters* counters) con
   b.bound.center = 0.5 * (lo + hi);
   b.bound.radius = 0.5 * (hi - lo).norm();
   b.bound.flatness = std::numeric_limits<double>::infinity();
-  b.version = version_;
+  b.fresh = true;
   if (counters) ++counters->nodes_refreshed;
   return b;
 }
@@ -97,9 +98,48 @@ void SurfaceHierarchy::set_control_points(const ControlNet& points,
                                           const Eigen::VectorXd& weights) {
   assert(points.rows() == surface_.control_points.rows());
   assert(weights.size() == 0 || weights.size() == surface_.weights.size());
+  // Which poles changed, as a 2D prefix count so an element's support (a
+  // (p + 1) x (q + 1) block of poles) is tested in O(1).
+  const int nu = surface_.count(Direction::u), nv = surface_.count(Direction::v);
+  std::vector<int> changed(static_cast<std::size_t>(nu + 1) * static_cast<std::size_t>(nv + 1), 0);
+  const auto at = [&](int i, int j) -> int& {
+    return changed[static_cast<std::size_t>(i) * static_cast<std::size_t>(nv + 1) +
+                   static_cast<std::size_t>(j)];
+  };
+  bool any = false;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const Eigen::Index k = surface_.pole_index(i, j);
+      const bool moved = points.row(k) != surface_.control_points.row(k) ||
+                         (weights.size() > 0 && weights[k] != surface_.weights[k]);
+      any = any || moved;
+      at(i + 1, j + 1) = (moved ? 1 : 0) + at(i, j + 1) + at(i + 1, j) - at(i, j);
+    }
+  stale_elements_ = 0;
+  if (!any) return;  // nothing moved: every bound still holds
   surface_.control_points = points;
   if (weights.size() > 0) surface_.weights = weights;
   ++version_;
+  const auto moved_in = [&](int i0, int i1, int j0, int j1) {  // poles [i0, i1] x [j0, j1]
+    return at(i1 + 1, j1 + 1) - at(i0, j1 + 1) - at(i1 + 1, j0) + at(i0, j0) > 0;
+  };
+  const int p = surface_.degree[0], q = surface_.degree[1];
+  const auto& su = ops_.u->extraction().spans;
+  const auto& sv = ops_.v->extraction().spans;
+  for (std::size_t eu = 0; eu < su.size(); ++eu)
+    for (std::size_t ev = 0; ev < sv.size(); ++ev)
+      if (moved_in(su[eu] - p, su[eu], sv[ev] - q, sv[ev])) {
+        element_version_[eu * sv.size() + ev] = version_;
+        ++stale_elements_;
+      }
+  for (ElementBlock& b : blocks_)
+    if (b.fresh) {
+      const int i0 = su[static_cast<std::size_t>(b.eu0)] - p;
+      const int i1 = su[static_cast<std::size_t>(b.eu1 - 1)];
+      const int j0 = sv[static_cast<std::size_t>(b.ev0)] - q;
+      const int j1 = sv[static_cast<std::size_t>(b.ev1 - 1)];
+      b.fresh = !moved_in(i0, i1, j0, j1);
+    }
   if (nodes_.size() > node_budget_) release_nodes();
 }
 
@@ -111,7 +151,10 @@ void SurfaceHierarchy::release_nodes() {
 
 void SurfaceHierarchy::refresh(int id, QueryCounters* counters) const {
   HierarchyNode& self = nodes_[static_cast<std::size_t>(id)];
-  if (self.version == version_) return;
+  const std::size_t element =
+      static_cast<std::size_t>(self.element_u) * ops_.v->extraction().spans.size() +
+      static_cast<std::size_t>(self.element_v);
+  if (self.version >= element_version_[element]) return;
   if (self.parent < 0) {
     self.patch = bezier_patch(surface_, ops_, self.element_u, self.element_v);
   } else {

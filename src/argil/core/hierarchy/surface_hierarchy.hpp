@@ -42,7 +42,7 @@ struct ElementBlock {
   std::array<int, 4> children{-1, -1, -1, -1};  // sub-blocks; -1 where a range cannot split
   int element_node = -1;  // the element's root node when the block is one element
   PatchBound bound;       // centre, radius and box only (flatness is not defined)
-  std::uint64_t version = 0;
+  bool fresh = false;     // the bound holds the current control points
 };
 
 /// Work a query did, for benchmarks and the speed/accuracy trade.
@@ -70,8 +70,14 @@ class SurfaceHierarchy {
   std::uint64_t version() const { return version_; }
 
   /// New control points (and weights for a rational surface), same structure:
-  /// O(n) copy; every node becomes stale and is refreshed when next reached.
+  /// O(n) copy and compare. Only the elements whose support holds a control
+  /// point that changed (bit for bit) go stale, with their nodes and the
+  /// blocks over them; they are refreshed when next reached. The rest keep
+  /// their bounds: a body solved only near the tool, or at rest, refreshes
+  /// nothing elsewhere.
   void set_control_points(const ControlNet& points, const Eigen::VectorXd& weights = {});
+  /// Elements (Bezier patches) the last set_control_points made stale.
+  int stale_elements() const { return stale_elements_; }
 
   /// One node per Bezier element: the hierarchy's roots.
   const std::vector<int>& roots() const { return roots_; }
@@ -89,8 +95,7 @@ class SurfaceHierarchy {
   std::size_t node_count() const { return nodes_.size(); }
   /// Memory bound: when set_control_points finds more nodes than this, it
   /// drops every node below the roots (queries grow them again where they
-  /// reach). On a deforming surface every node goes stale each tick anyway, so
-  /// this costs allocations only, never results: a query gives the same answer
+  /// reach). This costs allocations and refreshes, never results: a query gives the same answer
   /// on a collapsed hierarchy as on a grown one.
   void set_node_budget(std::size_t nodes) { node_budget_ = nodes; }
   std::size_t node_budget() const { return node_budget_; }
@@ -108,6 +113,10 @@ class SurfaceHierarchy {
   BSplineSurface surface_;
   SurfaceOperators ops_;
   std::uint64_t version_ = 1;
+  /// Per element (u-major): the version its control points last changed at. A
+  /// node is fresh while its version is at least its element's.
+  std::vector<std::uint64_t> element_version_;
+  int stale_elements_ = 0;
   mutable std::vector<HierarchyNode> nodes_;
   std::vector<int> roots_;
   mutable std::vector<ElementBlock> blocks_;
