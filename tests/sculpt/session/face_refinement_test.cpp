@@ -69,11 +69,7 @@ Script press_script() {
   return s;
 }
 
-std::vector<Eigen::Vector3d> path_of(const Script& s) {
-  std::vector<Eigen::Vector3d> out;
-  for (const Keyframe& k : s.keyframes) out.push_back(k.X_WD.p);
-  return out;
-}
+std::vector<std::vector<Eigen::Vector3d>> path_of(const Script& s) { return engaged_paths(s); }
 
 }  // namespace
 
@@ -122,6 +118,26 @@ TEST_CASE("a plane the script presses is refined exactly before the first tick, 
   CAPTURE(under, beside);
   CHECK(under > 0.2);
   CHECK(beside < 0.1 * under);
+}
+
+TEST_CASE("only where the tool is engaged: a free move over a plane refines nothing",
+          "[session][refinement]") {
+  // Over the far plane free, down onto the near one engaged.
+  Script s = press_script();
+  Keyframe over;
+  over.X_WD.p = Eigen::Vector3d(220.0, 20.0, 5.0);
+  s.keyframes.insert(s.keyframes.begin(), over);
+  s.keyframes[1].t = 0.5;
+  s.keyframes[2].t = 0.7;
+  s.keyframes[3].t = 0.9;
+  REQUIRE(validate(s).ok());
+  const std::vector<std::vector<Eigen::Vector3d>> paths = engaged_paths(s);
+  REQUIRE(paths.size() == 1);
+  CHECK(paths[0].size() == 3);
+  Result<Session> created = Session::create(scene_with(kSphere, ""), "", paths);
+  REQUIRE(created.ok());
+  REQUIRE(created.value().refinements().size() == 1);
+  CHECK(created.value().refinements()[0].face == 0);
 }
 
 TEST_CASE("resolution 0 and a point tool refine nothing", "[session][refinement]") {

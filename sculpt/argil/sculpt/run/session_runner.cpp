@@ -65,9 +65,7 @@ Status resume(Session& session, const OpenedJournal& journal, const RunInputs& i
 
 /// The session with the scene's models loaded, and the output folder made.
 Result<Session> prepare(const RunInputs& in) {
-  std::vector<Eigen::Vector3d> path;
-  for (const Keyframe& k : in.script.keyframes) path.push_back(k.X_WD.p);
-  Result<Session> created = Session::create(in.scene, in.script.tool, path);
+  Result<Session> created = Session::create(in.scene, in.script.tool, engaged_paths(in.script));
   if (!created.ok()) {
     return Status::error(created.status().code,
                          in.scene_path.string() + ": " + created.status().message);

@@ -504,4 +504,18 @@ Script record_script(const std::vector<DeviceSample>& samples, const std::string
   return script;
 }
 
+std::vector<std::vector<Eigen::Vector3d>> engaged_paths(const Script& script) {
+  std::vector<std::vector<Eigen::Vector3d>> out;
+  bool engaged = false;
+  for (const Keyframe& k : script.keyframes) {
+    if (k.event == ScriptEvent::engage) {
+      engaged = true;
+      out.emplace_back();
+    }
+    if (engaged) out.back().push_back(k.X_WD.p);
+    if (k.event == ScriptEvent::release) engaged = false;
+  }
+  return out;
+}
+
 }  // namespace argil::sculpt

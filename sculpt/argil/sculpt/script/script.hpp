@@ -64,6 +64,11 @@ Status write_script(const Script& script, const std::filesystem::path& path);
 /// finite positions; unit quaternions; at least one keyframe), naming the keyframe.
 Status validate(const Script& script, const std::string& source_name = "script");
 
+/// The device's path during each engaged interval: the keyframe positions
+/// from an engage through the next release (or the last keyframe), in order;
+/// the device moves linearly between them. Where the tool can touch anything.
+std::vector<std::vector<Eigen::Vector3d>> engaged_paths(const Script& script);
+
 /// An engaged interval: ticks first..last inclusive.
 struct Stroke {
   long long first_tick = 0;

@@ -20,11 +20,33 @@ double refinement_resolution(const Scene& scene, const ToolShape& tool) {
   return tool_bound_radius(tool);
 }
 
-Result<std::vector<FaceRefinement>> refine_faces(std::vector<LoadedModel>& models,
-                                                 const ToolShape& tool, double resolution,
-                                                 const std::vector<Eigen::Vector3d>& path) {
+namespace {
+
+/// The box of (u, v) near any of `paths` (region_near_path of each, joined).
+std::optional<ParamRect> region_near_paths(const BSplineSurface& s,
+                                           const std::vector<std::vector<Eigen::Vector3d>>& paths,
+                                           double reach) {
+  std::optional<ParamRect> out;
+  for (const std::vector<Eigen::Vector3d>& path : paths) {
+    const std::optional<ParamRect> r = region_near_path(s, path, reach);
+    if (!r) continue;
+    if (!out) {
+      out = r;
+      continue;
+    }
+    out = ParamRect{std::min(out->u0, r->u0), std::max(out->u1, r->u1), std::min(out->v0, r->v0),
+                    std::max(out->v1, r->v1)};
+  }
+  return out;
+}
+
+}  // namespace
+
+Result<std::vector<FaceRefinement>> refine_faces(
+    std::vector<LoadedModel>& models, const ToolShape& tool, double resolution,
+    const std::vector<std::vector<Eigen::Vector3d>>& paths) {
   std::vector<FaceRefinement> out;
-  if (!(resolution > 0.0) || path.empty()) return out;
+  if (!(resolution > 0.0) || paths.empty()) return out;
   const double reach = 2.0 * tool_bound_radius(tool) + resolution;
   RefinementGoal goal;
   goal.resolution = resolution;
@@ -33,7 +55,7 @@ Result<std::vector<FaceRefinement>> refine_faces(std::vector<LoadedModel>& model
     if (!model.spec.deformable) continue;
     for (std::size_t f = 0; f < model.initial.faces.size(); ++f) {
       BSplineSurface& surface = model.initial.faces[f].surface;
-      const std::optional<ParamRect> region = region_near_path(surface, path, reach);
+      const std::optional<ParamRect> region = region_near_paths(surface, paths, reach);
       if (!region) continue;
       Result<Refinement> refined = refine_region(surface, *region, goal);
       if (!refined.ok()) {

@@ -32,13 +32,14 @@ double tool_bound_radius(const ToolShape& tool);
 double refinement_resolution(const Scene& scene, const ToolShape& tool);
 
 /// Refines every face of every deformable model that comes within reach of
-/// `path` (device positions in order; the script moves linearly between
-/// them): twice the tool's bound radius (the tool plus a press as deep) plus
-/// the resolution. Faces already fine enough are left as they are. Returns
-/// the faces it changed.
-Result<std::vector<FaceRefinement>> refine_faces(std::vector<LoadedModel>& models,
-                                                 const ToolShape& tool, double resolution,
-                                                 const std::vector<Eigen::Vector3d>& path);
+/// one of `paths` (the device's positions while engaged, in order; it moves
+/// linearly between them), over the box of (u, v) near all of them: reach =
+/// twice the tool's bound radius (the tool plus a press as deep) plus the
+/// resolution. Faces already fine enough are left as they are. Returns the
+/// faces it changed.
+Result<std::vector<FaceRefinement>> refine_faces(
+    std::vector<LoadedModel>& models, const ToolShape& tool, double resolution,
+    const std::vector<std::vector<Eigen::Vector3d>>& paths);
 
 /// "models[0] face 3: degree 1 x 1 -> 3 x 3, 2 x 2 -> 14 x 9 control points
 /// (spans <= 0.5 mm near the tool)".

@@ -87,7 +87,7 @@ Result<LoadedModel> load_model(const Scene& scene, std::size_t m) {
 }  // namespace
 
 Result<Session> Session::create(const Scene& scene, const std::string& tool_name,
-                                const std::vector<Eigen::Vector3d>& tool_path) {
+                                const std::vector<std::vector<Eigen::Vector3d>>& tool_paths) {
   Session s;
   s.scene_ = scene;
   s.tool_index_ = scene.tool_index(tool_name);
@@ -105,7 +105,7 @@ Result<Session> Session::create(const Scene& scene, const std::string& tool_name
     s.models_.push_back(std::move(loaded).value());
   }
   Result<std::vector<FaceRefinement>> refined = refine_faces(
-      s.models_, s.tool_shape_, refinement_resolution(scene, s.tool_shape_), tool_path);
+      s.models_, s.tool_shape_, refinement_resolution(scene, s.tool_shape_), tool_paths);
   if (!refined.ok()) return refined.status();
   s.refinements_ = std::move(refined).value();
   const Status built = s.rebuild_world();

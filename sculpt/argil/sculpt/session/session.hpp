@@ -63,11 +63,11 @@ class Session {
   /// `tool_name` (empty: the scene's first tool). Errors name the scene field
   /// ("models[1].faces[2]: face 9 is out of range ...", "models[0] face 12:
   /// loop 0 curve 3 ends at ...").
-  /// With `tool_path` (the device positions the script visits, in order),
-  /// the deformable faces that path comes near are first refined exactly to
-  /// the scene's resolution (face_refinement.hpp; refinements()).
+  /// With `tool_paths` (where the device goes while engaged: engaged_paths()
+  /// of the script), the deformable faces they come near are first refined
+  /// exactly to the scene's resolution (face_refinement.hpp; refinements()).
   static Result<Session> create(const Scene& scene, const std::string& tool_name = "",
-                                const std::vector<Eigen::Vector3d>& tool_path = {});
+                                const std::vector<std::vector<Eigen::Vector3d>>& tool_paths = {});
 
   /// One haptic tick of 1 / haptic_rate seconds with the device at `sample`.
   /// An engaged sample after a released one starts a stroke; a released one
