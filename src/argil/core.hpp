@@ -50,6 +50,7 @@
 #include "argil/core/deform/join_rows.hpp"            // IWYU pragma: export
 #include "argil/core/deform/material.hpp"             // IWYU pragma: export
 #include "argil/core/deform/pole_stencil_matrix.hpp"  // IWYU pragma: export
+#include "argil/core/deform/pole_window.hpp"          // IWYU pragma: export
 #include "argil/core/deform/shell_matrices.hpp"       // IWYU pragma: export
 // haptic
 #include "argil/core/haptic/device_sample.hpp"       // IWYU pragma: export

@@ -4,6 +4,8 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -30,69 +32,106 @@ std::vector<char> held_poles(int nu, int nv, const BoundaryConditions& c) {
   return fixed;
 }
 
+/// Sum over the rows of `box` of the entrywise product of a and b (the whole
+/// matrices summed at once when the box is the whole net, as before windows).
+double box_dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const PoleWindow& box, int nu,
+               int nv) {
+  if (box == PoleWindow{0, nu, 0, nv}) return (a.array() * b.array()).sum();
+  double sum = 0.0;
+  for (int i = box.i0; i < box.i1; ++i)
+    for (int j = box.j0; j < box.j1; ++j) {
+      const Eigen::Index r = static_cast<Eigen::Index>(i) * nv + j;
+      sum += a.row(r).dot(b.row(r));
+    }
+  return sum;
+}
+
+/// Pole p's (i, j) on a net nv poles wide along v.
+std::pair<int, int> pole_ij(Eigen::Index p, int nv) {
+  return {static_cast<int>(p / nv), static_cast<int>(p % nv)};
+}
+
 }  // namespace
 
-void DeformableBody::plastic_flow(const ControlNet& points) {
+void DeformableBody::plastic_flow(const ControlNet& points, const PoleWindow& moved) {
   // The surface yields where it stretched past the yield: measured over each
   // control point's cell around its Greville point (3 x 3 samples, each a
   // positive average of the poles' stretches: nothing inverted), so the flow
   // follows the surface wherever the tool is, not the net's spacing. The
   // surface stretches no more than its poles (convex hull), so cells whose
-  // poles all stay within the yield are skipped.
-  const ControlNet stretch = points - rest_;
-  const Eigen::VectorXd pole_stretch = stretch.rowwise().norm();
-  ControlNet flow = ControlNet::Zero(rest_.rows(), 3);
+  // poles all stay within the yield are skipped. Only poles in `moved` moved
+  // this step: only cells that see one can newly yield.
+  const int nu = stiffness_.count_u(), nv = stiffness_.count_v();
+  const int ku = stiffness_.reach_u(), kv = stiffness_.reach_v();
+  const PoleWindow cells = moved.grown(yield_reach_[0], yield_reach_[1], nu, nv);
+  // A C0 join's rows spread the flow one more pole each way of their `on` pole.
+  const PoleWindow flowing = cells.grown(2, 2, nu, nv);
+  const PoleWindow k_rows = flowing.grown(ku, kv, nu, nv);  // where K flow may be nonzero
+  const PoleWindow seen = cells.grown(yield_reach_[0], yield_reach_[1], nu, nv).united(k_rows);
+  const auto each = [](const PoleWindow& box, int width, const auto& f) {
+    for (int i = box.i0; i < box.i1; ++i)
+      for (int j = box.j0; j < box.j1; ++j) f(static_cast<Eigen::Index>(i) * width + j);
+  };
+  Eigen::VectorXd& pole_stretch = stretch_norm_;
+  each(seen, nv, [&](Eigen::Index r) {
+    stretch_.row(r) = points.row(r) - rest_.row(r);
+    pole_stretch[r] = stretch_.row(r).norm();
+  });
   bool flows = false;
-  for (Eigen::Index i = 0; i < rest_.rows(); ++i) {
+  each(cells, nv, [&](Eigen::Index i) {
     const YieldCell& cell = yield_cells_[static_cast<std::size_t>(i)];
     double bound = 0.0;
     for (const int j : cell.poles) bound = std::max(bound, pole_stretch[j]);
-    if (!(bound > material_.yield)) continue;
+    if (!(bound > material_.yield)) return;
     double largest = 0.0;
     for (const auto& sample : cell.samples) {
       Eigen::RowVector3d surface = Eigen::RowVector3d::Zero();
-      for (const auto& [j, w] : sample) surface += w * stretch.row(j);
+      for (const auto& [j, w] : sample) surface += w * stretch_.row(j);
       largest = std::max(largest, surface.norm());
     }
-    if (!(largest > material_.yield)) continue;
-    flow.row(i) = (1.0 - material_.yield / largest) * stretch.row(i);
+    if (!(largest > material_.yield)) return;
+    flow_.row(i) = (1.0 - material_.yield / largest) * stretch_.row(i);
     flows = true;
-  }
+  });
   if (flows) {
     // Across a C0 join the three poles of a row move so the join keeps its
     // angle: the smallest change to their flows with (after - on) = ratio (on
     // - before), the same condition the joint term holds the displacement to.
+    // (Rows outside `cells` have no flow and are unchanged.)
     for (const JoinRow& r : join_rows_) {
-      const Eigen::RowVector3d miss =
-          (flow.row(r.after) - flow.row(r.on)) - r.ratio * (flow.row(r.on) - flow.row(r.before));
+      const Eigen::RowVector3d miss = (flow_.row(r.after) - flow_.row(r.on)) -
+                                      r.ratio * (flow_.row(r.on) - flow_.row(r.before));
       const double c2 = r.ratio * r.ratio + (1.0 + r.ratio) * (1.0 + r.ratio) + 1.0;
-      flow.row(r.before) -= (r.ratio / c2) * miss;
-      flow.row(r.on) += ((1.0 + r.ratio) / c2) * miss;
-      flow.row(r.after) -= (1.0 / c2) * miss;
+      flow_.row(r.before) -= (r.ratio / c2) * miss;
+      flow_.row(r.on) += ((1.0 + r.ratio) / c2) * miss;
+      flow_.row(r.after) -= (1.0 / c2) * miss;
     }
     // Flow dissipates: it may not raise the stored energy 1/2 U^T K U, U = P
     // - P_rest (moving rest points one by one can, where a neighbour
     // stretched more). Along the flow the energy is a parabola in its
     // fraction alpha, E0 - alpha flow.K U + alpha^2 / 2 flow.K flow; take the
     // largest alpha up to 1 that does not raise it.
-    const ControlNet k_flow = stiffness_.multiply(flow);
-    const double along = (k_flow.array() * stretch.array()).sum();
-    const double curve = (k_flow.array() * flow.array()).sum();
+    stiffness_.multiply_rows(flow_, k_rows.i0, k_rows.i1, k_rows.j0, k_rows.j1, k_flow_);
+    const double along = box_dot(k_flow_, stretch_, k_rows, nu, nv);
+    const double curve = box_dot(k_flow_, flow_, k_rows, nu, nv);
     const double fraction = curve > 0.0 ? std::clamp(2.0 * along / curve, 0.0, 1.0) : 1.0;
-    rest_ += fraction * flow;
+    each(flowing, nv, [&](Eigen::Index i) { rest_.row(i) += fraction * flow_.row(i); });
+    // flow_ is zero between steps (multiply_rows reads around the rows it writes).
+    each(flowing, nv, [&](Eigen::Index i) { flow_.row(i).setZero(); });
   }
   // Every control point's own stretch stays within kPlasticStretchCap yields,
   // so a high-degree net cannot drift in patterns the surface barely shows.
   const double cap = kPlasticStretchCap * material_.yield;
-  for (Eigen::Index i = 0; i < rest_.rows(); ++i) {
+  each(flowing, nv, [&](Eigen::Index i) {
     const Eigen::RowVector3d own = points.row(i) - rest_.row(i);
     const double length = own.norm();
     if (length > cap) rest_.row(i) += (1.0 - cap / length) * own;
-  }
+  });
   // The cap acts pole by pole; a tied join's `on` pole keeps its row's
   // proportions (its stretch the tie's blend of its neighbours').
   for (const JoinRow& r : join_rows_) {
-    if (!r.tied) continue;
+    const auto [i, j] = pole_ij(r.on, nv);
+    if (!r.tied || !flowing.contains(i, j)) continue;
     const double l = r.lambda();
     rest_.row(r.on) = points.row(r.on) - l * (points.row(r.before) - rest_.row(r.before)) -
                       (1.0 - l) * (points.row(r.after) - rest_.row(r.after));
@@ -143,32 +182,9 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   body.stiffness_.add_scaled(body.shell_.foundation, k.foundation);
   body.stiffness_.add_scaled(elastic, body.elastic_scale_);
 
-  // Solve order: the narrower band of the two row-major orders.
-  // A tie couples a join's neighbours to everything its `on` pole touches.
   body.join_rows_ = join_rows(surface, body.fixed_);
-  const std::array<int, 2> tied = tie_reach(body.join_rows_);
-  const int ru = body.stiffness_.reach_u() + tied[0], rv = body.stiffness_.reach_v() + tied[1];
-  // Ties go to the direction with more poles (then the higher degree) as the
-  // slow index, so a transposed net is solved in the same physical order and
-  // gives the same result to the last bit.
-  const long long band_u = static_cast<long long>(ru) * nv + rv;
-  const long long band_v = static_cast<long long>(rv) * nu + ru;
-  const bool by_u = band_u != band_v
-                        ? band_u < band_v
-                        : std::pair(nu, surface.degree[0]) >= std::pair(nv, surface.degree[1]);
-  body.bandwidth_ = by_u ? ru * nv + rv : rv * nu + ru;
+  body.full_ = body.region({0, nu, 0, nv});
   const Eigen::Index n = static_cast<Eigen::Index>(nu) * nv;
-  body.order_.resize(static_cast<std::size_t>(n));
-  body.rank_.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < nu; ++i) {
-    for (int j = 0; j < nv; ++j) {
-      const int r = by_u ? i * nv + j : j * nu + i;
-      body.order_[static_cast<std::size_t>(r)] = surface.pole_index(i, j);
-      body.rank_[static_cast<std::size_t>(surface.pole_index(i, j))] = r;
-    }
-  }
-  body.bandwidth_ = std::min<int>(body.bandwidth_, static_cast<int>(n) - 1);
-  body.bandwidth_ = std::max(body.bandwidth_, 0);
   body.rest_ = surface.control_points;
   {
     const Eigen::VectorXd gu = greville_abscissae(surface.degree[0], surface.knots[0]);
@@ -191,9 +207,42 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
           }
         std::sort(c.poles.begin(), c.poles.end());
         c.poles.erase(std::unique(c.poles.begin(), c.poles.end()), c.poles.end());
+        for (const int pole : c.poles) {
+          const auto [pi, pj] = pole_ij(pole, nv);
+          body.yield_reach_[0] = std::max(body.yield_reach_[0], std::abs(pi - i));
+          body.yield_reach_[1] = std::max(body.yield_reach_[1], std::abs(pj - j));
+        }
       }
   }
   body.velocities_ = ControlNet::Zero(n, 3);
+  body.stretch_ = body.force_ = body.flow_ = body.k_flow_ = Eigen::MatrixXd::Zero(n, 3);
+  body.stretch_norm_ = Eigen::VectorXd::Zero(n);
+  // A local window reaches a few influence lengths of the loads: the bending
+  // length (D / k_a)^(1/4) and the membrane's sqrt(A / k_a), in poles at the
+  // net's mean pitch, plus the basis' reach. Without a foundation the whole
+  // face carries the load: the window is the net.
+  {
+    const double a = k.membrane * body.elastic_scale_, d = k.bending * body.elastic_scale_;
+    const double length = k.foundation > 0.0 ? 3.0 * std::max(std::pow(d / k.foundation, 0.25),
+                                                              std::sqrt(a / k.foundation))
+                                             : std::numeric_limits<double>::infinity();
+    const ControlNet& p = surface.control_points;
+    double pitch_u = 0.0, pitch_v = 0.0;
+    for (int i = 0; i < nu; ++i)
+      for (int j = 0; j < nv; ++j) {
+        const Eigen::Index r = surface.pole_index(i, j);
+        if (i + 1 < nu) pitch_u += (p.row(surface.pole_index(i + 1, j)) - p.row(r)).norm();
+        if (j + 1 < nv) pitch_v += (p.row(surface.pole_index(i, j + 1)) - p.row(r)).norm();
+      }
+    pitch_u /= std::max(1, (nu - 1) * nv);
+    pitch_v /= std::max(1, nu * (nv - 1));
+    const auto poles = [&](double pitch, int degree, int count) {
+      const double spans = pitch > 0.0 ? std::ceil(length / pitch) : count;
+      return static_cast<int>(std::min<double>(count, degree + spans));
+    };
+    body.margin_ = {poles(pitch_u, surface.degree[0], nu), poles(pitch_v, surface.degree[1], nv)};
+    body.slack_ = {std::max(4, body.margin_[0]), std::max(4, body.margin_[1])};
+  }
   // Factorised now, at the haptic step, so the first tick does not pay for it
   // (28 ms on a 64 x 64 net); another dt refactorises at its first step.
   if (Status f = body.factorize(kHapticStep); !f.ok()) return f;
@@ -221,19 +270,77 @@ bool DeformableBody::settled(double distance) const {
   return stretch.rows() == 0 || stretch.rowwise().norm().maxCoeff() < distance;
 }
 
-SymmetricBandMatrix DeformableBody::step_matrix(double dt) const {
-  const Eigen::Index n = masses_.size();
-  SymmetricBandMatrix a(static_cast<int>(n), bandwidth_);
+PoleWindow DeformableBody::tie_closed(PoleWindow window) const {
+  const int nv = stiffness_.count_v();
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const JoinRow& r : join_rows_) {
+      if (!r.tied) continue;
+      PoleWindow row;
+      int inside = 0;
+      for (const int pole : {r.before, r.on, r.after}) {
+        const auto [i, j] = pole_ij(pole, nv);
+        row = row.united({i, i + 1, j, j + 1});
+        inside += window.contains(i, j) ? 1 : 0;
+      }
+      if (inside == 0 || inside == 3) continue;
+      window = window.united(row);
+      grew = true;
+    }
+  }
+  return window;
+}
+
+DeformableBody::SolveRegion DeformableBody::region(const PoleWindow& window) const {
+  const int nu = stiffness_.count_u(), nv = stiffness_.count_v();
+  const int wu = window.count_u(), wv = window.count_v();
+  SolveRegion out;
+  out.window = window;
+  for (const JoinRow& r : join_rows_) {
+    const auto [i, j] = pole_ij(r.on, nv);
+    if (r.tied && window.contains(i, j)) out.ties.push_back(r);
+  }
+  // Solve order: the narrower band of the two row-major orders.
+  // A tie couples a join's neighbours to everything its `on` pole touches.
+  const std::array<int, 2> tied = tie_reach(out.ties);
+  const int ru = stiffness_.reach_u() + tied[0], rv = stiffness_.reach_v() + tied[1];
+  // Ties go to the direction with more poles (then the higher degree) as the
+  // slow index, so a transposed net is solved in the same physical order and
+  // gives the same result to the last bit.
+  const long long band_u = static_cast<long long>(ru) * wv + rv;
+  const long long band_v = static_cast<long long>(rv) * wu + ru;
+  const std::array<int, 2>& degree = surface().degree;
+  const bool by_u =
+      band_u != band_v ? band_u < band_v : std::pair(wu, degree[0]) >= std::pair(wv, degree[1]);
+  const int n = wu * wv;
+  out.bandwidth = std::max(0, std::min(by_u ? ru * wv + rv : rv * wu + ru, n - 1));
+  out.order.resize(static_cast<std::size_t>(n));
+  out.rank.assign(static_cast<std::size_t>(nu) * static_cast<std::size_t>(nv), -1);
+  for (int i = window.i0; i < window.i1; ++i) {
+    for (int j = window.j0; j < window.j1; ++j) {
+      const int r =
+          by_u ? (i - window.i0) * wv + (j - window.j0) : (j - window.j0) * wu + (i - window.i0);
+      const Eigen::Index pole = static_cast<Eigen::Index>(i) * nv + j;
+      out.order[static_cast<std::size_t>(r)] = pole;
+      out.rank[static_cast<std::size_t>(pole)] = r;
+    }
+  }
+  return out;
+}
+
+SymmetricBandMatrix DeformableBody::step_matrix(const SolveRegion& region, double dt) const {
+  const PoleWindow& w = region.window;
+  SymmetricBandMatrix a(w.count_u() * w.count_v(), region.bandwidth);
   const double scale = dt * material_.damping + dt * dt;  // multiplies K (springs and dashpots)
   const auto is_fixed = [&](Eigen::Index pole) {
     return fixed_[static_cast<std::size_t>(pole)] != 0;
   };
   const int nu = stiffness_.count_u(), nv = stiffness_.count_v();
   const int ru = stiffness_.reach_u(), rv = stiffness_.reach_v();
-  for (int i = 0; i < nu; ++i) {
-    for (int j = 0; j < nv; ++j) {
+  for (int i = w.i0; i < w.i1; ++i) {
+    for (int j = w.j0; j < w.j1; ++j) {
       const Eigen::Index pa = static_cast<Eigen::Index>(i) * nv + j;
-      const int ra = rank_[static_cast<std::size_t>(pa)];
+      const int ra = region.rank[static_cast<std::size_t>(pa)];
       if (is_fixed(pa)) {
         a.at(ra, ra) = 1.0;  // a held point's velocity is zero: no coupling
         continue;
@@ -242,23 +349,114 @@ SymmetricBandMatrix DeformableBody::step_matrix(double dt) const {
       for (int di = std::max(-ru, -i); di <= std::min(ru, nu - 1 - i); ++di) {
         for (int dj = std::max(-rv, -j); dj <= std::min(rv, nv - 1 - j); ++dj) {
           const Eigen::Index pb = static_cast<Eigen::Index>(i + di) * nv + (j + dj);
-          const int rb = rank_[static_cast<std::size_t>(pb)];
-          if (rb > ra || is_fixed(pb)) continue;  // lower half only
+          const int rb = region.rank[static_cast<std::size_t>(pb)];
+          // Lower half only; a pole outside the window is held (V = 0): its
+          // coupling enters the load through -K (P - P_rest) alone.
+          if (rb < 0 || rb > ra || is_fixed(pb)) continue;
           a.at(ra, rb) += scale * stiffness_.at(i, j, di, dj);
         }
       }
     }
   }
-  tie_matrix(a, join_rows_, rank_);
+  tie_matrix(a, region.ties, region.rank);
   return a;
 }
 
 Status DeformableBody::factorize(double dt) {
-  if (solver_ && solver_dt_ == dt) return Status::success();
-  Result<BandedCholesky> f = BandedCholesky::factorize(step_matrix(dt));
+  if (full_.solver && full_.dt == dt) return Status::success();
+  Result<BandedCholesky> f = BandedCholesky::factorize(step_matrix(full_, dt));
   if (!f.ok()) return f.status();
-  solver_ = std::move(f).value();
-  solver_dt_ = dt;
+  full_.solver = std::move(f).value();
+  full_.dt = dt;
+  return Status::success();
+}
+
+void DeformableBody::set_local_solves(bool on) {
+  local_solves_ = on;
+  if (!on) {
+    local_.reset();
+    pending_.reset();
+  }
+}
+
+Status DeformableBody::plan_region(double dt, const ControlNet& forces,
+                                   const Eigen::VectorXd& pattern) {
+  step_local_ = false;
+  step_idle_ = false;
+  if (!local_solves_) return Status::success();
+  if (local_ && local_->dt != dt) local_.reset();
+  if (pending_ && pending_->dt != dt) pending_.reset();
+  const int nu = stiffness_.count_u(), nv = stiffness_.count_v();
+  const PoleWindow net{0, nu, 0, nv};
+  // The poles the loads act on.
+  PoleWindow loads;
+  for (Eigen::Index p = 0; p < masses_.size(); ++p) {
+    const bool loaded = (pattern.size() > 0 && pattern[p] != 0.0) ||
+                        (forces.rows() > 0 && !forces.row(p).isZero(0.0));
+    if (!loaded) continue;
+    const auto [i, j] = pole_ij(p, nv);
+    loads = loads.united({i, i + 1, j, j + 1});
+  }
+  if (!loads.empty()) {
+    // Grow (never shrink) the window once the loads come within the influence
+    // margin of its edge, with slack so the tool can travel before the next
+    // growth. The first window has no slack: it is factorised at once.
+    const PoleWindow needed = loads.grown(margin_[0], margin_[1], nu, nv);
+    const PoleWindow current = local_ ? local_->window : PoleWindow{};
+    if (!current.contains(needed) && !(pending_ && pending_->window.contains(needed))) {
+      const int su = local_ ? slack_[0] : 0, sv = local_ ? slack_[1] : 0;
+      PoleWindow target = loads.grown(margin_[0] + su, margin_[1] + sv, nu, nv)
+                              .united(current)
+                              .united(pending_ ? pending_->window : PoleWindow{});
+      target = tie_closed(target);
+      pending_.reset();
+      if (target == net) {
+        local_.reset();  // the whole net: full_ is factorised already
+      } else {
+        pending_ = region(target);
+        pending_->dt = dt;
+      }
+    }
+  } else if (local_ && !pending_) {
+    // No load: once the window has come to rest the whole net relaxes again
+    // (the held poles outside it may sit off their rest).
+    double motion = 0.0;
+    for (const Eigen::Index p : local_->order)
+      motion = std::max(motion, step_dt_ * velocities_.row(p).norm());
+    if (motion < kWindowRestMotion) local_.reset();
+  }
+  if (pending_) {
+    // This step's share of the pending factorisation: the matrix first, then
+    // rows at about bandwidth^2 / 2 multiply-adds each.
+    // A step that would otherwise solve the whole net may spend that solve's
+    // work instead (two sweeps, four columns): it is never dearer than the
+    // whole-net step it replaces.
+    SolveRegion& r = *pending_;
+    const int size = r.window.count_u() * r.window.count_v();
+    double work = kWindowFactorWorkPerStep;
+    if (!(local_ && local_->window.contains(loads)))
+      work = std::max(work, 8.0 * static_cast<double>(masses_.size()) * full_.bandwidth);
+    if (r.matrix.size() != size) {
+      r.matrix = step_matrix(r, dt);
+      const int stencil = (2 * stiffness_.reach_u() + 1) * (2 * stiffness_.reach_v() + 1);
+      work -= static_cast<double>(size) * stencil;
+    }
+    const double per_row = 0.5 * r.bandwidth * r.bandwidth + r.bandwidth + 1.0;
+    const int rows = std::max(1, static_cast<int>(std::min<double>(size, work / per_row)));
+    const int last = std::min(size, r.factored_rows + rows);
+    if (Status f = BandedCholesky::factorize_rows(r.matrix, r.factored_rows, last); !f.ok())
+      return f;
+    r.factored_rows = last;
+    if (last == size) {
+      r.solver = BandedCholesky::from_factor(std::move(r.matrix));
+      local_ = std::move(pending_);
+      pending_.reset();
+    }
+  }
+  step_local_ = local_.has_value() && local_->window.contains(loads);
+  // A body exactly at rest with no load would step to exactly where it is.
+  step_idle_ = loads.empty() && !local_ && velocities_.isZero(0.0) &&
+               control_points().cwiseEqual(rest_).all();
   return Status::success();
 }
 
@@ -275,32 +473,62 @@ Result<LoadPreview> DeformableBody::begin_step(double dt, const ControlNet& forc
     return Status::error(StatusCode::invalid_argument,
                          "time step dt " + out_of_interval_text(dt, range, "s"));
   }
-  if (Status s = factorize(dt); !s.ok()) return s;
-  const Eigen::Index n = masses_.size();
-  assert(forces.rows() == 0 || forces.rows() == n);
-  assert(pattern.size() == 0 || pattern.size() == n);
+  const Eigen::Index n_all = masses_.size();
+  assert(forces.rows() == 0 || forces.rows() == n_all);
+  assert(pattern.size() == 0 || pattern.size() == n_all);
+  if (Status s = plan_region(dt, forces, pattern); !s.ok()) return s;
+  if (step_idle_) {
+    stepped_window_ = {};
+    has_pattern_ = false;
+    step_dt_ = dt;
+    return LoadPreview{};
+  }
+  if (!step_local_) {
+    if (Status s = factorize(dt); !s.ok()) return s;
+  }
+  const SolveRegion& region = step_local_ ? *local_ : full_;
+  const PoleWindow& w = region.window;
+  const int nu = stiffness_.count_u(), nv = stiffness_.count_v();
+  // Poles outside a new window stop where they are: held for the stroke.
+  if (step_local_ && !(stepped_window_ == w)) {
+    for (Eigen::Index p = 0; p < n_all; ++p)
+      if (region.rank[static_cast<std::size_t>(p)] < 0) velocities_.row(p).setZero();
+  }
+  stepped_window_ = w;
   has_pattern_ = pattern.size() > 0;
   step_dt_ = dt;
-  Eigen::MatrixXd force = -stiffness_.multiply(control_points() - rest_);
-  if (forces.rows() > 0) force += forces;
+  // -K (P - P_rest) on the window's rows, which read the stencil around them.
+  const PoleWindow around = w.grown(stiffness_.reach_u(), stiffness_.reach_v(), nu, nv);
+  const ControlNet& points = control_points();
+  for (int i = around.i0; i < around.i1; ++i) {
+    const Eigen::Index r0 = static_cast<Eigen::Index>(i) * nv + around.j0;
+    stretch_.middleRows(r0, around.count_v()) =
+        points.middleRows(r0, around.count_v()) - rest_.middleRows(r0, around.count_v());
+  }
+  stiffness_.multiply_rows(stretch_, w.i0, w.i1, w.j0, w.j1, force_);
+  const Eigen::Index n = static_cast<Eigen::Index>(region.order.size());
   work_.resize(n, has_pattern_ ? 4 : 3);
   for (Eigen::Index r = 0; r < n; ++r) {
-    const Eigen::Index i = order_[static_cast<std::size_t>(r)];
+    const Eigen::Index i = region.order[static_cast<std::size_t>(r)];
     if (fixed_[static_cast<std::size_t>(i)]) {
       work_.row(r).setZero();
       continue;
     }
     const double m = kMassToNewtonSecond2PerMm * masses_[i];
-    for (int c = 0; c < 3; ++c) work_(r, c) = m * velocities_(i, c) + dt * force(i, c);
+    for (int c = 0; c < 3; ++c) {
+      double f = -force_(i, c);
+      if (forces.rows() > 0) f += forces(i, c);
+      work_(r, c) = m * velocities_(i, c) + dt * f;
+    }
     if (has_pattern_) work_(r, 3) = pattern[i];
   }
-  tie_load(work_, join_rows_, rank_);
-  solver_->solve_in_place(work_);
-  untie_solution(work_, join_rows_, rank_);
+  tie_load(work_, region.ties, region.rank);
+  region.solver->solve_in_place(work_);
+  untie_solution(work_, region.ties, region.rank);
   LoadPreview preview;
   if (has_pattern_) {
     for (Eigen::Index r = 0; r < n; ++r) {
-      const Eigen::Index i = order_[static_cast<std::size_t>(r)];
+      const Eigen::Index i = region.order[static_cast<std::size_t>(r)];
       if (fixed_[static_cast<std::size_t>(i)]) continue;
       preview.free_motion += dt * pattern[i] * work_.row(r).head<3>().transpose();
       preview.compliance += dt * dt * pattern[i] * work_(r, 3);
@@ -310,18 +538,20 @@ Result<LoadPreview> DeformableBody::begin_step(double dt, const ControlNet& forc
 }
 
 void DeformableBody::finish_step(const Eigen::Vector3d& pattern_force) {
-  const Eigen::Index n = masses_.size();
+  if (step_idle_) return;
+  const SolveRegion& region = step_local_ ? *local_ : full_;
+  const Eigen::Index n = static_cast<Eigen::Index>(region.order.size());
   const double h = step_dt_;
   ControlNet points = control_points();
   for (Eigen::Index r = 0; r < n; ++r) {
-    const Eigen::Index i = order_[static_cast<std::size_t>(r)];
+    const Eigen::Index i = region.order[static_cast<std::size_t>(r)];
     if (fixed_[static_cast<std::size_t>(i)]) continue;  // P = P_rest, V = 0 throughout
     Eigen::RowVector3d v = work_.row(r).head<3>();
     if (has_pattern_) v += h * work_(r, 3) * pattern_force.transpose();
     velocities_.row(i) = v;
     points.row(i) += h * v;
   }
-  if (std::isfinite(material_.yield)) plastic_flow(points);
+  if (std::isfinite(material_.yield)) plastic_flow(points, region.window);
   hierarchy_.set_control_points(points);
 }
 

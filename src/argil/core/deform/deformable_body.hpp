@@ -7,6 +7,7 @@
 // sees the new control points. Nothing is fitted or inverted on the tick path.
 
 #include <Eigen/Core>
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "argil/core/deform/join_rows.hpp"
 #include "argil/core/deform/material.hpp"
 #include "argil/core/deform/pole_stencil_matrix.hpp"
+#include "argil/core/deform/pole_window.hpp"
 #include "argil/core/deform/shell_matrices.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
@@ -35,6 +37,14 @@ struct LoadPreview {
   /// applied through the pattern (the same in every direction).
   double compliance = 0.0;
 };
+
+/// Multiply-adds of factorisation a step spends on a growing local window
+/// (about 0.1 ms): a new window is factorised over several steps, never in one.
+inline constexpr double kWindowFactorWorkPerStep = 2e5;
+
+/// A window with no load left is dropped (the whole net solved again) once
+/// none of its poles moved this far [mm] over a step.
+inline constexpr double kWindowRestMotion = 1e-3;
 
 /// Plastic flow keeps every control point's stretch |P - P_rest| within this
 /// many yields (the surface's own stretch is held at the yield).
@@ -119,13 +129,56 @@ class DeformableBody {
   /// does not depend on how long it slept.
   void halt() { velocities_.setZero(); }
 
+  /// Local solves (on by default; docs/deformation.md, Local solves): a step
+  /// whose loads all lie inside the active window solves only the window's
+  /// poles and holds the rest where they are (V = 0). Off: every step solves
+  /// the whole net.
+  void set_local_solves(bool on);
+  bool local_solves() const { return local_solves_; }
+  /// The poles the last step solved for: the whole net, the active window, or
+  /// none (empty) when the body was exactly at rest with no load and no window.
+  const PoleWindow& solved_window() const { return stepped_window_; }
+  /// Whether a larger window is being factorised (a few rows per step).
+  bool window_growing() const { return pending_.has_value(); }
+  /// The window a load's poles need around them (the influence margin) and
+  /// the one a new window gets (that plus room for the tool to move), in poles
+  /// along u and v.
+  int window_margin(int direction) const { return margin_[static_cast<std::size_t>(direction)]; }
+  int window_slack(int direction) const { return slack_[static_cast<std::size_t>(direction)]; }
+
  private:
+  /// The unknowns of one factorisation: a window's poles in solve order
+  /// (row-major in the direction that gives the narrower band), its tied join
+  /// rows, and its factor, computed a few rows at a time for a local window.
+  struct SolveRegion {
+    PoleWindow window;
+    std::vector<Eigen::Index> order;  // the pole of each unknown
+    std::vector<int> rank;            // the unknown of each pole; -1 outside the window
+    std::vector<JoinRow> ties;        // the tied join rows inside the window
+    int bandwidth = 0;
+    double dt = 0.0;
+    SymmetricBandMatrix matrix;  // factorised in place up to factored_rows
+    int factored_rows = 0;
+    std::optional<BandedCholesky> solver;  // once every row is factorised
+  };
+
   DeformableBody(SurfaceHierarchy hierarchy, const Material& material);
+  /// The window's unknowns, solve order and ties (no matrix yet). The window
+  /// must hold every tied join row it touches (tie_closed).
+  SolveRegion region(const PoleWindow& window) const;
+  /// The window grown until every tied join row is wholly in or out of it.
+  PoleWindow tie_closed(PoleWindow window) const;
   Status factorize(double dt);
-  /// Moves the rest control points so that no stretch exceeds the yield.
-  void plastic_flow(const ControlNet& points);
-  /// The implicit matrix M' + (h beta + h^2) K in band form, unknowns in solve order.
-  SymmetricBandMatrix step_matrix(double dt) const;
+  /// Picks the region this step solves (the whole net or the local window),
+  /// grows the window ahead of the loads and spends this step's share of the
+  /// pending window's factorisation.
+  Status plan_region(double dt, const ControlNet& forces, const Eigen::VectorXd& pattern);
+  /// Moves the rest control points so that no stretch exceeds the yield,
+  /// looking only at the poles `window` moved and those their stretch reaches.
+  void plastic_flow(const ControlNet& points, const PoleWindow& window);
+  /// The implicit matrix M' + (h beta + h^2) K over a region's unknowns in
+  /// band form; poles outside the region are held (V = 0).
+  SymmetricBandMatrix step_matrix(const SolveRegion& region, double dt) const;
 
   SurfaceHierarchy hierarchy_;
   Material material_;
@@ -144,16 +197,24 @@ class DeformableBody {
     std::vector<int> poles;
   };
   std::vector<YieldCell> yield_cells_;
+  /// How many poles away along u and v a yield cell's poles reach.
+  std::array<int, 2> yield_reach_{0, 0};
   /// The rows of poles across the face's C0 knot lines (join_rows.hpp): the
   /// step ties the G1 ones; plastic flow keeps every row's proportions.
   std::vector<JoinRow> join_rows_;
-  /// Solve order: the pole of each unknown, row-major in the direction that
-  /// gives the narrower band.
-  std::vector<Eigen::Index> order_;
-  std::vector<int> rank_;  // inverse of order_
-  int bandwidth_ = 0;
-  std::optional<BandedCholesky> solver_;
-  double solver_dt_ = 0.0;
+  /// The whole net, factorised at create() and at each new dt.
+  SolveRegion full_;
+  /// The active local window and a larger one being factorised.
+  std::optional<SolveRegion> local_, pending_;
+  bool local_solves_ = true;
+  /// Influence margin and growth slack of a window, in poles along u and v.
+  std::array<int, 2> margin_{0, 0}, slack_{0, 0};
+  PoleWindow stepped_window_;
+  bool step_local_ = false;  // this step solves local_ (else full_)
+  bool step_idle_ = false;   // this step changes nothing: exactly at rest, no load
+  // Scratch over the whole net; a local step touches only rows near its window.
+  Eigen::MatrixXd stretch_, force_, flow_, k_flow_;
+  Eigen::VectorXd stretch_norm_;
   // Between begin_step and finish_step, in solve order.
   RowMajorMatrix work_;
   double step_dt_ = 0.0;

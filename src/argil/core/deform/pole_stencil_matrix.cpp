@@ -37,6 +37,24 @@ Eigen::MatrixXd PoleStencilMatrix::multiply(const Eigen::Ref<const Eigen::Matrix
   return y;
 }
 
+void PoleStencilMatrix::multiply_rows(const Eigen::Ref<const Eigen::MatrixXd>& x, int i0, int i1,
+                                      int j0, int j1, Eigen::Ref<Eigen::MatrixXd> y) const {
+  for (int i = std::max(0, i0); i < std::min(i1, count_u_); ++i) {
+    for (int j = std::max(0, j0); j < std::min(j1, count_v_); ++j) {
+      const Eigen::Index a = static_cast<Eigen::Index>(i) * count_v_ + j;
+      y.row(a).setZero();
+      for (int di = std::max(-reach_u_, -i); di <= std::min(reach_u_, count_u_ - 1 - i); ++di) {
+        for (int dj = std::max(-reach_v_, -j); dj <= std::min(reach_v_, count_v_ - 1 - j); ++dj) {
+          const double k = at(i, j, di, dj);
+          if (k == 0.0) continue;
+          const Eigen::Index b = static_cast<Eigen::Index>(i + di) * count_v_ + (j + dj);
+          y.row(a) += k * x.row(b);
+        }
+      }
+    }
+  }
+}
+
 double PoleStencilMatrix::quadratic_form(const Eigen::Ref<const Eigen::MatrixXd>& x) const {
   return (x.array() * multiply(x).array()).sum();
 }

@@ -101,6 +101,7 @@ Result<int> HapticWorld::add_deformable(const BSplineSurface& surface, const Mat
   Body b;
   b.friction = friction;
   b.deformable.emplace(std::move(body).value());
+  b.deformable->set_local_solves(options_.local_solves);
   return add_body(std::move(b));
 }
 

@@ -81,6 +81,10 @@ struct WorldOptions {
   /// False, with cull false: every body is queried and stepped every tick
   /// (the reference tests and benchmarks compare against).
   bool sleep = true;
+  /// Deformable bodies solve only a window of control points around the
+  /// tool's contacts (DeformableBody::set_local_solves); false: the whole
+  /// net every tick (the reference the local-solve tests compare against).
+  bool local_solves = true;
 };
 
 /// A deformable body out of the tool's reach sleeps once every control point

@@ -10,9 +10,20 @@
 namespace argil {
 
 Result<BandedCholesky> BandedCholesky::factorize(SymmetricBandMatrix a) {
+  if (Status s = factorize_rows(a, 0, a.size()); !s.ok()) return s;
+  return from_factor(std::move(a));
+}
+
+BandedCholesky BandedCholesky::from_factor(SymmetricBandMatrix l) {
+  BandedCholesky out;
+  out.l_ = std::move(l);
+  return out;
+}
+
+Status BandedCholesky::factorize_rows(SymmetricBandMatrix& a, int begin, int end) {
   const int n = a.size();
   const int b = a.bandwidth();
-  for (int i = 0; i < n; ++i) {
+  for (int i = begin; i < end; ++i) {
     const int first = std::max(0, i - b);
     for (int j = first; j <= i; ++j) {
       // L(i, j) = (A(i, j) - sum_k L(i, k) L(j, k)) / L(j, j), k over both bands.
@@ -34,9 +45,7 @@ Result<BandedCholesky> BandedCholesky::factorize(SymmetricBandMatrix a) {
       a.at(i, i) = std::sqrt(sum);
     }
   }
-  BandedCholesky out;
-  out.l_ = std::move(a);
-  return out;
+  return Status::success();
 }
 
 namespace {

@@ -44,6 +44,12 @@ class BandedCholesky {
   /// not positive relative to the diagonal (the matrix is not positive definite
   /// to working precision), naming the row.
   static Result<BandedCholesky> factorize(SymmetricBandMatrix a);
+  /// Factorises rows [begin, end) of `a` in place, rows before `begin`
+  /// already factorised: a factorisation spread over several calls (row i
+  /// costs about bandwidth^2 / 2 multiply-adds) gives the same L to the bit.
+  static Status factorize_rows(SymmetricBandMatrix& a, int begin, int end);
+  /// The factor of a matrix whose every row factorize_rows has factorised.
+  static BandedCholesky from_factor(SymmetricBandMatrix l);
 
   int size() const { return l_.size(); }
   /// Solves A X = B in place in O(n b c) for c columns.

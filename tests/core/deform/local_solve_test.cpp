@@ -1,0 +1,231 @@
+// Local solves inside a face (docs/deformation.md, Local solves): a step whose
+// loads lie inside the active window solves only the window's poles. The
+// pieces agree with the whole-net solve to the last bit (a factorisation
+// spread over steps, the stencil product on a window's rows, a window that
+// would cover the net); a press on a 64 x 64 panel dents as deep and pushes
+// back as hard as the whole-net solve within 1%; no pole outside the window
+// moves; the window grows ahead of a moving load and is dropped once the load
+// is gone and the window has come to rest.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "argil/core.hpp"
+#include "support/sphere_press.hpp"
+#include "support/test_plates.hpp"
+
+namespace {
+
+using argil::BSplineSurface;
+using argil::ControlNet;
+using argil::Direction;
+using argil::PoleWindow;
+
+argil::DeformableBody make_body(const BSplineSurface& s, const argil::Material& m) {
+  static argil::OperatorCache cache;
+  auto b = argil::DeformableBody::create(s, m, {}, cache);
+  INFO(b.status().message);
+  REQUIRE(b.ok());
+  return std::move(b).value();
+}
+
+/// Point load pattern of one contact at parameter fractions (a, b).
+Eigen::VectorXd pattern_at(const BSplineSurface& s, double a, double b) {
+  std::vector<argil::Contact> c(1);
+  c[0].uv_a = {s.domain_start(Direction::u) +
+                   a * (s.domain_end(Direction::u) - s.domain_start(Direction::u)),
+               s.domain_start(Direction::v) +
+                   b * (s.domain_end(Direction::v) - s.domain_start(Direction::v))};
+  return argil::contact_load_pattern(s, c, {1.0});
+}
+
+/// The poles a pattern loads.
+PoleWindow loaded(const BSplineSurface& s, const Eigen::VectorXd& pattern) {
+  const int nv = s.count(Direction::v);
+  PoleWindow w;
+  for (Eigen::Index p = 0; p < pattern.size(); ++p)
+    if (pattern[p] != 0.0) {
+      const int i = static_cast<int>(p / nv), j = static_cast<int>(p % nv);
+      w = w.united({i, i + 1, j, j + 1});
+    }
+  return w;
+}
+
+PoleWindow whole(const BSplineSurface& s) {
+  return {0, s.count(Direction::u), 0, s.count(Direction::v)};
+}
+
+}  // namespace
+
+TEST_CASE("a factorisation spread over row chunks is the one-shot factor to the bit",
+          "[deformation][local]") {
+  const int n = 60, b = 7;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  argil::SymmetricBandMatrix a(n, b);
+  for (int i = 0; i < n; ++i) {
+    for (int j = std::max(0, i - b); j < i; ++j) a.at(i, j) = uniform(rng);
+    a.at(i, i) = 4.0 * (b + 1);
+  }
+  auto whole_factor = argil::BandedCholesky::factorize(a);
+  REQUIRE(whole_factor.ok());
+  argil::SymmetricBandMatrix chunked = a;
+  for (int row = 0; row < n; row += 11)
+    REQUIRE(argil::BandedCholesky::factorize_rows(chunked, row, std::min(n, row + 11)).ok());
+  const argil::BandedCholesky pieces = argil::BandedCholesky::from_factor(std::move(chunked));
+  argil::RowMajorMatrix x = argil::RowMajorMatrix::Random(n, 3), y = x;
+  whole_factor.value().solve_in_place(x);
+  pieces.solve_in_place(y);
+  CHECK((x - y).cwiseAbs().maxCoeff() == 0.0);
+}
+
+TEST_CASE("the stencil product on a window's rows is the whole product's rows to the bit",
+          "[deformation][local]") {
+  const BSplineSurface s = argil::test::flat_bicubic_panel(100.0, 9);
+  const argil::DeformableBody body = make_body(s, *argil::material_preset("clay"));
+  const argil::PoleStencilMatrix& k = body.stiffness();
+  const Eigen::MatrixXd x = Eigen::MatrixXd::Random(k.size(), 3);
+  const Eigen::MatrixXd full = k.multiply(x);
+  Eigen::MatrixXd part = Eigen::MatrixXd::Constant(k.size(), 3, 7.0);
+  k.multiply_rows(x, 2, 6, 3, 9, part);
+  const int nv = k.count_v();
+  for (int i = 0; i < k.count_u(); ++i)
+    for (int j = 0; j < nv; ++j) {
+      const Eigen::Index r = static_cast<Eigen::Index>(i) * nv + j;
+      if (i >= 2 && i < 6 && j >= 3 && j < 9) {
+        CHECK((part.row(r) - full.row(r)).cwiseAbs().maxCoeff() == 0.0);
+      } else {
+        CHECK((part.row(r).array() == 7.0).all());
+      }
+    }
+}
+
+TEST_CASE("where the window would cover the net, local solves step as the whole net to the bit",
+          "[deformation][local]") {
+  // A 40 mm panel of 8 x 8 poles: the clay's influence margin covers it.
+  const BSplineSurface s = argil::test::flat_bicubic_panel(40.0, 5);
+  argil::Material m = *argil::material_preset("clay");
+  m.yield = 0.05;
+  argil::DeformableBody local = make_body(s, m), full = make_body(s, m);
+  full.set_local_solves(false);
+  const Eigen::VectorXd pattern = pattern_at(s, 0.4, 0.55);
+  for (int t = 0; t < 200; ++t) {
+    const Eigen::Vector3d force(0.0, 0.0, t < 120 ? -2.0 : 0.0);
+    const Eigen::VectorXd& g = t < 120 ? pattern : Eigen::VectorXd();
+    REQUIRE(local.begin_step(1e-3, {}, g).ok());
+    REQUIRE(full.begin_step(1e-3, {}, g).ok());
+    local.finish_step(force);
+    full.finish_step(force);
+    CHECK(local.solved_window() == whole(s));
+  }
+  CHECK((local.control_points() - full.control_points()).cwiseAbs().maxCoeff() == 0.0);
+  CHECK((local.rest_control_points() - full.rest_control_points()).cwiseAbs().maxCoeff() == 0.0);
+  CHECK((local.velocities() - full.velocities()).cwiseAbs().maxCoeff() == 0.0);
+}
+
+TEST_CASE("no pole outside the active window moves, and the loads stay well inside it",
+          "[deformation][local]") {
+  const BSplineSurface s = argil::test::flat_bicubic_panel(630.0, 61);  // 64 x 64, 10 mm pitch
+  argil::Material m = *argil::material_preset("clay");
+  argil::DeformableBody body = make_body(s, m);
+  const int nu = s.count(Direction::u), nv = s.count(Direction::v);
+  ControlNet frozen;
+  PoleWindow window;
+  int local_steps = 0;
+  for (int t = 0; t < 300; ++t) {
+    // The load travels along u over 0.3 of the panel.
+    const Eigen::VectorXd g = pattern_at(s, 0.3 + 0.001 * t, 0.5);
+    REQUIRE(body.begin_step(1e-3, {}, g).ok());
+    body.finish_step(Eigen::Vector3d(0.0, 0.0, -3.0));
+    const PoleWindow w = body.solved_window();
+    if (w == whole(s)) {
+      CHECK(local_steps == 0);  // the whole net only until the first window is ready
+      continue;
+    }
+    ++local_steps;
+    CHECK(w.contains(loaded(s, g)));
+    if (!window.empty()) CHECK(w.contains(window));  // never shrinks while loaded
+    if (!(w == window)) {
+      window = w;
+      frozen = body.control_points();
+      continue;
+    }
+    for (int i = 0; i < nu; ++i)
+      for (int j = 0; j < nv; ++j) {
+        if (w.contains(i, j)) continue;
+        const Eigen::Index r = s.pole_index(i, j);
+        REQUIRE((body.control_points().row(r) - frozen.row(r)).cwiseAbs().maxCoeff() == 0.0);
+        REQUIRE(body.velocities().row(r).isZero(0.0));
+      }
+  }
+  CHECK(local_steps > 250);
+  CHECK(window.count_u() * window.count_v() < nu * nv / 3);
+}
+
+TEST_CASE("a window is dropped once the load is gone and it has come to rest",
+          "[deformation][local]") {
+  const BSplineSurface s = argil::test::flat_bicubic_panel(630.0, 61);
+  argil::DeformableBody body = make_body(s, *argil::material_preset("clay"));
+  const Eigen::VectorXd g = pattern_at(s, 0.5, 0.5);
+  for (int t = 0; t < 100; ++t) {
+    REQUIRE(body.begin_step(1e-3, {}, g).ok());
+    body.finish_step(Eigen::Vector3d(0.0, 0.0, -3.0));
+  }
+  CHECK(!(body.solved_window() == whole(s)));
+  bool dropped = false;
+  for (int t = 0; t < 2000 && !dropped; ++t) {
+    REQUIRE(body.step(1e-3).ok());
+    dropped = body.solved_window() == whole(s);
+  }
+  CHECK(dropped);
+}
+
+TEST_CASE(
+    "a body exactly at rest with no load solves nothing; the first load gets a window at once",
+    "[deformation][local]") {
+  const BSplineSurface s = argil::test::flat_bicubic_panel(630.0, 61);
+  argil::DeformableBody body = make_body(s, *argil::material_preset("clay"));
+  const ControlNet before = body.control_points();
+  for (int t = 0; t < 3; ++t) REQUIRE(body.step(1e-3).ok());
+  CHECK(body.solved_window().empty());
+  CHECK((body.control_points() - before).cwiseAbs().maxCoeff() == 0.0);
+  // The first window has no slack and is factorised within the step that
+  // would otherwise have solved the whole net.
+  const Eigen::VectorXd g = pattern_at(s, 0.5, 0.5);
+  REQUIRE(body.begin_step(1e-3, {}, g).ok());
+  body.finish_step(Eigen::Vector3d(0.0, 0.0, -1.0));
+  const PoleWindow w = body.solved_window();
+  CHECK(!w.empty());
+  CHECK(!(w == whole(s)));
+  CHECK(w == loaded(s, g).grown(body.window_margin(0), body.window_margin(1), s.count(Direction::u),
+                                s.count(Direction::v)));
+}
+
+TEST_CASE(
+    "a sphere press on a 64 x 64 panel solved locally dents and pushes back as the whole "
+    "net does, within 1%",
+    "[deformation][local]") {
+  const BSplineSurface s = argil::test::flat_bicubic_panel(630.0, 61);
+  argil::test::SpherePress press;
+  press.uv = {0.43, 0.57};
+  press.radius = 5.0;
+  press.depth = 2.0;
+  press.approach = 1.0;
+  press.approach_time = 0.05;
+  press.press_time = 0.3;
+  press.release_time = 0.05;
+  press.material = *argil::material_preset("clay");
+  press.check_every = 1000;
+  press.samples = 9;
+  const argil::test::PressOutcome local = argil::test::press_sphere(s, press);
+  press.options.local_solves = false;
+  const argil::test::PressOutcome full = argil::test::press_sphere(s, press);
+  REQUIRE(local.error.empty());
+  REQUIRE(full.error.empty());
+  INFO("dent local " << local.dent << " full " << full.dent << "; force local " << local.peak_force
+                     << " full " << full.peak_force);
+  REQUIRE(full.dent > 0.1);
+  CHECK(std::abs(local.dent - full.dent) < 0.01 * full.dent);
+  CHECK(std::abs(local.peak_force - full.peak_force) < 0.01 * full.peak_force);
+}
