@@ -13,8 +13,8 @@
 #include "argil/sculpt/script/script.hpp"  // IWYU pragma: export
 // session
 #include "argil/sculpt/session/face_refinement.hpp"  // IWYU pragma: export
-#include "argil/sculpt/session/journal.hpp"  // IWYU pragma: export
-#include "argil/sculpt/session/session.hpp"  // IWYU pragma: export
+#include "argil/sculpt/session/journal.hpp"          // IWYU pragma: export
+#include "argil/sculpt/session/session.hpp"          // IWYU pragma: export
 // output
 #include "argil/sculpt/output/pictures.hpp"          // IWYU pragma: export
 #include "argil/sculpt/output/session_pictures.hpp"  // IWYU pragma: export

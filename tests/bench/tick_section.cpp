@@ -49,7 +49,8 @@ void tick_section(const std::vector<TickCase>& cases, int ticks, int repeats) {
       for (std::size_t t = 0; t < log.cpu_us.size(); ++t) {
         // A tick worked on a window if one was pending after it or before it.
         const bool grew = growing[t] != 0 || (t > 0 && growing[t - 1] != 0);
-        if (grew && whole[t] == 0) worst_growing = std::max(worst_growing, log.cpu_us[t]), ++growing_ticks;
+        if (grew && whole[t] == 0)
+          worst_growing = std::max(worst_growing, log.cpu_us[t]), ++growing_ticks;
         if (whole[t] != 0) worst_whole = std::max(worst_whole, log.cpu_us[t]), ++whole_ticks;
       }
       const Percentiles w = percentiles(log.wall_us), p = percentiles(log.cpu_us);
