@@ -94,8 +94,10 @@ void tie_matrix(SymmetricBandMatrix& a, const std::vector<JoinRow>& rows,
     const int f = rank[static_cast<std::size_t>(r.after)];
     const double lb = r.lambda(), lf = 1.0 - lb;
     column.clear();
+    // Only the couplings: the band's zeros beyond them may lie outside the
+    // band of o's neighbours.
     for (int k = std::max(0, o - band); k <= std::min(n - 1, o + band); ++k)
-      if (k != o) column.emplace_back(k, entry(a, k, o));
+      if (const double c = entry(a, k, o); k != o && c != 0.0) column.emplace_back(k, c);
     const double c_oo = entry(a, o, o);
     double c_b = 0.0, c_f = 0.0;
     for (const auto& [k, c] : column) {
