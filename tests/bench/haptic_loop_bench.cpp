@@ -9,8 +9,10 @@
 //  - create: the one-off cost of a deformable body;
 //  - sleep: untouched faces 50 mm from a pressed plate, sleep on and off
 //    (at most 2000 ticks a run, 300 with sleep off);
-//  - resolve: the one-off cost of refining every face of the real files for a tool.
-// Arguments: [ticks] [ticks|refine|create|sleep|resolve|all] [case filter]: the filter is a
+//  - resolve: the one-off cost of refining every face of the real files for a tool;
+//  - scale: a sphere on one spot against the scene's size (1 to 1000 faces,
+//    one face of 16x16 to 1024x1024 poles, all of 11752.stp).
+// Arguments: [ticks] [ticks|refine|create|sleep|resolve|scale|all] [case filter]: the filter is a
 // substring of the case names; CAD files are read only when it is empty or
 // names the file.
 #include <cstdio>
@@ -74,6 +76,59 @@ std::vector<BenchFace> file_faces(const std::string& file) {
   return faces;
 }
 
+/// The size table's scenes: `count` 16x16 panels (1 mm pitch) in rows of 32,
+/// the first pressed; one n x n panel; every face of 11752.stp, its largest
+/// polynomial net that clay accepts pressed.
+std::vector<argil::bench::ScaleCase> scale_cases() {
+  using argil::bench::BenchFace;
+  std::vector<argil::bench::ScaleCase> cases;
+  for (const int count : {1, 10, 100, 1000}) {
+    cases.push_back({std::to_string(count) + (count == 1 ? " face" : " faces") + " of 16x16",
+                     [count](int& pressed) {
+                       std::vector<BenchFace> faces;
+                       for (int k = 0; k < count; ++k) {
+                         BenchFace f{"panel " + std::to_string(k),
+                                     argil::bench::flat_panel(16, 1.0), false, ""};
+                         f.surface.control_points.rowwise() +=
+                             Eigen::RowVector3d(17.0 * (k % 32), 17.0 * (k / 32), 0.0);
+                         faces.push_back(std::move(f));
+                       }
+                       pressed = 0;
+                       return faces;
+                     }});
+  }
+  for (const int poles : {16, 64, 256, 1024}) {
+    cases.push_back({"one face of " + std::to_string(poles) + "x" + std::to_string(poles),
+                     [poles](int& pressed) {
+                       pressed = 0;
+                       return std::vector<BenchFace>{
+                           {"panel", argil::bench::flat_panel(poles, 1.0), false, ""}};
+                     }});
+  }
+  cases.push_back({"11752.stp, all faces",
+                   [](int& pressed) {
+                     std::vector<BenchFace> faces;
+                     const auto model = argil::bench::read_bench_model(
+                         std::string(ARGIL_BENCH_DATA_DIR) + "/11752.stp");
+                     if (!model.ok()) return faces;
+                     for (int i = 0; i < static_cast<int>(model.value().faces.size()); ++i)
+                       faces.push_back(argil::bench::model_face(model.value(), i, "11752.stp"));
+                     const argil::Material clay = *argil::material_preset("clay");
+                     for (const int index : argil::bench::faces_by_net_size(model.value(), false)) {
+                       argil::OperatorCache cache;
+                       if (argil::DeformableBody::create(
+                               faces[static_cast<std::size_t>(index)].surface, clay, {}, cache)
+                               .ok()) {
+                         pressed = index;
+                         break;
+                       }
+                     }
+                     return faces;
+                   },
+                   true});
+  return cases;
+}
+
 bool wanted(const std::string& name, const std::string& filter) {
   return filter.empty() || name.find(filter) != std::string::npos;
 }
@@ -84,11 +139,13 @@ int main(int argc, char** argv) {
   const int ticks = argc > 1 ? std::atoi(argv[1]) : 10000;
   const std::string section = argc > 2 ? argv[2] : "all";
   const std::string filter = argc > 3 ? argv[3] : "";
-  if (ticks < 1 || (section != "all" && section != "ticks" && section != "refine" &&
-                    section != "create" && section != "sleep" && section != "resolve")) {
-    std::fprintf(stderr,
-                 "usage: %s [ticks >= 1] [ticks|refine|create|sleep|resolve|all] [case filter]\n",
-                 argv[0]);
+  if (ticks < 1 ||
+      (section != "all" && section != "ticks" && section != "refine" && section != "create" &&
+       section != "sleep" && section != "resolve" && section != "scale")) {
+    std::fprintf(
+        stderr,
+        "usage: %s [ticks >= 1] [ticks|refine|create|sleep|resolve|scale|all] [case filter]\n",
+        argv[0]);
     return 2;
   }
 
@@ -163,6 +220,11 @@ int main(int argc, char** argv) {
                                       "11752.stp"};
     std::erase_if(files, [&](const auto& f) { return !wanted(f, filter); });
     argil::bench::tool_refinement_section(files, 1.0 / 30.0);
+  }
+  if (section == "all" || section == "scale") {
+    std::vector<argil::bench::ScaleCase> cases = scale_cases();
+    std::erase_if(cases, [&](const auto& c) { return !wanted(c.name, filter); });
+    argil::bench::scale_section(cases, std::min(ticks, 2000), kRepeats, 600);
   }
   if (section == "all" || section == "sleep")
     argil::bench::sleep_section(std::min(ticks, 2000), std::min(ticks, 300), kRepeats);

@@ -2,6 +2,7 @@
 // The three parts of bench_haptic_loop (docs/benchmarks.md), each printing
 // its runs and a summary table.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -48,5 +49,21 @@ void sleep_section(int ticks_on, int ticks_off, int repeats);
 /// size (refine_region; region_near_path timed on a path through each face's
 /// middle): per file the faces refined, poles before and after, and CPU time.
 void tool_refinement_section(const std::vector<std::string>& files, double size_fraction);
+
+/// A scene of the size table: its faces, made in the row's own process,
+/// which sets `pressed` to the face the sphere presses at its domain's middle.
+/// The sphere is 2 mm (press 0.3 mm, eps 0.01 mm) on the generated 1 mm
+/// pitch panels, or sized to the pressed face (`scaled`: scaled_stroke).
+struct ScaleCase {
+  std::string name;
+  std::function<std::vector<BenchFace>(int& pressed)> faces;
+  bool scaled = false;
+};
+
+/// Per-tick CPU time of a sphere pressing and circling on one spot against
+/// what the scene holds, each row in a child process (peak memory, and a
+/// row over `row_seconds` is reported as stopped): creation time, p50, p99,
+/// p99.9, worst tick and peak memory, plus a `scale-csv` line per row.
+void scale_section(const std::vector<ScaleCase>& cases, int ticks, int repeats, int row_seconds);
 
 }  // namespace argil::bench

@@ -243,9 +243,16 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
     body.margin_ = {poles(pitch_u, surface.degree[0], nu), poles(pitch_v, surface.degree[1], nv)};
     body.slack_ = {std::max(4, body.margin_[0]), std::max(4, body.margin_[1])};
   }
+  body.points_ = surface.control_points;
   // Factorised now, at the haptic step, so the first tick does not pay for it
-  // (28 ms on a 64 x 64 net); another dt refactorises at its first step.
-  if (Status f = body.factorize(kHapticStep); !f.ok()) return f;
+  // (28 ms on a 64 x 64 net); another dt refactorises at its first step. A
+  // net too large for that is solved in local windows only (the whole net is
+  // factorised when a window reaches it, or without local solves).
+  const double full_work =
+      0.5 * static_cast<double>(n) * body.full_.bandwidth * body.full_.bandwidth;
+  if (full_work <= kCreateFactorWork) {
+    if (Status f = body.factorize(kHapticStep); !f.ok()) return f;
+  }
   return body;
 }
 
@@ -257,17 +264,54 @@ double DeformableBody::kinetic_energy() const {
 }
 
 double DeformableBody::potential_energy() const {
-  return 0.5 * stiffness_.quadratic_form(control_points() - rest_);
+  return 0.5 * stiffness_.quadratic_form(points_ - rest_);
 }
 
 double DeformableBody::last_step_motion() const {
-  return velocities_.rows() > 0 ? step_dt_ * velocities_.rowwise().norm().maxCoeff() : 0.0;
+  // Poles outside the window a step solved do not move (held, V = 0).
+  const int nv = stiffness_.count_v();
+  const PoleWindow& w = stepped_window_;
+  double largest = 0.0;
+  for (int i = w.i0; i < w.i1; ++i)
+    for (int j = w.j0; j < w.j1; ++j)
+      largest = std::max(largest, velocities_.row(static_cast<Eigen::Index>(i) * nv + j).norm());
+  return step_dt_ * largest;
 }
 
 bool DeformableBody::settled(double distance) const {
   if (!(last_step_motion() < distance)) return false;
-  const ControlNet stretch = control_points() - rest_;
-  return stretch.rows() == 0 || stretch.rowwise().norm().maxCoeff() < distance;
+  // A window opened on a body at rest holds the poles outside it at rest.
+  const int nu = stiffness_.count_u(), nv = stiffness_.count_v();
+  const PoleWindow w =
+      step_local_ && local_->outside_at_rest ? local_->window : PoleWindow{0, nu, 0, nv};
+  for (int i = w.i0; i < w.i1; ++i)
+    for (int j = w.j0; j < w.j1; ++j) {
+      const Eigen::Index r = static_cast<Eigen::Index>(i) * nv + j;
+      if (!((points_.row(r) - rest_.row(r)).norm() < distance)) return false;
+    }
+  return true;
+}
+
+Box3 DeformableBody::solved_box() const {
+  const int nv = stiffness_.count_v();
+  const PoleWindow& w = stepped_window_;
+  Box3 box{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+           Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+  for (int i = w.i0; i < w.i1; ++i)
+    for (int j = w.j0; j < w.j1; ++j) {
+      const Eigen::Vector3d x = points_.row(static_cast<Eigen::Index>(i) * nv + j).transpose();
+      box.min = box.min.cwiseMin(x);
+      box.max = box.max.cwiseMax(x);
+    }
+  return box;
+}
+
+void DeformableBody::halt() {
+  velocities_.setZero();
+  // The next load opens a window where it lands; the body is at rest now.
+  local_.reset();
+  pending_.reset();
+  resting_ = true;
 }
 
 PoleWindow DeformableBody::tie_closed(PoleWindow window) const {
@@ -409,15 +453,18 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
                               .united(current)
                               .united(pending_ ? pending_->window : PoleWindow{});
       target = tie_closed(target);
+      // Poles outside a window opened on a resting body stay at rest.
+      const bool outside_at_rest = local_ ? local_->outside_at_rest : resting_;
       pending_.reset();
       if (target == net) {
-        local_.reset();  // the whole net: full_ is factorised already
+        local_.reset();  // the whole net
       } else {
         pending_ = region(target);
         pending_->dt = dt;
+        pending_->outside_at_rest = outside_at_rest;
       }
     }
-  } else if (local_ && !pending_) {
+  } else if (local_ && !pending_ && !local_->outside_at_rest) {
     // No load: once the window has come to rest the whole net relaxes again
     // (the held poles outside it may sit off their rest).
     double motion = 0.0;
@@ -434,8 +481,13 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
     SolveRegion& r = *pending_;
     const int size = r.window.count_u() * r.window.count_v();
     double work = kWindowFactorWorkPerStep;
-    if (!(local_ && local_->window.contains(loads)))
-      work = std::max(work, 8.0 * static_cast<double>(masses_.size()) * full_.bandwidth);
+    if (!(local_ && local_->window.contains(loads))) {
+      // (A net too large to factorise at create never solves the whole: its
+      // first window is factorised at once.)
+      work = full_.solver
+                 ? std::max(work, 8.0 * static_cast<double>(masses_.size()) * full_.bandwidth)
+                 : std::numeric_limits<double>::infinity();
+    }
     if (r.matrix.size() != size) {
       r.matrix = step_matrix(r, dt);
       const int stencil = (2 * stiffness_.reach_u() + 1) * (2 * stiffness_.reach_v() + 1);
@@ -454,9 +506,9 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
     }
   }
   step_local_ = local_.has_value() && local_->window.contains(loads);
-  // A body exactly at rest with no load would step to exactly where it is.
-  step_idle_ = loads.empty() && !local_ && velocities_.isZero(0.0) &&
-               control_points().cwiseEqual(rest_).all();
+  // A body at rest with no load would step to (about) where it is.
+  step_idle_ = loads.empty() && !local_ && resting_;
+  if (!loads.empty()) resting_ = false;
   return Status::success();
 }
 
@@ -542,7 +594,7 @@ void DeformableBody::finish_step(const Eigen::Vector3d& pattern_force) {
   const SolveRegion& region = step_local_ ? *local_ : full_;
   const Eigen::Index n = static_cast<Eigen::Index>(region.order.size());
   const double h = step_dt_;
-  ControlNet points = control_points();
+  ControlNet& points = points_;  // differs from the hierarchy's in the window only
   for (Eigen::Index r = 0; r < n; ++r) {
     const Eigen::Index i = region.order[static_cast<std::size_t>(r)];
     if (fixed_[static_cast<std::size_t>(i)]) continue;  // P = P_rest, V = 0 throughout
@@ -552,7 +604,8 @@ void DeformableBody::finish_step(const Eigen::Vector3d& pattern_force) {
     points.row(i) += h * v;
   }
   if (std::isfinite(material_.yield)) plastic_flow(points, region.window);
-  hierarchy_.set_control_points(points);
+  const PoleWindow& w = region.window;
+  hierarchy_.set_control_points_in(points, w.i0, w.i1, w.j0, w.j1);
 }
 
 }  // namespace argil

@@ -46,6 +46,10 @@ inline constexpr double kWindowFactorWorkPerStep = 2e5;
 /// none of its poles moved this far [mm] over a step.
 inline constexpr double kWindowRestMotion = 1e-3;
 
+/// Multiply-adds up to which create() factorises the whole net (about 50 ms);
+/// larger nets are solved in local windows only.
+inline constexpr double kCreateFactorWork = 1e8;
+
 /// Plastic flow keeps every control point's stretch |P - P_rest| within this
 /// many yields (the surface's own stretch is held at the yield).
 inline constexpr double kPlasticStretchCap = 3.0;
@@ -127,7 +131,10 @@ class DeformableBody {
   bool settled(double distance) const;
   /// Sets every velocity to zero: a body put to sleep wakes from a state that
   /// does not depend on how long it slept.
-  void halt() { velocities_.setZero(); }
+  /// It also drops the local window and marks the body resting: until the
+  /// next load it does not step (it stays where it is, within the settling
+  /// distance of its rest).
+  void halt();
 
   /// Local solves (on by default; docs/deformation.md, Local solves): a step
   /// whose loads all lie inside the active window solves only the window's
@@ -138,6 +145,9 @@ class DeformableBody {
   /// The poles the last step solved for: the whole net, the active window, or
   /// none (empty) when the body was exactly at rest with no load and no window.
   const PoleWindow& solved_window() const { return stepped_window_; }
+  /// Box of the control points the last step solved for (empty when none):
+  /// the rest did not move.
+  Box3 solved_box() const;
   /// Whether a larger window is being factorised (a few rows per step).
   bool window_growing() const { return pending_.has_value(); }
   /// The window a load's poles need around them (the influence margin) and
@@ -160,6 +170,9 @@ class DeformableBody {
     SymmetricBandMatrix matrix;  // factorised in place up to factored_rows
     int factored_rows = 0;
     std::optional<BandedCholesky> solver;  // once every row is factorised
+    /// Opened on a body at rest: the poles outside stay at rest, so the
+    /// window is kept when its loads end (the body settles and sleeps in it).
+    bool outside_at_rest = false;
   };
 
   DeformableBody(SurfaceHierarchy hierarchy, const Material& material);
@@ -188,6 +201,10 @@ class DeformableBody {
   std::vector<char> fixed_;
   Eigen::VectorXd masses_;
   ControlNet rest_, velocities_;
+  /// The control points (the hierarchy's copy is updated from it window by window).
+  ControlNet points_;
+  /// At rest with no load since create() or halt(): a step without load is skipped.
+  bool resting_ = true;
   /// Where plastic flow measures the surface's stretch for one control point:
   /// a 3 x 3 grid over its cell (from halfway to the previous Greville point
   /// to halfway to the next, each way), each sample as the poles and basis

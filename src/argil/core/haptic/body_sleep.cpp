@@ -54,12 +54,17 @@ void HapticWorld::settle(const std::vector<char>& reach) {
     if (!body.deformable || body.asleep) continue;
     DeformableBody& d = *body.deformable;
     motion_ = std::max(motion_, d.last_step_motion());
-    body.bound = control_point_box(d.surface());
+    // Only the poles the step solved for moved: the bound grows to hold them
+    // (a cost that follows the window, not the net), and is made tight again
+    // when the body falls asleep.
+    const Box3 moved = d.solved_box();
+    body.bound = {body.bound.min.cwiseMin(moved.min), body.bound.max.cwiseMax(moved.max)};
     // The test is on motion, not contact: a released body steps until it
     // settles, whatever the tool does.
     if (options_.sleep && !reach[b] && d.settled(rest)) {
       body.asleep = true;
       d.halt();
+      body.bound = control_point_box(d.surface());
     }
   }
 }

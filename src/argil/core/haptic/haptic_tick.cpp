@@ -102,6 +102,8 @@ Result<int> HapticWorld::add_deformable(const BSplineSurface& surface, const Mat
   b.friction = friction;
   b.deformable.emplace(std::move(body).value());
   b.deformable->set_local_solves(options_.local_solves);
+  // A new body is at rest: it sleeps until the tool comes within reach.
+  b.asleep = options_.sleep;
   return add_body(std::move(b));
 }
 

@@ -68,6 +68,26 @@ const ElementBlock& SurfaceHierarchy::block(int id, QueryCounters* counters) con
   ElementBlock& b = blocks_[static_cast<std::size_t>(id)];
   if (counters) ++counters->nodes_visited;
   if (b.fresh) return b;
+  if (b.element_node < 0) {
+    // The union of the sub-blocks' boxes: the box of the same poles, and a
+    // local change refreshes one path of blocks, not the whole net.
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d hi = -lo;
+    for (const int c : b.children) {
+      if (c < 0) continue;
+      const Box3& box = block(c, counters).bound.box;
+      lo = lo.cwiseMin(box.min);
+      hi = hi.cwiseMax(box.max);
+    }
+    ElementBlock& self = blocks_[static_cast<std::size_t>(id)];  // `b` still valid: no growth
+    self.bound.box = {lo, hi};
+    self.bound.center = 0.5 * (lo + hi);
+    self.bound.radius = 0.5 * (hi - lo).norm();
+    self.bound.flatness = std::numeric_limits<double>::infinity();
+    self.fresh = true;
+    if (counters) ++counters->nodes_refreshed;
+    return self;
+  }
   const int p = surface_.degree[0];
   const int q = surface_.degree[1];
   const int i0 = ops_.u->extraction().spans[static_cast<std::size_t>(b.eu0)] - p;
@@ -98,49 +118,101 @@ void SurfaceHierarchy::set_control_points(const ControlNet& points,
                                           const Eigen::VectorXd& weights) {
   assert(points.rows() == surface_.control_points.rows());
   assert(weights.size() == 0 || weights.size() == surface_.weights.size());
-  // Which poles changed, as a 2D prefix count so an element's support (a
-  // (p + 1) x (q + 1) block of poles) is tested in O(1).
+  if (weights.size() > 0 && weights != surface_.weights) {
+    // A weight change goes through the whole net (rare: imports, tests).
+    surface_.weights = weights;
+    surface_.control_points = points;
+    ++version_;
+    element_version_.assign(element_version_.size(), version_);
+    stale_elements_ = static_cast<int>(element_version_.size());
+    for (ElementBlock& b : blocks_) b.fresh = false;
+    if (nodes_.size() > node_budget_) release_nodes();
+    return;
+  }
+  set_control_points_in(points, 0, surface_.count(Direction::u), 0, surface_.count(Direction::v));
+}
+
+void SurfaceHierarchy::set_control_points_in(const ControlNet& points, int i0, int i1, int j0,
+                                             int j1) {
+  assert(points.rows() == surface_.control_points.rows());
   const int nu = surface_.count(Direction::u), nv = surface_.count(Direction::v);
-  std::vector<int> changed(static_cast<std::size_t>(nu + 1) * static_cast<std::size_t>(nv + 1), 0);
-  const auto at = [&](int i, int j) -> int& {
-    return changed[static_cast<std::size_t>(i) * static_cast<std::size_t>(nv + 1) +
+  i0 = std::max(i0, 0), i1 = std::min(i1, nu), j0 = std::max(j0, 0), j1 = std::min(j1, nv);
+  stale_elements_ = 0;
+  if (i0 >= i1 || j0 >= j1) return;
+  // Which poles of the box changed, as a 2D prefix count so an element's
+  // support (a (p + 1) x (q + 1) block of poles) is tested in O(1).
+  const int wu = i1 - i0, wv = j1 - j0;
+  std::vector<int> changed(static_cast<std::size_t>(wu + 1) * static_cast<std::size_t>(wv + 1), 0);
+  const auto at = [&](int i, int j) -> int& {  // box-relative
+    return changed[static_cast<std::size_t>(i) * static_cast<std::size_t>(wv + 1) +
                    static_cast<std::size_t>(j)];
   };
   bool any = false;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const Eigen::Index k = surface_.pole_index(i, j);
-      const bool moved = points.row(k) != surface_.control_points.row(k) ||
-                         (weights.size() > 0 && weights[k] != surface_.weights[k]);
+  for (int i = 0; i < wu; ++i)
+    for (int j = 0; j < wv; ++j) {
+      const Eigen::Index k = surface_.pole_index(i0 + i, j0 + j);
+      const bool moved = points.row(k) != surface_.control_points.row(k);
+      if (moved) surface_.control_points.row(k) = points.row(k);
       any = any || moved;
       at(i + 1, j + 1) = (moved ? 1 : 0) + at(i, j + 1) + at(i + 1, j) - at(i, j);
     }
-  stale_elements_ = 0;
   if (!any) return;  // nothing moved: every bound still holds
-  surface_.control_points = points;
-  if (weights.size() > 0) surface_.weights = weights;
   ++version_;
-  const auto moved_in = [&](int i0, int i1, int j0, int j1) {  // poles [i0, i1] x [j0, j1]
-    return at(i1 + 1, j1 + 1) - at(i0, j1 + 1) - at(i1 + 1, j0) + at(i0, j0) > 0;
+  // Whether a pole in [a0, a1] x [b0, b1] (inclusive, net indices) moved.
+  const auto moved_in = [&](int a0, int a1, int b0, int b1) {
+    a0 = std::max(a0, i0) - i0, a1 = std::min(a1, i1 - 1) - i0;
+    b0 = std::max(b0, j0) - j0, b1 = std::min(b1, j1 - 1) - j0;
+    if (a0 > a1 || b0 > b1) return false;
+    return at(a1 + 1, b1 + 1) - at(a0, b1 + 1) - at(a1 + 1, b0) + at(a0, b0) > 0;
   };
   const int p = surface_.degree[0], q = surface_.degree[1];
   const auto& su = ops_.u->extraction().spans;
   const auto& sv = ops_.v->extraction().spans;
-  for (std::size_t eu = 0; eu < su.size(); ++eu)
-    for (std::size_t ev = 0; ev < sv.size(); ++ev)
-      if (moved_in(su[eu] - p, su[eu], sv[ev] - q, sv[ev])) {
-        element_version_[eu * sv.size() + ev] = version_;
+  // The elements whose support (poles span - p .. span) meets the box.
+  const auto elements = [](const std::vector<int>& spans, int degree, int first, int last) {
+    const auto lo = std::lower_bound(spans.begin(), spans.end(), first);
+    const auto hi = std::upper_bound(spans.begin(), spans.end(), last + degree);
+    return std::pair<int, int>{static_cast<int>(lo - spans.begin()),
+                               static_cast<int>(hi - spans.begin())};
+  };
+  const auto [eu0, eu1] = elements(su, p, i0, i1 - 1);
+  const auto [ev0, ev1] = elements(sv, q, j0, j1 - 1);
+  for (int eu = eu0; eu < eu1; ++eu)
+    for (int ev = ev0; ev < ev1; ++ev) {
+      const std::size_t e = static_cast<std::size_t>(eu) * sv.size() + static_cast<std::size_t>(ev);
+      if (moved_in(su[static_cast<std::size_t>(eu)] - p, su[static_cast<std::size_t>(eu)],
+                   sv[static_cast<std::size_t>(ev)] - q, sv[static_cast<std::size_t>(ev)])) {
+        element_version_[e] = version_;
         ++stale_elements_;
       }
-  for (ElementBlock& b : blocks_)
-    if (b.fresh) {
-      const int i0 = su[static_cast<std::size_t>(b.eu0)] - p;
-      const int i1 = su[static_cast<std::size_t>(b.eu1 - 1)];
-      const int j0 = sv[static_cast<std::size_t>(b.ev0)] - q;
-      const int j1 = sv[static_cast<std::size_t>(b.ev1 - 1)];
-      b.fresh = !moved_in(i0, i1, j0, j1);
     }
+  stale_blocks(0, eu0, eu1, ev0, ev1, [&](int eu, int ev) {
+    return element_version_[static_cast<std::size_t>(eu) * sv.size() +
+                            static_cast<std::size_t>(ev)] == version_;
+  });
   if (nodes_.size() > node_budget_) release_nodes();
+}
+
+template <class Stale>
+void SurfaceHierarchy::stale_blocks(int id, int eu0, int eu1, int ev0, int ev1,
+                                    const Stale& stale) {
+  ElementBlock& b = blocks_[static_cast<std::size_t>(id)];
+  const int u0 = std::max(b.eu0, eu0), u1 = std::min(b.eu1, eu1);
+  const int v0 = std::max(b.ev0, ev0), v1 = std::min(b.ev1, ev1);
+  if (u0 >= u1 || v0 >= v1) return;
+  // A stale block's sub-blocks may be fresh (a block's bound is computed from
+  // its sub-blocks'), so the walk goes on below it.
+  bool any = false;
+  if (b.element_node >= 0) {
+    any = stale(b.eu0, b.ev0);
+  } else {
+    for (const int c : b.children) {
+      if (c < 0) continue;
+      stale_blocks(c, eu0, eu1, ev0, ev1, stale);
+      any = any || !blocks_[static_cast<std::size_t>(c)].fresh;
+    }
+  }
+  if (any) b.fresh = false;
 }
 
 void SurfaceHierarchy::release_nodes() {

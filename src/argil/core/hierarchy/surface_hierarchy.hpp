@@ -76,6 +76,11 @@ class SurfaceHierarchy {
   /// their bounds: a body solved only near the tool, or at rest, refreshes
   /// nothing elsewhere.
   void set_control_points(const ControlNet& points, const Eigen::VectorXd& weights = {});
+  /// The same for a net that differs from the current one only in the poles
+  /// (i, j), i0 <= i < i1 and j0 <= j < j1 (the rest are not read): the cost
+  /// follows the box, not the net (a body solved in a window near the tool).
+  /// The weights do not change.
+  void set_control_points_in(const ControlNet& points, int i0, int i1, int j0, int j1);
   /// Elements (Bezier patches) the last set_control_points made stale.
   int stale_elements() const { return stale_elements_; }
 
@@ -109,6 +114,10 @@ class SurfaceHierarchy {
   SurfaceHierarchy() = default;
   void refresh(int id, QueryCounters* counters) const;
   int build_block(int eu0, int eu1, int ev0, int ev1);
+  /// Marks stale the blocks under `id` whose elements hold one in
+  /// [eu0, eu1) x [ev0, ev1) that `stale` says changed.
+  template <class Stale>
+  void stale_blocks(int id, int eu0, int eu1, int ev0, int ev1, const Stale& stale);
 
   BSplineSurface surface_;
   SurfaceOperators ops_;
