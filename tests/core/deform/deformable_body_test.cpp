@@ -11,6 +11,7 @@
 #include <random>
 
 #include "argil/core.hpp"
+#include "support/point_load.hpp"
 #include "support/random_surface.hpp"
 #include "support/transposed_surface.hpp"
 
@@ -19,6 +20,7 @@ namespace {
 using argil::BSplineSurface;
 using argil::ControlNet;
 using argil::Direction;
+using argil::test::pattern_at;
 
 constexpr int kCountU = 7;
 constexpr int kCountV = 5;
@@ -43,16 +45,6 @@ argil::DeformableBody make_body(const BSplineSurface& s, const argil::Material& 
 
 double total_energy(const argil::DeformableBody& b) {
   return b.kinetic_energy() + b.potential_energy();
-}
-
-/// Point load pattern of one contact at parameter fractions (a, b).
-Eigen::VectorXd pattern_at(const BSplineSurface& s, double a, double b) {
-  std::vector<argil::Contact> c(1);
-  c[0].uv_a = {s.domain_start(Direction::u) +
-                   a * (s.domain_end(Direction::u) - s.domain_start(Direction::u)),
-               s.domain_start(Direction::v) +
-                   b * (s.domain_end(Direction::v) - s.domain_start(Direction::v))};
-  return argil::contact_load_pattern(s, c, {1.0});
 }
 
 ControlNet random_forces(Eigen::Index n, double scale, unsigned seed) {

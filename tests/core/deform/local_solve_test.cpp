@@ -12,6 +12,7 @@
 #include <random>
 
 #include "argil/core.hpp"
+#include "support/point_load.hpp"
 #include "support/sphere_press.hpp"
 #include "support/test_plates.hpp"
 
@@ -21,6 +22,7 @@ using argil::BSplineSurface;
 using argil::ControlNet;
 using argil::Direction;
 using argil::PoleWindow;
+using argil::test::pattern_at;
 
 argil::DeformableBody make_body(const BSplineSurface& s, const argil::Material& m) {
   static argil::OperatorCache cache;
@@ -28,16 +30,6 @@ argil::DeformableBody make_body(const BSplineSurface& s, const argil::Material& 
   INFO(b.status().message);
   REQUIRE(b.ok());
   return std::move(b).value();
-}
-
-/// Point load pattern of one contact at parameter fractions (a, b).
-Eigen::VectorXd pattern_at(const BSplineSurface& s, double a, double b) {
-  std::vector<argil::Contact> c(1);
-  c[0].uv_a = {s.domain_start(Direction::u) +
-                   a * (s.domain_end(Direction::u) - s.domain_start(Direction::u)),
-               s.domain_start(Direction::v) +
-                   b * (s.domain_end(Direction::v) - s.domain_start(Direction::v))};
-  return argil::contact_load_pattern(s, c, {1.0});
 }
 
 /// The poles a pattern loads.
