@@ -10,7 +10,8 @@
 namespace argil::sculpt {
 namespace {
 
-/// One grid cell along a direction: its centre and width in the parameter.
+/// A sample along a direction: a parameter and the width of the cell it
+/// stands for (a node: the wider of the cells beside it).
 struct Cell {
   double centre = 0.0;
   double width = 0.0;
@@ -27,6 +28,18 @@ std::vector<Cell> cells_along(const BSplineSurface& s, Direction d, int per_span
     for (int c = 0; c < per_span; ++c) cells.push_back({a + (c + 0.5) * w, w});
   }
   return cells;
+}
+
+/// The cells' corners: every cell's start, then the domain's end.
+std::vector<Cell> nodes_of(const std::vector<Cell>& cells) {
+  std::vector<Cell> nodes;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const double before = k > 0 ? cells[k - 1].width : 0.0;
+    nodes.push_back({cells[k].centre - 0.5 * cells[k].width, std::max(before, cells[k].width)});
+  }
+  if (!cells.empty())
+    nodes.push_back({cells.back().centre + 0.5 * cells.back().width, cells.back().width});
+  return nodes;
 }
 
 /// The face's outward unit normal before the run, from first derivatives, or
@@ -54,16 +67,17 @@ struct Candidate {
   double signed_value = 0.0;  // sign * d; > 0 when found
   int face = -1;              // index in the faces given
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();
-  Eigen::Vector2d half = Eigen::Vector2d::Zero();  // the cell's half widths
+  Eigen::Vector2d reach = Eigen::Vector2d::Zero();  // the widths of the cells about it
 };
 
 void consider(Candidate& c, double value, int face, const Eigen::Vector2d& uv,
-              const Eigen::Vector2d& half) {
-  if (value > c.signed_value) c = {value, face, uv, half};
+              const Eigen::Vector2d& reach) {
+  if (value > c.signed_value) c = {value, face, uv, reach};
 }
 
-/// Refines a candidate by a shrinking 9 x 9 grid search about it, inside the
-/// domain and the trims; returns the extreme it ends at.
+/// Refines a candidate by a shrinking 9 x 9 grid search about it (first over
+/// the cells about its corner), inside the domain and the trims; returns the
+/// extreme it ends at.
 DisplacementExtreme refine(const std::vector<SculptedFace>& faces, Candidate c, double sign,
                            int rounds) {
   DisplacementExtreme e;
@@ -72,19 +86,19 @@ DisplacementExtreme refine(const std::vector<SculptedFace>& faces, Candidate c, 
   const Eigen::Vector2d lo(f.before.domain_start(Direction::u),
                            f.before.domain_start(Direction::v));
   const Eigen::Vector2d hi(f.before.domain_end(Direction::u), f.before.domain_end(Direction::v));
-  Eigen::Vector2d half = c.half;
+  Eigen::Vector2d window = c.reach;
   for (int r = 0; r < rounds; ++r) {
     const Eigen::Vector2d centre = c.uv;
     for (int i = 0; i <= 8; ++i) {
       for (int j = 0; j <= 8; ++j) {
         const Eigen::Vector2d step(static_cast<double>(i - 4) / 4.0,
                                    static_cast<double>(j - 4) / 4.0);
-        const Eigen::Vector2d uv = (centre + step.cwiseProduct(half)).cwiseMax(lo).cwiseMin(hi);
+        const Eigen::Vector2d uv = (centre + step.cwiseProduct(window)).cwiseMax(lo).cwiseMin(hi);
         if (!f.trim.empty() && !f.trim.contains(uv)) continue;
-        consider(c, sign * displacement_at(f, uv, nullptr), c.face, uv, c.half);
+        consider(c, sign * displacement_at(f, uv, nullptr), c.face, uv, c.reach);
       }
     }
-    half *= 0.5;
+    window *= 0.5;
   }
   e.displacement = sign * c.signed_value;
   e.model = f.model;
@@ -136,6 +150,7 @@ DisplacementSummary summarize_displacement(const std::vector<SculptedFace>& face
     const bool moved = !unchanged(f);
     const std::vector<Cell> us = cells_along(f.before, Direction::u, per_span);
     const std::vector<Cell> vs = cells_along(f.before, Direction::v, per_span);
+    // The area and the affected area at the cells' centres.
     for (const Cell& cu : us) {
       for (const Cell& cv : vs) {
         const Eigen::Vector2d uv(cu.centre, cv.centre);
@@ -144,13 +159,26 @@ DisplacementSummary summarize_displacement(const std::vector<SculptedFace>& face
         const double area = d.du.cross(d.dv).norm() * cu.width * cv.width;
         s.area += area;
         ++s.samples;
-        if (!moved) continue;
-        const double disp =
-            (evaluate(f.after, uv[0], uv[1]) - d.point).dot(face_normal(f, d, uv[0], uv[1]));
-        if (std::abs(disp) > eps) s.affected_area += area;
-        const Eigen::Vector2d half(0.5 * cu.width, 0.5 * cv.width);
-        consider(in, -disp, static_cast<int>(k), uv, half);
-        consider(out, disp, static_cast<int>(k), uv, half);
+        if (moved &&
+            std::abs(
+                (evaluate(f.after, uv[0], uv[1]) - d.point).dot(face_normal(f, d, uv[0], uv[1]))) >
+                eps) {
+          s.affected_area += area;
+        }
+      }
+    }
+    if (!moved) continue;
+    // The extremes' start at the cells' corners, which reach the domain's edges
+    // (where an extreme often lies) and the knot lines (where a C0 face creases).
+    for (const Cell& nu : nodes_of(us)) {
+      for (const Cell& nv : nodes_of(vs)) {
+        const Eigen::Vector2d uv(nu.centre, nv.centre);
+        if (!f.trim.empty() && !f.trim.contains(uv)) continue;
+        const double disp = displacement_at(f, uv, nullptr);
+        ++s.samples;
+        const Eigen::Vector2d reach(nu.width, nv.width);
+        consider(in, -disp, static_cast<int>(k), uv, reach);
+        consider(out, disp, static_cast<int>(k), uv, reach);
       }
     }
   }

@@ -27,7 +27,7 @@ struct SculptedFace {
   int face = 0;       // face index in the model's file
   /// The surface before and after the run [mm], on the same parameter domain
   /// (the run changes control points only).
-  BSplineSurface before, after;
+  BSplineSurface before{}, after{};
   TrimRegion trim{};      // the face's material region; empty: the whole domain
   bool reversed = false;  // the face's normal is -S_u x S_v
 };
@@ -50,7 +50,8 @@ struct DisplacementOptions {
   /// resolves it whatever the span's size in mm.
   int cells_per_span = 16;
   /// Rounds of the local search that refines each extreme: each samples a
-  /// 9 x 9 grid over a window about the best point so far, then halves it.
+  /// 9 x 9 grid over a window about the best point so far (at first the
+  /// cells about the best corner), then halves the window.
   int refine_rounds = 12;
 };
 
@@ -62,14 +63,16 @@ struct DisplacementSummary {
   /// on the surfaces before the run, material cells only).
   double affected_area = 0.0;
   double area = 0.0;      // [mm^2] of all the faces' material cells
-  long long samples = 0;  // cell centres evaluated (the extremes' search excluded)
+  long long samples = 0;  // cell centres and corners evaluated (the local search excluded)
   /// max(|inward|, |outward|) [mm].
   double max_abs() const { return std::max(-inward.displacement, outward.displacement); }
 };
 
 /// Samples each face on a grid of cells (options.cells_per_span per knot
-/// span in u and in v), at the cell centres inside its trims, then refines
-/// the largest inward and outward displacement by local search. `eps` [mm] >
+/// span in u and in v): the areas at the cells' centres inside its trims, the
+/// displacement there and at the cells' corners (the domain's edges and the
+/// knot lines included); then refines the largest inward and outward
+/// displacement by local search from the best corner. `eps` [mm] >
 /// 0 is the scene's tolerance. Faces whose control points and weights did not
 /// change are skipped (their displacement is zero; their area is still
 /// counted). Precondition: each face's before and after surfaces are valid and
