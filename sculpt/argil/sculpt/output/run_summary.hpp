@@ -44,10 +44,10 @@ struct DisplacementExtreme {
 };
 
 struct DisplacementOptions {
-  /// Cells per knot span in each direction. The displacement of a face whose
-  /// weights the run keeps is a spline on the face's own knots, so it is a
-  /// polynomial of the face's degree on each span: a fixed grid per span
-  /// resolves it whatever the span's size in mm.
+  /// Cells per knot span in each direction. The move S_after - S_before of a
+  /// face (the run keeps knots and weights) is a spline on the face's own
+  /// knots, a polynomial of its degree on each span (rational with its
+  /// weights): a fixed grid per span resolves it whatever the span's size in mm.
   int cells_per_span = 16;
   /// Rounds of the local search that refines each extreme: each samples a
   /// 9 x 9 grid over a window about the best point so far (at first the
@@ -72,11 +72,11 @@ struct DisplacementSummary {
 /// span in u and in v): the areas at the cells' centres inside its trims, the
 /// displacement there and at the cells' corners (the domain's edges and the
 /// knot lines included); then refines the largest inward and outward
-/// displacement by local search from the best corner. `eps` [mm] >
-/// 0 is the scene's tolerance. Faces whose control points and weights did not
-/// change are skipped (their displacement is zero; their area is still
-/// counted). Precondition: each face's before and after surfaces are valid and
-/// share their domain.
+/// displacement by local search from the best corner. `eps` [mm] > 0 is the
+/// scene's tolerance. Faces whose control points and weights did not change
+/// are not evaluated after the run (their displacement is zero; their area is
+/// still counted). Precondition: each face's before and after surfaces are
+/// valid and share their domain.
 DisplacementSummary summarize_displacement(const std::vector<SculptedFace>& faces, double eps,
                                            const DisplacementOptions& options = {});
 
