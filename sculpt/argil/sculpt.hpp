@@ -2,7 +2,7 @@
 // argil::sculpt, the entry header. Modules from the bottom up: scene (models,
 // tools, materials from JSON), script (timed tool poses from JSON or CSV),
 // session (the deterministic session and its journal), output (tick logs,
-// timing, pictures), run (a whole session from files, resumable: run_session).
+// timing, run summary, pictures), run (a whole session from files, resumable: run_session).
 
 #include "argil/io.hpp"  // IWYU pragma: export
 
@@ -17,6 +17,7 @@
 #include "argil/sculpt/session/session.hpp"          // IWYU pragma: export
 // output
 #include "argil/sculpt/output/pictures.hpp"          // IWYU pragma: export
+#include "argil/sculpt/output/run_summary.hpp"       // IWYU pragma: export
 #include "argil/sculpt/output/session_pictures.hpp"  // IWYU pragma: export
 #include "argil/sculpt/output/tick_log.hpp"          // IWYU pragma: export
 // run

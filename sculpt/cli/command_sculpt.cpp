@@ -76,7 +76,8 @@ class ProgressBar {
   Clock::time_point last_{};
 };
 
-/// The run's summary on stdout: the counts, the tick-time percentiles and the files.
+/// The run's summary on stdout: the counts, what changed, the tick-time
+/// percentiles and the files; its warnings on stderr.
 void print_report(const Options& o, const RunReport& report) {
   if (report.start == RunStart::resumed) {
     std::fprintf(stderr, "argil sculpt: resumed from %s: %zu records, %d strokes, ticks 0..%lld\n",
@@ -90,6 +91,9 @@ void print_report(const Options& o, const RunReport& report) {
   if (!report.refinements.empty())
     std::printf("refined for the tool (exactly: the shape does not change):\n");
   for (const std::string& r : report.refinements) std::printf("  %s\n", r.c_str());
+  for (const std::string& line : summary_lines(report.summary)) std::printf("%s\n", line.c_str());
+  for (const std::string& w : report.summary.warnings)
+    std::fprintf(stderr, "argil sculpt: warning: %s\n", w.c_str());
   const TimingSummary& wall = report.wall_timing;
   const TimingSummary& cpu = report.cpu_timing;
   if (wall.ticks > 0) {
@@ -112,7 +116,11 @@ const CommandDeclaration& sculpt_command() {
       .summary = "run a sculpting session: a scene's tool driven by a script",
       .description =
           "Writes the sculpted surfaces (STEP, IGES, JSON), forces.csv, contacts.csv,\n"
-          "timing.json, recorded.csv and pictures to DIR. An interrupted run resumes\n"
+          "timing.json, summary.json, recorded.csv and pictures to DIR. Prints what\n"
+          "changed: the largest inward (negative) and outward displacement along the\n"
+          "face normal, the area that moved more than eps, the peak force and the\n"
+          "ticks over budget; warns when the tool touched nothing or nothing changed. An "
+          "interrupted run resumes\n"
           "from DIR/session.journal. An output that cannot be written (a sculpted face\n"
           "STEP or IGES cannot take) is named on stderr with exit status 1; the other\n"
           "outputs are written all the same. The material presets a scene can name:\n"

@@ -213,9 +213,10 @@ TEST_CASE("a face STEP and IGES cannot take fails those two exports by name, the
     CHECK_FALSE(fs::exists(out / name));
   }
   const std::vector<fs::path> expected = {
-      out / "plate.step", out / "plate.iges",   out / "plate.json",  out / "bow_tie.json",
-      out / "forces.csv", out / "contacts.csv", out / "timing.json", out / "recorded.csv",
-      out / "before.png", out / "after.png",    out / "force.png",   out / "session.journal"};
+      out / "plate.step",     out / "plate.iges",   out / "plate.json",  out / "bow_tie.json",
+      out / "forces.csv",     out / "contacts.csv", out / "timing.json", out / "recorded.csv",
+      out / "summary.json",   out / "before.png",   out / "after.png",   out / "force.png",
+      out / "session.journal"};
   CHECK(r.files == expected);
   for (const fs::path& file : expected) {
     INFO(file);

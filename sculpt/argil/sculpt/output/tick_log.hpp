@@ -23,8 +23,11 @@ class TickLog {
   /// "tick,time,model,face,u,v,x,y,z,depth,nx,ny,nz" and one row per contact.
   std::string contacts_csv(const std::vector<std::string>& model_names) const;
 
+  const std::vector<long long>& ticks() const { return ticks_; }
   const std::vector<double>& times() const { return times_; }
   const std::vector<Eigen::Vector3d>& forces() const { return forces_; }
+  /// Contacts of each tick.
+  const std::vector<int>& contact_counts() const { return contact_counts_; }
   std::size_t size() const { return times_.size(); }
 
  private:

@@ -79,6 +79,26 @@ Result<Session> prepare(const RunInputs& in) {
   return created;
 }
 
+/// Each face of the deformable models, as `before` holds it and as it is now.
+std::vector<SculptedFace> sculpted_faces(const Session& session,
+                                         const std::vector<io::Model>& before) {
+  std::vector<SculptedFace> faces;
+  for (std::size_t m = 0; m < session.models().size(); ++m) {
+    const LoadedModel& loaded = session.models()[m];
+    if (!loaded.spec.deformable) continue;
+    const io::Model after = session.current_model(static_cast<int>(m));
+    for (std::size_t f = 0; f < after.faces.size(); ++f) {
+      faces.push_back({.model = loaded.spec.name,
+                       .face = loaded.file_faces[f],
+                       .before = before[m].faces[f].surface,
+                       .after = after.faces[f].surface,
+                       .trim = loaded.trims[f],
+                       .reversed = before[m].faces[f].reversed});
+    }
+  }
+  return faces;
+}
+
 std::vector<io::Model> current_models(Session& session) {
   std::vector<io::Model> models;
   for (int m = 0; m < static_cast<int>(session.models().size()); ++m) {
@@ -121,8 +141,12 @@ Result<RunReport> run_session(const RunOptions& options) {
   report.stopped = ended.value() == detail::LoopEnd::stopped;
   if (report.stopped) return report;
 
-  detail::RunOutputs outputs =
-      detail::write_run_outputs(in, session, before, state, report.wall_timing, report.cpu_timing);
+  report.summary =
+      summarize_run(sculpted_faces(session, before), state.log, state.wall_s, state.cpu_s,
+                    {.tolerance = in.scene.tolerance, .haptic_rate = in.scene.haptic_rate});
+  report.summary.refinements = report.refinements;
+  detail::RunOutputs outputs = detail::write_run_outputs(
+      in, session, before, state, report.wall_timing, report.cpu_timing, report.summary);
   report.files = std::move(outputs.files);
   report.failed_outputs = std::move(outputs.failures);
   const Status finished = journal.value().writer.finish();

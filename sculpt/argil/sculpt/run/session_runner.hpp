@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "argil/core/base/status.hpp"
+#include "argil/sculpt/output/run_summary.hpp"
 #include "argil/sculpt/output/tick_log.hpp"
 #include "argil/sculpt/run/resume_plan.hpp"
 #include "argil/sculpt/scene/scene.hpp"
@@ -71,6 +72,10 @@ struct RunReport {
   std::vector<std::string> refinements{};
   /// The scene's (Scene::warnings), then what the run recovered from.
   std::vector<std::string> warnings{};
+  /// What the run did to the deformable models (run_summary.hpp), also written
+  /// as summary.json; empty when the run stopped early. Its warnings (the tool
+  /// touched nothing, nothing changed) are not in `warnings`.
+  RunSummary summary{};
 };
 
 /// Runs `options.scene` with its script to the end (or until on_progress asks

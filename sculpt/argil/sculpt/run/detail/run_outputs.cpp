@@ -89,10 +89,12 @@ void write_pictures(const RunInputs& in, const std::vector<io::Model>& before,
 
 RunOutputs write_run_outputs(const RunInputs& in, Session& session,
                              const std::vector<io::Model>& before, const RunState& state,
-                             const TimingSummary& wall, const TimingSummary& cpu) {
+                             const TimingSummary& wall, const TimingSummary& cpu,
+                             const RunSummary& summary) {
   RunOutputs outputs;
   const std::vector<io::Model> after = write_models(in, session, outputs);
   write_logs(in, session, state, wall, cpu, outputs);
+  write_file(in.out / "summary.json", summary_json(summary, in.scene_path.string()), outputs);
   if (in.outputs.pictures) write_pictures(in, before, after, state, outputs);
   return outputs;
 }

@@ -24,11 +24,12 @@ struct RunOutputs {
 
 /// Writes what `in.outputs` asks for into `in.out`: each model's sculpted
 /// faces (STEP, IGES, JSON), forces.csv, contacts.csv, timing.json, always
-/// recorded.csv, and the pictures (`before` holds each model as loaded). An
-/// output that fails (a face STEP cannot take, a full disk) is recorded and the
-/// others are still written.
+/// recorded.csv and summary.json (of `summary`), and the pictures (`before` holds each model as
+/// loaded). An output that fails (a face STEP cannot take, a full disk) is recorded and the others
+/// are still written.
 RunOutputs write_run_outputs(const RunInputs& in, Session& session,
                              const std::vector<io::Model>& before, const RunState& state,
-                             const TimingSummary& wall, const TimingSummary& cpu);
+                             const TimingSummary& wall, const TimingSummary& cpu,
+                             const RunSummary& summary);
 
 }  // namespace argil::sculpt::detail
