@@ -76,9 +76,10 @@ std::vector<BenchFace> file_faces(const std::string& file) {
   return faces;
 }
 
-/// The size table's scenes: `count` 16x16 panels (1 mm pitch) in rows of 32,
-/// the first pressed; one n x n panel; every face of 11752.stp, its largest
-/// polynomial net that clay accepts pressed.
+/// The size table's scenes: `count` 16x16 panels in rows of 32, the first
+/// pressed; one n x n panel; every face of 11752.stp, its largest polynomial
+/// net that clay accepts pressed. The panels' pitch is the 2 mm sphere's
+/// radius, the spans a session refines a face to for it by default.
 std::vector<argil::bench::ScaleCase> scale_cases() {
   using argil::bench::BenchFace;
   std::vector<argil::bench::ScaleCase> cases;
@@ -88,9 +89,9 @@ std::vector<argil::bench::ScaleCase> scale_cases() {
                        std::vector<BenchFace> faces;
                        for (int k = 0; k < count; ++k) {
                          BenchFace f{"panel " + std::to_string(k),
-                                     argil::bench::flat_panel(16, 1.0), false, ""};
+                                     argil::bench::flat_panel(16, 2.0), false, ""};
                          f.surface.control_points.rowwise() +=
-                             Eigen::RowVector3d(17.0 * (k % 32), 17.0 * (k / 32), 0.0);
+                             Eigen::RowVector3d(32.0 * (k % 32), 32.0 * (k / 32), 0.0);
                          faces.push_back(std::move(f));
                        }
                        pressed = 0;
@@ -102,7 +103,7 @@ std::vector<argil::bench::ScaleCase> scale_cases() {
                      [poles](int& pressed) {
                        pressed = 0;
                        return std::vector<BenchFace>{
-                           {"panel", argil::bench::flat_panel(poles, 1.0), false, ""}};
+                           {"panel", argil::bench::flat_panel(poles, 2.0), false, ""}};
                      }});
   }
   cases.push_back({"11752.stp, all faces",

@@ -52,7 +52,7 @@ void tool_refinement_section(const std::vector<std::string>& files, double size_
 
 /// A scene of the size table: its faces, made in the row's own process,
 /// which sets `pressed` to the face the sphere presses at its domain's middle.
-/// The sphere is 2 mm (press 0.3 mm, eps 0.01 mm) on the generated 1 mm
+/// The sphere is 2 mm (press 0.3 mm, eps 0.01 mm) on the generated 2 mm
 /// pitch panels, or sized to the pressed face (`scaled`: scaled_stroke).
 struct ScaleCase {
   std::string name;

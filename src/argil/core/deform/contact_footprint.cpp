@@ -53,8 +53,15 @@ Eigen::VectorXd footprint_load_pattern(const BSplineSurface& s,
                                        const std::vector<Contact>& contacts,
                                        const std::vector<double>& shares, double radius,
                                        const TrimRegion& trim) {
+  return dense_pattern(footprint_pole_weights(s, contacts, shares, radius, trim),
+                       static_cast<Eigen::Index>(s.count(Direction::u)) * s.count(Direction::v));
+}
+
+PoleWeights footprint_pole_weights(const BSplineSurface& s, const std::vector<Contact>& contacts,
+                                   const std::vector<double>& shares, double radius,
+                                   const TrimRegion& trim) {
   assert(contacts.size() == shares.size());
-  if (!(radius > 0.0)) return contact_load_pattern(s, contacts, shares);
+  if (!(radius > 0.0)) return contact_pole_weights(s, contacts, shares);
   const ParamRect domain{s.domain_start(Direction::u), s.domain_end(Direction::u),
                          s.domain_start(Direction::v), s.domain_end(Direction::v)};
   std::vector<Contact> points;
@@ -99,7 +106,7 @@ Eigen::VectorXd footprint_load_pattern(const BSplineSurface& s,
     }
     for (std::size_t i = first; i < points.size(); ++i) weights[i] *= shares[k] / carried;
   }
-  return contact_load_pattern(s, points, weights);
+  return contact_pole_weights(s, points, weights);
 }
 
 }  // namespace argil

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "argil/core/collision/contact.hpp"
+#include "argil/core/deform/contact_response.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/geometry/trim_region.hpp"
 
@@ -36,5 +37,12 @@ Eigen::VectorXd footprint_load_pattern(const BSplineSurface& surface,
                                        const std::vector<Contact>& contacts,
                                        const std::vector<double>& shares, double radius,
                                        const TrimRegion& trim);
+
+/// footprint_load_pattern's non-zero entries (PoleWeights), computed without
+/// touching the rest of the net.
+PoleWeights footprint_pole_weights(const BSplineSurface& surface,
+                                   const std::vector<Contact>& contacts,
+                                   const std::vector<double>& shares, double radius,
+                                   const TrimRegion& trim);
 
 }  // namespace argil

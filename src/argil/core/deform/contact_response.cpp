@@ -40,18 +40,37 @@ std::vector<std::pair<int, double>> basis_at(const BSplineSurface& s, const Eige
   return out;
 }
 
-Eigen::VectorXd contact_load_pattern(const BSplineSurface& s, const std::vector<Contact>& contacts,
-                                     const std::vector<double>& shares) {
+PoleWeights contact_pole_weights(const BSplineSurface& s, const std::vector<Contact>& contacts,
+                                 const std::vector<double>& shares) {
   assert(contacts.size() == shares.size());
-  Eigen::VectorXd pattern = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.count(Direction::u)) *
-                                                  s.count(Direction::v));
+  PoleWeights terms;
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const Eigen::Vector2d uv(
         std::clamp(contacts[k].uv_a.x(), s.domain_start(Direction::u), s.domain_end(Direction::u)),
         std::clamp(contacts[k].uv_a.y(), s.domain_start(Direction::v), s.domain_end(Direction::v)));
-    for (const auto& [pole, w] : basis_at(s, uv)) pattern[pole] += shares[k] * w;
+    for (const auto& [pole, w] : basis_at(s, uv)) terms.emplace_back(pole, shares[k] * w);
   }
+  // Each pole's terms summed in contact order from 0, as a dense pattern would.
+  std::stable_sort(terms.begin(), terms.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  PoleWeights out;
+  for (const auto& [pole, w] : terms) {
+    if (out.empty() || out.back().first != pole) out.emplace_back(pole, 0.0);
+    out.back().second += w;
+  }
+  return out;
+}
+
+Eigen::VectorXd dense_pattern(const PoleWeights& weights, Eigen::Index count) {
+  Eigen::VectorXd pattern = Eigen::VectorXd::Zero(count);
+  for (const auto& [pole, w] : weights) pattern[pole] = w;
   return pattern;
+}
+
+Eigen::VectorXd contact_load_pattern(const BSplineSurface& s, const std::vector<Contact>& contacts,
+                                     const std::vector<double>& shares) {
+  return dense_pattern(contact_pole_weights(s, contacts, shares),
+                       static_cast<Eigen::Index>(s.count(Direction::u)) * s.count(Direction::v));
 }
 
 FrictionOutcome coulomb_friction(const Eigen::Vector3d& spring_force,

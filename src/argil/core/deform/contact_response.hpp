@@ -22,6 +22,20 @@ std::vector<double> contact_shares(const std::vector<Contact>& contacts, double 
 std::vector<std::pair<int, double>> basis_at(const BSplineSurface& surface,
                                              const Eigen::Vector2d& uv);
 
+/// The non-zero entries of a load pattern: (pole index i * n_v + j, weight),
+/// each pole once, in increasing pole order. A contact's pattern touches the
+/// (p + 1) x (q + 1) poles around it, whatever the net's size.
+using PoleWeights = std::vector<std::pair<Eigen::Index, double>>;
+
+/// contact_load_pattern's non-zero entries, computed without touching the
+/// rest of the net (the same sums, in the same order, bit for bit).
+PoleWeights contact_pole_weights(const BSplineSurface& surface,
+                                 const std::vector<Contact>& contacts,
+                                 const std::vector<double>& shares);
+
+/// `weights` scattered into a dense pattern of `count` entries.
+Eigen::VectorXd dense_pattern(const PoleWeights& weights, Eigen::Index count);
+
 /// Control-point weights g (n_u * n_v entries, row i * n_v + j) of a unit
 /// force applied at the contacts' points S(uv_a) with the given shares:
 /// g_ij = sum_k share_k R_ij(uv_k), R the rational basis. A force F through

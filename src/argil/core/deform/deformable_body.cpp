@@ -11,6 +11,7 @@
 
 #include "argil/core/base/number_text.hpp"
 #include "argil/core/deform/contact_response.hpp"
+#include "argil/core/geometry/basis.hpp"
 #include "argil/core/operators/surface_operators.hpp"
 
 namespace argil {
@@ -46,6 +47,15 @@ double box_dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const PoleWin
   return sum;
 }
 
+/// The three abscissae of pole i's yield cell along one direction: halfway to
+/// the previous Greville point, its own, halfway to the next.
+std::array<double, 3> yield_cell_abscissae(const Eigen::VectorXd& greville, int i) {
+  const Eigen::Index last = greville.size() - 1;
+  const double lo = i > 0 ? 0.5 * (greville[i - 1] + greville[i]) : greville[0];
+  const double hi = i < last ? 0.5 * (greville[i] + greville[i + 1]) : greville[last];
+  return {lo, greville[i], hi};
+}
+
 /// Pole p's (i, j) on a net nv poles wide along v.
 std::pair<int, int> pole_ij(Eigen::Index p, int nv) {
   return {static_cast<int>(p / nv), static_cast<int>(p % nv)};
@@ -79,16 +89,18 @@ void DeformableBody::plastic_flow(const ControlNet& points, const PoleWindow& mo
   });
   bool flows = false;
   each(cells, nv, [&](Eigen::Index i) {
-    const YieldCell& cell = yield_cells_[static_cast<std::size_t>(i)];
+    const auto [ci, cj] = pole_ij(i, nv);
+    const YieldBasis& bu = yield_basis_[0];
+    const YieldBasis& bv = yield_basis_[1];
     double bound = 0.0;
-    for (const int j : cell.poles) bound = std::max(bound, pole_stretch[j]);
+    for (const int a : bu.poles[static_cast<std::size_t>(ci)])
+      for (const int b : bv.poles[static_cast<std::size_t>(cj)])
+        bound = std::max(bound, pole_stretch[static_cast<Eigen::Index>(a) * nv + b]);
     if (!(bound > material_.yield)) return;
     double largest = 0.0;
-    for (const auto& sample : cell.samples) {
-      Eigen::RowVector3d surface = Eigen::RowVector3d::Zero();
-      for (const auto& [j, w] : sample) surface += w * stretch_.row(j);
-      largest = std::max(largest, surface.norm());
-    }
+    for (int su = 3 * ci; su < 3 * ci + 3; ++su)
+      for (int sv = 3 * cj; sv < 3 * cj + 3; ++sv)
+        largest = std::max(largest, sample_stretch(su, sv).norm());
     if (!(largest > material_.yield)) return;
     flow_.row(i) = (1.0 - material_.yield / largest) * stretch_.row(i);
     flows = true;
@@ -136,6 +148,34 @@ void DeformableBody::plastic_flow(const ControlNet& points, const PoleWindow& mo
     rest_.row(r.on) = points.row(r.on) - l * (points.row(r.before) - rest_.row(r.before)) -
                       (1.0 - l) * (points.row(r.after) - rest_.row(r.after));
   }
+}
+
+Eigen::RowVector3d DeformableBody::sample_stretch(int su, int sv) const {
+  // The rational basis at the sample as basis_at computes it (the products,
+  // zeros skipped, over their sum), applied to the stretch.
+  const YieldBasis& bu = yield_basis_[0];
+  const YieldBasis& bv = yield_basis_[1];
+  const int p = bu.degree, q = bv.degree, nv = stiffness_.count_v();
+  const int fu = bu.first[static_cast<std::size_t>(su)],
+            fv = bv.first[static_cast<std::size_t>(sv)];
+  const double* vu = &bu.values[static_cast<std::size_t>(su) * static_cast<std::size_t>(p + 1)];
+  const double* vv = &bv.values[static_cast<std::size_t>(sv) * static_cast<std::size_t>(q + 1)];
+  const BSplineSurface& s = surface();
+  const auto weight = [&](int a, int b) {
+    const Eigen::Index pole = static_cast<Eigen::Index>(fu + a) * nv + fv + b;
+    return vu[a] * vv[b] * (s.is_rational() ? s.weights[pole] : 1.0);
+  };
+  double sum = 0.0;
+  for (int a = 0; a <= p; ++a)
+    for (int b = 0; b <= q; ++b) sum += weight(a, b);
+  Eigen::RowVector3d out = Eigen::RowVector3d::Zero();
+  for (int a = 0; a <= p; ++a)
+    for (int b = 0; b <= q; ++b) {
+      const double w = weight(a, b);
+      if (w == 0.0) continue;
+      out += (w / sum) * stretch_.row(static_cast<Eigen::Index>(fu + a) * nv + fv + b);
+    }
+  return out;
 }
 
 DeformableBody::DeformableBody(SurfaceHierarchy hierarchy, const Material& material)
@@ -186,33 +226,34 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   body.full_ = body.region({0, nu, 0, nv});
   const Eigen::Index n = static_cast<Eigen::Index>(nu) * nv;
   body.rest_ = surface.control_points;
-  {
-    const Eigen::VectorXd gu = greville_abscissae(surface.degree[0], surface.knots[0]);
-    const Eigen::VectorXd gv = greville_abscissae(surface.degree[1], surface.knots[1]);
-    // The three abscissae of pole i's cell along one direction.
-    const auto cell = [](const Eigen::VectorXd& g, int i) {
-      const Eigen::Index last = g.size() - 1;
-      const double lo = i > 0 ? 0.5 * (g[i - 1] + g[i]) : g[0];
-      const double hi = i < last ? 0.5 * (g[i] + g[i + 1]) : g[last];
-      return std::array<double, 3>{lo, g[i], hi};
-    };
-    body.yield_cells_.resize(static_cast<std::size_t>(n));
-    for (int i = 0; i < nu; ++i)
-      for (int j = 0; j < nv; ++j) {
-        YieldCell& c = body.yield_cells_[static_cast<std::size_t>(surface.pole_index(i, j))];
-        for (const double u : cell(gu, i))
-          for (const double v : cell(gv, j)) {
-            c.samples.push_back(basis_at(surface, {u, v}));
-            for (const auto& [pole, w] : c.samples.back()) c.poles.push_back(pole);
-          }
-        std::sort(c.poles.begin(), c.poles.end());
-        c.poles.erase(std::unique(c.poles.begin(), c.poles.end()), c.poles.end());
-        for (const int pole : c.poles) {
-          const auto [pi, pj] = pole_ij(pole, nv);
-          body.yield_reach_[0] = std::max(body.yield_reach_[0], std::abs(pi - i));
-          body.yield_reach_[1] = std::max(body.yield_reach_[1], std::abs(pj - j));
+  // The yield cells' samples are tensor products of 1D bases: kept per
+  // direction (memory along the net's sides, not its area).
+  for (const Direction d : {Direction::u, Direction::v}) {
+    const auto at = static_cast<std::size_t>(d);
+    YieldBasis& yb = body.yield_basis_[at];
+    const int degree = surface.degree[at];
+    const Eigen::VectorXd& knots = surface.knots[at];
+    const int count = surface.count(d);
+    const Eigen::VectorXd greville = greville_abscissae(degree, knots);
+    yb.degree = degree;
+    yb.poles.resize(static_cast<std::size_t>(count));
+    Eigen::MatrixXd basis(1, degree + 1);
+    for (int i = 0; i < count; ++i) {
+      std::vector<int>& poles = yb.poles[static_cast<std::size_t>(i)];
+      for (const double t : yield_cell_abscissae(greville, i)) {
+        const int span = find_span(degree, knots, count, t);
+        basis_derivatives(degree, knots, span, t, 0, basis);
+        yb.first.push_back(span - degree);
+        for (int a = 0; a <= degree; ++a) {
+          yb.values.push_back(basis(0, a));
+          if (basis(0, a) != 0.0) poles.push_back(span - degree + a);
         }
       }
+      std::sort(poles.begin(), poles.end());
+      poles.erase(std::unique(poles.begin(), poles.end()), poles.end());
+      for (const int pole : poles)
+        body.yield_reach_[at] = std::max(body.yield_reach_[at], std::abs(pole - i));
+    }
   }
   body.velocities_ = ControlNet::Zero(n, 3);
   body.stretch_ = body.force_ = body.flow_ = body.k_flow_ = Eigen::MatrixXd::Zero(n, 3);
@@ -241,9 +282,10 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
       return static_cast<int>(std::min<double>(count, degree + spans));
     };
     body.margin_ = {poles(pitch_u, surface.degree[0], nu), poles(pitch_v, surface.degree[1], nv)};
-    body.slack_ = {std::max(4, body.margin_[0]), std::max(4, body.margin_[1])};
+    body.slack_ = {std::max(4, body.margin_[0] / 3), std::max(4, body.margin_[1] / 3)};
   }
   body.points_ = surface.control_points;
+  body.pattern_ = Eigen::VectorXd::Zero(n);
   // Factorised now, at the haptic step, so the first tick does not pay for it
   // (28 ms on a 64 x 64 net); another dt refactorises at its first step. A
   // net too large for that is solved in local windows only (the whole net is
@@ -424,7 +466,7 @@ void DeformableBody::set_local_solves(bool on) {
 }
 
 Status DeformableBody::plan_region(double dt, const ControlNet& forces,
-                                   const Eigen::VectorXd& pattern) {
+                                   const PoleWeights* pattern) {
   step_local_ = false;
   step_idle_ = false;
   if (!local_solves_) return Status::success();
@@ -434,13 +476,15 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
   const PoleWindow net{0, nu, 0, nv};
   // The poles the loads act on.
   PoleWindow loads;
-  for (Eigen::Index p = 0; p < masses_.size(); ++p) {
-    const bool loaded = (pattern.size() > 0 && pattern[p] != 0.0) ||
-                        (forces.rows() > 0 && !forces.row(p).isZero(0.0));
-    if (!loaded) continue;
+  const auto load_at = [&](Eigen::Index p) {
     const auto [i, j] = pole_ij(p, nv);
     loads = loads.united({i, i + 1, j, j + 1});
-  }
+  };
+  if (pattern)
+    for (const auto& [p, w] : *pattern)
+      if (w != 0.0) load_at(p);
+  for (Eigen::Index p = 0; p < forces.rows(); ++p)
+    if (!forces.row(p).isZero(0.0)) load_at(p);
   if (!loads.empty()) {
     // Grow (never shrink) the window once the loads come within the influence
     // margin of its edge, with slack so the tool can travel before the next
@@ -508,12 +552,11 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
   step_local_ = local_.has_value() && local_->window.contains(loads);
   // A body at rest with no load would step to (about) where it is.
   step_idle_ = loads.empty() && !local_ && resting_;
-  if (!loads.empty()) resting_ = false;
   return Status::success();
 }
 
 Status DeformableBody::step(double dt, const ControlNet& forces) {
-  Result<LoadPreview> preview = begin_step(dt, forces, {});
+  Result<LoadPreview> preview = start_step(dt, forces, nullptr);
   if (!preview.ok()) return preview.status();
   finish_step(Eigen::Vector3d::Zero());
   return Status::success();
@@ -521,14 +564,29 @@ Status DeformableBody::step(double dt, const ControlNet& forces) {
 
 Result<LoadPreview> DeformableBody::begin_step(double dt, const ControlNet& forces,
                                                const Eigen::VectorXd& pattern) {
+  if (pattern.size() == 0) return start_step(dt, forces, nullptr);
+  assert(pattern.size() == masses_.size());
+  PoleWeights weights;
+  for (Eigen::Index p = 0; p < pattern.size(); ++p)
+    if (pattern[p] != 0.0) weights.emplace_back(p, pattern[p]);
+  return start_step(dt, forces, &weights);
+}
+
+Result<LoadPreview> DeformableBody::begin_step(double dt, const ControlNet& forces,
+                                               const PoleWeights& pattern) {
+  return start_step(dt, forces, &pattern);
+}
+
+Result<LoadPreview> DeformableBody::start_step(double dt, const ControlNet& forces,
+                                               const PoleWeights* loads) {
   if (const Interval range{0.0, kMaxTimeStep, IntervalEnds::open_low}; !range.contains(dt)) {
     return Status::error(StatusCode::invalid_argument,
                          "time step dt " + out_of_interval_text(dt, range, "s"));
   }
-  const Eigen::Index n_all = masses_.size();
   assert(forces.rows() == 0 || forces.rows() == n_all);
-  assert(pattern.size() == 0 || pattern.size() == n_all);
-  if (Status s = plan_region(dt, forces, pattern); !s.ok()) return s;
+  if (Status s = plan_region(dt, forces, loads); !s.ok()) return s;
+  const bool loaded = (loads && !loads->empty()) || !forces.isZero(0.0);
+  if (loaded) resting_ = false;
   if (step_idle_) {
     stepped_window_ = {};
     has_pattern_ = false;
@@ -542,12 +600,22 @@ Result<LoadPreview> DeformableBody::begin_step(double dt, const ControlNet& forc
   const PoleWindow& w = region.window;
   const int nu = stiffness_.count_u(), nv = stiffness_.count_v();
   // Poles outside a new window stop where they are: held for the stroke.
+  // (Only the last solved window's poles can have a velocity.)
   if (step_local_ && !(stepped_window_ == w)) {
-    for (Eigen::Index p = 0; p < n_all; ++p)
-      if (region.rank[static_cast<std::size_t>(p)] < 0) velocities_.row(p).setZero();
+    const PoleWindow& last = stepped_window_;
+    for (int i = last.i0; i < last.i1; ++i)
+      for (int j = last.j0; j < last.j1; ++j)
+        if (!w.contains(i, j)) velocities_.row(static_cast<Eigen::Index>(i) * nv + j).setZero();
   }
   stepped_window_ = w;
-  has_pattern_ = pattern.size() > 0;
+  has_pattern_ = loads != nullptr;
+  if (has_pattern_) {
+    // pattern_ is non-zero at the last pattern's poles only.
+    for (const auto& entry : pattern_weights_) pattern_[entry.first] = 0.0;
+    pattern_weights_ = *loads;
+    for (const auto& [pole, weight] : pattern_weights_) pattern_[pole] = weight;
+  }
+  const Eigen::VectorXd& pattern = pattern_;
   step_dt_ = dt;
   // -K (P - P_rest) on the window's rows, which read the stencil around them.
   const PoleWindow around = w.grown(stiffness_.reach_u(), stiffness_.reach_v(), nu, nv);

@@ -12,6 +12,7 @@
 #include <optional>
 #include <vector>
 
+#include "argil/core/deform/contact_response.hpp"
 #include "argil/core/deform/join_rows.hpp"
 #include "argil/core/deform/material.hpp"
 #include "argil/core/deform/pole_stencil_matrix.hpp"
@@ -117,6 +118,9 @@ class DeformableBody {
   /// is decided after seeing the preview. Must be followed by finish_step.
   Result<LoadPreview> begin_step(double dt, const ControlNet& forces,
                                  const Eigen::VectorXd& pattern);
+  /// The same with the pattern's non-zero entries (contact_pole_weights,
+  /// footprint_pole_weights): no pass over the whole net.
+  Result<LoadPreview> begin_step(double dt, const ControlNet& forces, const PoleWeights& pattern);
   /// Completes the step with pattern force F [N] (control-point force g_i F).
   void finish_step(const Eigen::Vector3d& pattern_force);
 
@@ -185,7 +189,9 @@ class DeformableBody {
   /// Picks the region this step solves (the whole net or the local window),
   /// grows the window ahead of the loads and spends this step's share of the
   /// pending window's factorisation.
-  Status plan_region(double dt, const ControlNet& forces, const Eigen::VectorXd& pattern);
+  Status plan_region(double dt, const ControlNet& forces, const PoleWeights* pattern);
+  /// begin_step with a pattern or without one (null).
+  Result<LoadPreview> start_step(double dt, const ControlNet& forces, const PoleWeights* pattern);
   /// Moves the rest control points so that no stretch exceeds the yield,
   /// looking only at the poles `window` moved and those their stretch reaches.
   void plastic_flow(const ControlNet& points, const PoleWindow& window);
@@ -207,13 +213,18 @@ class DeformableBody {
   bool resting_ = true;
   /// Where plastic flow measures the surface's stretch for one control point:
   /// a 3 x 3 grid over its cell (from halfway to the previous Greville point
-  /// to halfway to the next, each way), each sample as the poles and basis
-  /// values there; and every pole those samples involve.
-  struct YieldCell {
-    std::vector<std::vector<std::pair<int, double>>> samples;
-    std::vector<int> poles;
+  /// to halfway to the next, each way). The samples are tensor products, so
+  /// each direction keeps, per pole, the basis at its three abscissae (first
+  /// pole, degree + 1 values) and the poles non-zero at any of them.
+  struct YieldBasis {
+    int degree = 0;
+    std::vector<int> first;      // 3 per pole
+    std::vector<double> values;  // 3 (degree + 1) per pole
+    std::vector<std::vector<int>> poles;
   };
-  std::vector<YieldCell> yield_cells_;
+  std::array<YieldBasis, 2> yield_basis_;
+  /// The stretch of the surface at sample su (along u: 3 per pole) x sv.
+  Eigen::RowVector3d sample_stretch(int su, int sv) const;
   /// How many poles away along u and v a yield cell's poles reach.
   std::array<int, 2> yield_reach_{0, 0};
   /// The rows of poles across the face's C0 knot lines (join_rows.hpp): the
@@ -234,6 +245,9 @@ class DeformableBody {
   Eigen::VectorXd stretch_norm_;
   // Between begin_step and finish_step, in solve order.
   RowMajorMatrix work_;
+  /// The last pattern scattered over the net (zero elsewhere).
+  Eigen::VectorXd pattern_;
+  PoleWeights pattern_weights_;
   double step_dt_ = 0.0;
   bool has_pattern_ = false;
 };

@@ -244,18 +244,20 @@ HapticWorld::Coupling HapticWorld::step_bodies(
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     if (!bodies_[b].deformable || bodies_[b].asleep) continue;
     DeformableBody& body = *bodies_[b].deformable;
-    Eigen::VectorXd pattern;
+    Result<LoadPreview> p = LoadPreview{};
     if (pressing && !body_contacts[b].empty()) {
       // A sphere presses over its contact disc, sized by last tick's force.
       const double disc = sphere_
                               ? sphere_contact_radius(sphere_->radius(), bodies_[b].pressing_force,
                                                       body.material().foundation_stiffness)
                               : 0.0;
-      pattern = footprint_load_pattern(body.surface(), body_contacts[b],
-                                       contact_shares(body_contacts[b], eps), disc,
-                                       trim(static_cast<int>(b)));
+      p = body.begin_step(dt, {},
+                          footprint_pole_weights(body.surface(), body_contacts[b],
+                                                 contact_shares(body_contacts[b], eps), disc,
+                                                 trim(static_cast<int>(b))));
+    } else {
+      p = body.begin_step(dt, {}, Eigen::VectorXd());
     }
-    Result<LoadPreview> p = body.begin_step(dt, {}, pattern);
     if (!p.ok()) return {p.status(), {0, 0, 0}, {0, 0, 0}, false};
     previews[b] = p.value();
   }

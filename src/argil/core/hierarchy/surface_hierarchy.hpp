@@ -98,8 +98,8 @@ class SurfaceHierarchy {
 
   /// Number of nodes created so far (for tests and memory accounting).
   std::size_t node_count() const { return nodes_.size(); }
-  /// Memory bound: when set_control_points finds more nodes than this, it
-  /// drops every node below the roots (queries grow them again where they
+  /// Memory bound: when set_control_points finds more nodes below the roots
+  /// (one per element) than this, it drops them all (queries grow them again where they
   /// reach). This costs allocations and refreshes, never results: a query gives the same answer
   /// on a collapsed hierarchy as on a grown one.
   void set_node_budget(std::size_t nodes) { node_budget_ = nodes; }
