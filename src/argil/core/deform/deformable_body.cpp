@@ -457,6 +457,23 @@ Status DeformableBody::factorize(double dt) {
   return Status::success();
 }
 
+void DeformableBody::anticipate(const Eigen::Vector2d& uv, double dt) {
+  if (!local_solves_ || local_ || pending_) return;
+  const BSplineSurface& s = surface();
+  const int nu = s.count(Direction::u), nv = s.count(Direction::v);
+  const int p = s.degree[0], q = s.degree[1];
+  const int su = find_span(p, s.knots[0], nu, uv.x()), sv = find_span(q, s.knots[1], nv, uv.y());
+  // The poles a contact at uv would load, grown as a first window with slack
+  // (the tool will have moved by the time it lands).
+  const PoleWindow loads{su - p, su + 1, sv - q, sv + 1};
+  const PoleWindow target =
+      tie_closed(loads.grown(margin_[0] + slack_[0], margin_[1] + slack_[1], nu, nv));
+  if (target == PoleWindow{0, nu, 0, nv}) return;  // the whole net: nothing to prepare
+  pending_ = region(target);
+  pending_->dt = dt;
+  pending_->outside_at_rest = resting_;
+}
+
 void DeformableBody::set_local_solves(bool on) {
   local_solves_ = on;
   if (!on) {
@@ -525,7 +542,7 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
     SolveRegion& r = *pending_;
     const int size = r.window.count_u() * r.window.count_v();
     double work = kWindowFactorWorkPerStep;
-    if (!(local_ && local_->window.contains(loads))) {
+    if (!loads.empty() && !(local_ && local_->window.contains(loads))) {
       // (A net too large to factorise at create never solves the whole: its
       // first window is factorised at once.)
       work = full_.solver
@@ -551,7 +568,8 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
   }
   step_local_ = local_.has_value() && local_->window.contains(loads);
   // A body at rest with no load would step to (about) where it is.
-  step_idle_ = loads.empty() && !local_ && resting_;
+  // (A window anticipated before the first load changes nothing at rest.)
+  step_idle_ = loads.empty() && resting_;
   return Status::success();
 }
 

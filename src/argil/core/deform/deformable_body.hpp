@@ -140,6 +140,18 @@ class DeformableBody {
   /// distance of its rest).
   void halt();
 
+  /// Prepares the window a load at `uv` (a parameter point, e.g. the closest
+  /// point to a tool coming near) would need: factorised a few rows per step
+  /// from the next step on, so the first loaded step does not factorise it at
+  /// once. Does nothing with a window active or being prepared, or without
+  /// local solves. The solution does not depend on it beyond which poles the
+  /// window holds.
+  void anticipate(const Eigen::Vector2d& uv, double dt);
+  /// At rest since create() or halt(), with no load since.
+  bool resting() const { return resting_; }
+  /// A window is active or being factorised.
+  bool window_planned() const { return local_.has_value() || pending_.has_value(); }
+
   /// Local solves (on by default; docs/deformation.md, Local solves): a step
   /// whose loads all lie inside the active window solves only the window's
   /// poles and holds the rest where they are (V = 0). Off: every step solves

@@ -2,6 +2,7 @@
 // and which deformable bodies out of its reach have settled and stop stepping.
 #include <algorithm>
 
+#include "argil/core/collision/implicit_contact.hpp"
 #include "argil/core/haptic/haptic_tick.hpp"
 
 namespace argil {
@@ -14,10 +15,9 @@ double distance_to_box(const Eigen::Vector3d& p, const Box3& box) {
 
 }  // namespace
 
-std::vector<char> HapticWorld::reachable(const ProxyState& previous,
-                                         const DeviceSample& device) const {
+std::vector<char> HapticWorld::within_reach(const ProxyState& previous,
+                                            const DeviceSample& device) const {
   std::vector<char> reach(bodies_.size(), 1);
-  if (!options_.cull && !options_.sleep) return reach;
   // Over this tick the proxy moves from its last pose towards the device: at
   // most |p_WD - p_WT| along its path, plus how far the surfaces pushed it
   // out, which is no more than they moved into it since (motion_). The tool
@@ -31,6 +31,18 @@ std::vector<char> HapticWorld::reachable(const ProxyState& previous,
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     reach[b] = distance_to_box(p_WT, bodies_[b].bound) <= reach_distance ? 1 : 0;
   return reach;
+}
+
+void HapticWorld::anticipate(const std::vector<char>& near, const Eigen::Vector3d& p_WT,
+                             double dt) {
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    Body& body = bodies_[b];
+    if (!near[b] || !body.deformable || body.asleep) continue;
+    DeformableBody& d = *body.deformable;
+    if (!d.resting() || d.window_planned() || !d.local_solves()) continue;
+    const ClosestPoint c = closest_point(d.hierarchy(), p_WT, {.tolerance = options_.tolerance});
+    if (c.status.ok()) d.anticipate(c.uv, dt);
+  }
 }
 
 void HapticWorld::wake(const std::vector<char>& reach) {

@@ -197,8 +197,11 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
     if (sphere_) sphere_.emplace(sphere_->radius(), options_.tolerance);  // forget the sides
   }
   engaged_ = true;
-  const std::vector<char> reach = reachable(previous, device);
+  const std::vector<char> near = within_reach(previous, device);
+  const std::vector<char> reach =
+      options_.cull || options_.sleep ? near : std::vector<char>(bodies_.size(), 1);
   wake(reach);
+  anticipate(near, previous.X_WT.p, dt);
 
   // 1-2. Proxy: frictionless target, then stick or slip from the last pose.
   const std::vector<char> queried = options_.cull ? reach : std::vector<char>(reach.size(), 1);

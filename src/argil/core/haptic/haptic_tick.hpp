@@ -189,8 +189,13 @@ class HapticWorld {
   /// Every body with its trims (body_trim.cpp); a null hierarchy where `reach` is 0.
   std::vector<TrimmedSurface> trimmed_surfaces(const std::vector<char>& reach) const;
   /// Which bodies the tool can reach this tick from `previous` towards the
-  /// device (body_sleep.cpp): all of them without WorldOptions::sleep.
-  std::vector<char> reachable(const ProxyState& previous, const DeviceSample& device) const;
+  /// device (body_sleep.cpp), whatever the options: the world wakes and
+  /// queries only these with WorldOptions::sleep or cull, and anticipates
+  /// windows on these in any case (so the solution does not depend on them).
+  std::vector<char> within_reach(const ProxyState& previous, const DeviceSample& device) const;
+  /// Bodies resting in reach of the tool at p_WT prepare the window its
+  /// closest point would need (DeformableBody::anticipate).
+  void anticipate(const std::vector<char>& near, const Eigen::Vector3d& p_WT, double dt);
   /// Wakes the bodies in reach; a sphere proxy records its side of a body
   /// that comes back into reach afresh.
   void wake(const std::vector<char>& reach);
