@@ -17,15 +17,23 @@
 #include <IGESData_IGESEntity.hxx>
 #include <IGESData_IGESModel.hxx>
 #include <IGESData_UndefinedEntity.hxx>
+#include <IGESGeom_BSplineSurface.hxx>
+#include <IGESGeom_TrimmedSurface.hxx>
+#include <IGESSolid_Face.hxx>
 #include <Interface_Check.hxx>
 #include <Interface_CheckIterator.hxx>
 #include <Interface_InterfaceModel.hxx>
 #include <Interface_Static.hxx>
+#include <Precision.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_Failure.hxx>
 #include <StepData_StepModel.hxx>
 #include <StepData_UndefinedEntity.hxx>
+#include <StepGeom_BSplineSurface.hxx>
 #include <StepRepr_RepresentationItem.hxx>
+#include <StepShape_FaceSurface.hxx>
+#include <StepToGeom.hxx>
+#include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColStd_Array2OfReal.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
@@ -239,9 +247,63 @@ TrimCurve to_argil(const Handle(Geom2d_BSplineCurve) & c) {
   return out;
 }
 
+// True when `s` is periodic along `u` (else v) with its period's first knot of
+// multiplicity equal to the degree: the form the STEP and IGES readers give a
+// clamped surface closed within Precision::Confusion() (ShapeCustom_Surface::
+// ConvertToPeriodic, run on every B-spline surface by StepToTopoDS_TranslateFace
+// and by the IGES reader): the first row of poles is the one the seam interpolates.
+bool seam_at_full_knot(const Handle(Geom_BSplineSurface) & s, bool u) {
+  return u ? s->IsUPeriodic() && s->UMultiplicity(1) == s->UDegree()
+           : s->IsVPeriodic() && s->VMultiplicity(1) == s->VDegree();
+}
+
+// The clamped surface equal to `s`, periodic as in seam_at_full_knot along u
+// and/or v: the seam knot raised to degree + 1 at both ends and the first row of
+// poles and weights repeated after the last. Inserting a knot of multiplicity p
+// into a degree p spline only repeats a pole, so no value changes; OCCT's
+// SetUNotPeriodic and Segment instead go through weighted poles (P w / w) and
+// move poles of non-unit weight by an ulp.
+Handle(Geom_BSplineSurface) exactly_unwrapped(const Handle(Geom_BSplineSurface) & s) {
+  const bool u = seam_at_full_knot(s, true), v = seam_at_full_knot(s, false);
+  const int nu = s->NbUPoles(), nv = s->NbVPoles();
+  const int mu = nu + (u ? 1 : 0), mv = nv + (v ? 1 : 0);
+  TColgp_Array2OfPnt poles(1, mu, 1, mv);
+  TColStd_Array2OfReal weights(1, mu, 1, mv);
+  for (int i = 1; i <= mu; ++i) {
+    for (int j = 1; j <= mv; ++j) {
+      const int from_i = i > nu ? 1 : i, from_j = j > nv ? 1 : j;
+      poles(i, j) = s->Pole(from_i, from_j);
+      weights(i, j) = s->Weight(from_i, from_j);
+    }
+  }
+  TColStd_Array1OfReal uk(1, s->NbUKnots()), vk(1, s->NbVKnots());
+  TColStd_Array1OfInteger um(1, s->NbUKnots()), vm(1, s->NbVKnots());
+  s->UKnots(uk);
+  s->VKnots(vk);
+  s->UMultiplicities(um);
+  s->VMultiplicities(vm);
+  if (u) {
+    ++um(um.Lower());
+    ++um(um.Upper());
+  }
+  if (v) {
+    ++vm(vm.Lower());
+    ++vm(vm.Upper());
+  }
+  const bool keep_u = s->IsUPeriodic() && !u, keep_v = s->IsVPeriodic() && !v;
+  if (s->IsURational() || s->IsVRational()) {
+    return new Geom_BSplineSurface(poles, weights, uk, vk, um, vm, s->UDegree(), s->VDegree(),
+                                   keep_u, keep_v);
+  }
+  return new Geom_BSplineSurface(poles, uk, vk, um, vm, s->UDegree(), s->VDegree(), keep_u, keep_v);
+}
+
 // Clamped, non-periodic copy of a B-spline surface: same geometry and parameters.
 Handle(Geom_BSplineSurface) clamped_copy(const Handle(Geom_BSplineSurface) & s) {
   Handle(Geom_BSplineSurface) copy = Handle(Geom_BSplineSurface)::DownCast(s->Copy());
+  if (seam_at_full_knot(copy, true) || seam_at_full_knot(copy, false)) {
+    copy = exactly_unwrapped(copy);
+  }
   if (copy->IsUPeriodic()) copy->SetUNotPeriodic();
   if (copy->IsVPeriodic()) copy->SetVNotPeriodic();
   // Non-periodic OCCT surfaces may still have end knots of lower multiplicity
@@ -377,13 +439,20 @@ std::string entity_label(const Handle(Interface_InterfaceModel) & model,
   return "D" + std::to_string(2 * number - 1);
 }
 
+// The file's entity a face was made from; null when the reader does not say.
+Handle(Standard_Transient)
+    source_entity(const Handle(XSControl_WorkSession) & session, const TopoDS_Shape& face) {
+  const Handle(XSControl_TransferReader) reader = session->TransferReader();
+  if (reader.IsNull()) return nullptr;
+  Handle(Standard_Transient) entity = reader->EntityFromShapeResult(face, 1);
+  if (entity.IsNull()) entity = reader->EntityFromShapeResult(face, -1);
+  return entity;
+}
+
 // Where a face came from: "#<entity>" in STEP, "D<directory entry>" in IGES.
 void describe_source(const Handle(XSControl_WorkSession) & session, const TopoDS_Shape& face,
                      CadFormat format, FaceRecord& record) {
-  const Handle(XSControl_TransferReader) reader = session->TransferReader();
-  if (reader.IsNull()) return;
-  Handle(Standard_Transient) entity = reader->EntityFromShapeResult(face, 1);
-  if (entity.IsNull()) entity = reader->EntityFromShapeResult(face, -1);
+  const Handle(Standard_Transient) entity = source_entity(session, face);
   if (entity.IsNull()) return;
   record.source_id = entity_label(session->Model(), entity, format);
   if (format == CadFormat::step) {
@@ -395,7 +464,93 @@ void describe_source(const Handle(XSControl_WorkSession) & session, const TopoDS
   }
 }
 
-Result<FaceRecord> face_record(const TopoDS_Face& oriented_face) {
+// A face's control net as its entity in the file holds it, row by row along u:
+// before any placement; STEP's scaled to mm by StepToGeom, IGES's as written.
+struct WrittenNet {
+  int nu = 0, nv = 0;
+  std::vector<gp_Pnt> poles;
+  std::vector<double> weights;
+};
+
+// The net of the B-spline surface the face entity names; empty when the
+// entity is not a face on a B-spline surface. STEP: the surface as
+// StepToGeom makes it, before StepToTopoDS_TranslateFace makes it periodic.
+WrittenNet written_net(const Handle(Standard_Transient) & entity, CadFormat format) {
+  WrittenNet net;
+  if (entity.IsNull()) return net;
+  if (format == CadFormat::step) {
+    const auto face = Handle(StepShape_FaceSurface)::DownCast(entity);
+    if (face.IsNull()) return net;
+    const auto step = Handle(StepGeom_BSplineSurface)::DownCast(face->FaceGeometry());
+    if (step.IsNull()) return net;
+    const Handle(Geom_BSplineSurface) s = StepToGeom::MakeBSplineSurface(step);
+    if (s.IsNull()) return net;
+    net.nu = s->NbUPoles();
+    net.nv = s->NbVPoles();
+    for (int i = 1; i <= net.nu; ++i) {
+      for (int j = 1; j <= net.nv; ++j) {
+        net.poles.push_back(s->Pole(i, j));
+        net.weights.push_back(s->Weight(i, j));
+      }
+    }
+    return net;
+  }
+  Handle(IGESData_IGESEntity) surface = Handle(IGESData_IGESEntity)::DownCast(entity);
+  if (const auto face = Handle(IGESSolid_Face)::DownCast(entity); !face.IsNull()) {
+    surface = face->Surface();
+  } else if (const auto trimmed = Handle(IGESGeom_TrimmedSurface)::DownCast(entity);
+             !trimmed.IsNull()) {
+    surface = trimmed->Surface();
+  }
+  const auto iges = Handle(IGESGeom_BSplineSurface)::DownCast(surface);
+  if (iges.IsNull()) return net;
+  net.nu = iges->NbPolesU();
+  net.nv = iges->NbPolesV();
+  for (int i = 0; i < net.nu; ++i) {  // IGES numbers poles from 0
+    for (int j = 0; j < net.nv; ++j) {
+      net.poles.push_back(iges->Pole(i, j));
+      net.weights.push_back(iges->Weight(i, j));
+    }
+  }
+  return net;
+}
+
+// The readers make every B-spline surface closed within Precision::Confusion()
+// periodic, dropping its last row of poles for a copy of the first; clamped
+// again (exactly_unwrapped) that row is the first row, which the file's may
+// differ from by up to that distance. Puts the file's last row back (u and/or
+// v as `unwrapped_u`, `unwrapped_v`), only when the rest of the net is the
+// file's bit for bit (no unit factor, no placement, the same orientation) and
+// the row lies within Precision::Confusion() of the copy.
+void restore_seam(BSplineSurface& s, const WrittenNet& net, bool unwrapped_u, bool unwrapped_v) {
+  const int nu = s.count(Direction::u), nv = s.count(Direction::v);
+  if (net.nu != nu || net.nv != nv) return;
+  const auto on_seam = [&](int i, int j) {
+    return (unwrapped_u && i == nu - 1) || (unwrapped_v && j == nv - 1);
+  };
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      const Eigen::Index row = s.pole_index(i, j);
+      const gp_Pnt& p = net.poles[static_cast<std::size_t>(i * nv + j)];
+      const double w = net.weights[static_cast<std::size_t>(i * nv + j)];
+      if (w != (s.is_rational() ? s.weights[row] : 1.0)) return;
+      const gp_Pnt ours(s.control_points(row, 0), s.control_points(row, 1),
+                        s.control_points(row, 2));
+      const bool same = p.X() == ours.X() && p.Y() == ours.Y() && p.Z() == ours.Z();
+      if (!same && !(on_seam(i, j) && p.Distance(ours) <= Precision::Confusion())) return;
+    }
+  }
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      if (!on_seam(i, j)) continue;
+      const gp_Pnt& p = net.poles[static_cast<std::size_t>(i * nv + j)];
+      s.control_points.row(s.pole_index(i, j)) << p.X(), p.Y(), p.Z();
+    }
+  }
+}
+
+// `written`: the face's net as its file entity holds it (restore_seam).
+Result<FaceRecord> face_record(const TopoDS_Face& oriented_face, const WrittenNet& written) {
   FaceRecord record;
   record.reversed = oriented_face.Orientation() == TopAbs_REVERSED;
   TopoDS_Face face = TopoDS::Face(oriented_face.Oriented(TopAbs_FORWARD));
@@ -424,6 +579,8 @@ Result<FaceRecord> face_record(const TopoDS_Face& oriented_face) {
     }
   }
   record.surface = to_argil(clamped_copy(bspline));
+  restore_seam(record.surface, written, seam_at_full_knot(bspline, true),
+               seam_at_full_knot(bspline, false));
   const Status check = validate(record.surface);
   if (!check.ok()) return Status::error(StatusCode::invalid_surface, check.message);
   Result<std::vector<TrimLoop>> loops = face_loops(face);
@@ -551,7 +708,8 @@ Result<std::vector<FaceRecord>> face_records(const std::filesystem::path& path,
   std::vector<FaceRecord> faces;
   int index = 0;
   for (TopExp_Explorer e(loaded.shape, TopAbs_FACE); e.More(); e.Next(), ++index) {
-    Result<FaceRecord> record = face_record(TopoDS::Face(e.Current()));
+    const WrittenNet written = written_net(source_entity(loaded.session, e.Current()), format);
+    Result<FaceRecord> record = face_record(TopoDS::Face(e.Current()), written);
     if (!record.ok()) {
       FaceRecord source;  // only for the entity id in the message
       describe_source(loaded.session, e.Current(), format, source);
