@@ -350,9 +350,12 @@ Box3 DeformableBody::solved_box() const {
 
 void DeformableBody::halt() {
   velocities_.setZero();
-  // The next load opens a window where it lands; the body is at rest now.
-  local_.reset();
-  pending_.reset();
+  // After a load the next one opens a window where it lands; a window
+  // anticipated on a body still resting is kept (as in a world without sleep).
+  if (!resting_) {
+    local_.reset();
+    pending_.reset();
+  }
   resting_ = true;
 }
 
@@ -507,6 +510,12 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
     // margin of its edge, with slack so the tool can travel before the next
     // growth. The first window has no slack: it is factorised at once.
     const PoleWindow needed = loads.grown(margin_[0], margin_[1], nu, nv);
+    if (resting_ && !(local_ && local_->window.contains(needed)) &&
+        !(pending_ && pending_->window.contains(needed))) {
+      // An anticipated window the first load missed: open one where it landed.
+      local_.reset();
+      pending_.reset();
+    }
     const PoleWindow current = local_ ? local_->window : PoleWindow{};
     if (!current.contains(needed) && !(pending_ && pending_->window.contains(needed))) {
       const int su = local_ ? slack_[0] : 0, sv = local_ ? slack_[1] : 0;
@@ -533,6 +542,23 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
       motion = std::max(motion, step_dt_ * velocities_.row(p).norm());
     if (motion < kWindowRestMotion) local_.reset();
   }
+  if (Status f = advance_pending(dt, loads); !f.ok()) return f;
+  step_local_ = local_.has_value() && local_->window.contains(loads);
+  // (A window anticipated before the first load changes nothing at rest.)
+  step_idle_ = loads.empty() && resting_;
+  return Status::success();
+}
+
+Status DeformableBody::prepare_window(double dt) {
+  if (!local_solves_ || !pending_) return Status::success();
+  if (pending_->dt != dt) {
+    pending_.reset();
+    return Status::success();
+  }
+  return advance_pending(dt, {});
+}
+
+Status DeformableBody::advance_pending(double dt, const PoleWindow& loads) {
   if (pending_) {
     // This step's share of the pending factorisation: the matrix first, then
     // rows at about bandwidth^2 / 2 multiply-adds each.
@@ -566,10 +592,6 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
       pending_.reset();
     }
   }
-  step_local_ = local_.has_value() && local_->window.contains(loads);
-  // A body at rest with no load would step to (about) where it is.
-  // (A window anticipated before the first load changes nothing at rest.)
-  step_idle_ = loads.empty() && resting_;
   return Status::success();
 }
 

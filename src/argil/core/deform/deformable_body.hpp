@@ -135,9 +135,9 @@ class DeformableBody {
   bool settled(double distance) const;
   /// Sets every velocity to zero: a body put to sleep wakes from a state that
   /// does not depend on how long it slept.
-  /// It also drops the local window and marks the body resting: until the
-  /// next load it does not step (it stays where it is, within the settling
-  /// distance of its rest).
+  /// It also marks the body resting (until the next load it does not step: it
+  /// stays where it is, within the settling distance of its rest) and, if it
+  /// was loaded since it last rested, drops its local window.
   void halt();
 
   /// Prepares the window a load at `uv` (a parameter point, e.g. the closest
@@ -147,6 +147,9 @@ class DeformableBody {
   /// local solves. The solution does not depend on it beyond which poles the
   /// window holds.
   void anticipate(const Eigen::Vector2d& uv, double dt);
+  /// Spends one step's share of work on the window being prepared, without
+  /// stepping (a sleeping body near the tool: it prepares as an awake one would).
+  Status prepare_window(double dt);
   /// At rest since create() or halt(), with no load since.
   bool resting() const { return resting_; }
   /// A window is active or being factorised.
@@ -202,6 +205,9 @@ class DeformableBody {
   /// grows the window ahead of the loads and spends this step's share of the
   /// pending window's factorisation.
   Status plan_region(double dt, const ControlNet& forces, const PoleWeights* pattern);
+  /// This step's share of the pending window's factorisation (all of it when
+  /// `loads` lie outside the active window and the step cannot wait).
+  Status advance_pending(double dt, const PoleWindow& loads);
   /// begin_step with a pattern or without one (null).
   Result<LoadPreview> start_step(double dt, const ControlNet& forces, const PoleWeights* pattern);
   /// Moves the rest control points so that no stretch exceeds the yield,

@@ -15,8 +15,8 @@ double distance_to_box(const Eigen::Vector3d& p, const Box3& box) {
 
 }  // namespace
 
-std::vector<char> HapticWorld::within_reach(const ProxyState& previous,
-                                            const DeviceSample& device) const {
+std::vector<char> HapticWorld::within_reach(const ProxyState& previous, const DeviceSample& device,
+                                            double extra) const {
   std::vector<char> reach(bodies_.size(), 1);
   // Over this tick the proxy moves from its last pose towards the device: at
   // most |p_WD - p_WT| along its path, plus how far the surfaces pushed it
@@ -27,7 +27,7 @@ std::vector<char> HapticWorld::within_reach(const ProxyState& previous,
   // for the friction re-move from the stick point and for pushes in a wedge.
   const Eigen::Vector3d& p_WT = previous.X_WT.p;
   const double travel = (device.X_WD.p - p_WT).norm() + motion_;
-  const double reach_distance = tool_reach_ + 2.0 * travel + 4.0 * options_.tolerance;
+  const double reach_distance = tool_reach_ + 2.0 * travel + 4.0 * options_.tolerance + extra;
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     reach[b] = distance_to_box(p_WT, bodies_[b].bound) <= reach_distance ? 1 : 0;
   return reach;
@@ -35,13 +35,17 @@ std::vector<char> HapticWorld::within_reach(const ProxyState& previous,
 
 void HapticWorld::anticipate(const std::vector<char>& near, const Eigen::Vector3d& p_WT,
                              double dt) {
+  // Asleep or awake alike, so the solution does not depend on sleep: a
+  // sleeping body prepares its window here, an awake one in its step.
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     Body& body = bodies_[b];
-    if (!near[b] || !body.deformable || body.asleep) continue;
+    if (!body.deformable) continue;
     DeformableBody& d = *body.deformable;
-    if (!d.resting() || d.window_planned() || !d.local_solves()) continue;
-    const ClosestPoint c = closest_point(d.hierarchy(), p_WT, {.tolerance = options_.tolerance});
-    if (c.status.ok()) d.anticipate(c.uv, dt);
+    if (near[b] && d.resting() && !d.window_planned() && d.local_solves()) {
+      const ClosestPoint c = closest_point(d.hierarchy(), p_WT, {.tolerance = options_.tolerance});
+      if (c.status.ok()) d.anticipate(c.uv, dt);
+    }
+    if (body.asleep) (void)d.prepare_window(dt);
   }
 }
 

@@ -164,9 +164,12 @@ std::vector<const SurfaceHierarchy*> HapticWorld::surfaces(const std::vector<cha
 }
 
 Status HapticWorld::relax(double dt) {
-  for (Body& b : bodies_)
-    if (b.deformable && !b.asleep)
-      if (Status s = b.deformable->step(dt); !s.ok()) return s;
+  for (Body& b : bodies_) {
+    if (!b.deformable) continue;
+    // A sleeping body goes on preparing its window, as it would awake.
+    Status s = b.asleep ? b.deformable->prepare_window(dt) : b.deformable->step(dt);
+    if (!s.ok()) return s;
+  }
   // No tool: every body is out of reach.
   settle(std::vector<char>(bodies_.size(), 0));
   return Status::success();
@@ -201,7 +204,8 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
   const std::vector<char> reach =
       options_.cull || options_.sleep ? near : std::vector<char>(bodies_.size(), 1);
   wake(reach);
-  anticipate(near, previous.X_WT.p, dt);
+  // Windows are prepared from one tool reach further out than contact can come.
+  anticipate(within_reach(previous, device, tool_reach_), previous.X_WT.p, dt);
 
   // 1-2. Proxy: frictionless target, then stick or slip from the last pose.
   const std::vector<char> queried = options_.cull ? reach : std::vector<char>(reach.size(), 1);

@@ -192,7 +192,9 @@ class HapticWorld {
   /// device (body_sleep.cpp), whatever the options: the world wakes and
   /// queries only these with WorldOptions::sleep or cull, and anticipates
   /// windows on these in any case (so the solution does not depend on them).
-  std::vector<char> within_reach(const ProxyState& previous, const DeviceSample& device) const;
+  /// `extra` [mm] widens the reach (anticipation looks one tool reach further).
+  std::vector<char> within_reach(const ProxyState& previous, const DeviceSample& device,
+                                 double extra = 0.0) const;
   /// Bodies resting in reach of the tool at p_WT prepare the window its
   /// closest point would need (DeformableBody::anticipate).
   void anticipate(const std::vector<char>& near, const Eigen::Vector3d& p_WT, double dt);
