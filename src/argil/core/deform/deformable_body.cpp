@@ -623,7 +623,7 @@ Result<LoadPreview> DeformableBody::start_step(double dt, const ControlNet& forc
     return Status::error(StatusCode::invalid_argument,
                          "time step dt " + out_of_interval_text(dt, range, "s"));
   }
-  assert(forces.rows() == 0 || forces.rows() == n_all);
+  assert(forces.rows() == 0 || forces.rows() == masses_.size());
   if (Status s = plan_region(dt, forces, loads); !s.ok()) return s;
   const bool loaded = (loads && !loads->empty()) || !forces.isZero(0.0);
   if (loaded) resting_ = false;
