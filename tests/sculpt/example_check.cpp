@@ -64,14 +64,20 @@ void check(bool ok, const std::string& what) {
 }
 
 bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  return a.rows() == b.rows() && a.cols() == b.cols() &&
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+  // An empty matrix may hold no storage at all; memcmp must not see null.
+  return a.size() == 0 ||
          std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
 }
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 bool same_structure(const BSplineSurface& a, const BSplineSurface& b) {
-  return a.degree == b.degree && a.knots[0] == b.knots[0] && a.knots[1] == b.knots[1] &&
+  // Eigen compares vectors of equal size only: a refined face has more knots.
+  auto same_knots = [&](int d) {
+    return a.knots[d].size() == b.knots[d].size() && a.knots[d] == b.knots[d];
+  };
+  return a.degree == b.degree && same_knots(0) && same_knots(1) &&
          a.weights.size() == b.weights.size() && a.control_points.rows() == b.control_points.rows();
 }
 
