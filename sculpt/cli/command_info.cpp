@@ -16,6 +16,30 @@ void print_vector(const char* label, const Eigen::Vector3d& p) {
   std::printf("%s(%.6g, %.6g, %.6g)", label, p.x(), p.y(), p.z());
 }
 
+// The B-rep in counts, and the product tree (one line per product).
+void print_topology(const io::Topology& topology) {
+  if (topology.empty()) {
+    std::printf("topology: none (loose faces)\n");
+    return;
+  }
+  const io::TopologyCounts c = io::count_topology(topology);
+  std::printf("topology: %zu products, %zu solids, %zu shells (%zu closed), %zu edges "
+              "(%zu shared, %zu seams, %zu free, %zu degenerate), %zu vertices\n",
+              c.products, c.solids, c.shells, c.closed_shells, c.edges, c.shared_edges,
+              c.seam_edges, c.free_edges, c.degenerate_edges, c.vertices);
+  for (std::size_t p = 0; p < topology.products.size(); ++p) {
+    const io::Product& product = topology.products[p];
+    int depth = 0;
+    for (std::size_t up = product.parent; up != io::kNoIndex; up = topology.products[up].parent) {
+      ++depth;
+    }
+    std::printf("  %*sproduct %zu \"%s\"%s%s: %zu solids, %zu shells, %zu faces\n", 2 * depth, "", p,
+                product.name.c_str(), product.instance.empty() ? "" : " as ",
+                product.instance.c_str(), product.solids.size(), product.shells.size(),
+                product.faces.size());
+  }
+}
+
 }  // namespace
 
 const CommandDeclaration& info_command() {
@@ -50,6 +74,8 @@ int run_info(const std::vector<std::string>& args) {
   std::printf("units: mm (source unit: %s, 1 source unit = %s mm)\n",
               model.source_unit.name.c_str(), number_text(model.source_unit.to_mm).c_str());
   std::printf("faces: %zu (%zu trimmed, %zu rational)\n", model.faces.size(), trimmed, rational);
+  print_topology(model.topology);
+  for (const std::string& warning : model.warnings) std::printf("warning: %s\n", warning.c_str());
   const Box3 box = io::model_box(model);
   std::printf("bounding box of the control points [mm]: ");
   print_vector("min ", box.min);

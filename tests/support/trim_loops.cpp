@@ -56,7 +56,7 @@ namespace {
 
 void reverse_curve(BSplineCurve& c) {
   const double a = c.knots[0], b = c.knots[c.knots.size() - 1];
-  c.knots = (a + b - c.knots.reverse().array()).matrix();
+  c.knots = (a + b - c.knots.reverse().array()).matrix().eval();  // eval(): aliasing
   c.points = c.points.colwise().reverse().eval();
   if (c.is_rational()) c.weights = c.weights.reverse().eval();
 }

@@ -27,7 +27,9 @@
 #include <Precision.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_Failure.hxx>
+#include <StepBasic_Product.hxx>
 #include <StepData_StepModel.hxx>
+#include <Transfer_TransientProcess.hxx>
 #include <StepData_UndefinedEntity.hxx>
 #include <StepGeom_BSplineSurface.hxx>
 #include <StepRepr_RepresentationItem.hxx>
@@ -55,12 +57,15 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <string>
 
 #include "argil/core/geometry/param_rect.hpp"
 #include "argil/io/cad/cad_exchange.hpp"
 #include "argil/io/cad/detail/isolated_read.hpp"
+#include "argil/io/cad/detail/occt_pcurve.hpp"
+#include "argil/io/cad/detail/occt_topology_reader.hpp"
 #include "argil/io/cad/detail/occt_session.hpp"
 #include "argil/io/model/trim_curve.hpp"
 
@@ -230,23 +235,6 @@ BSplineSurface to_argil(const Handle(Geom_BSplineSurface) & s) {
   return out;
 }
 
-TrimCurve to_argil(const Handle(Geom2d_BSplineCurve) & c) {
-  TrimCurve out;
-  out.degree = c->Degree();
-  TColStd_Array1OfReal knots(1, c->NbPoles() + c->Degree() + 1);
-  c->KnotSequence(knots);
-  out.knots = flat_knots(knots);
-  out.points.resize(c->NbPoles(), 2);
-  for (int i = 1; i <= c->NbPoles(); ++i) {
-    out.points.row(i - 1) << c->Pole(i).X(), c->Pole(i).Y();
-  }
-  if (c->IsRational()) {
-    out.weights.resize(c->NbPoles());
-    for (int i = 1; i <= c->NbPoles(); ++i) out.weights[i - 1] = c->Weight(i);
-  }
-  return out;
-}
-
 // True when `s` is periodic along `u` (else v) with its period's first knot of
 // multiplicity equal to the degree: the form the STEP and IGES readers give a
 // clamped surface closed within Precision::Confusion() (ShapeCustom_Surface::
@@ -321,30 +309,6 @@ Handle(Geom_BSplineSurface) clamped_copy(const Handle(Geom_BSplineSurface) & s) 
   return copy;
 }
 
-// The pcurve of an edge as a clamped B-spline, running in the edge's direction
-// within the face.
-Result<TrimCurve> edge_trim(const TopoDS_Edge& edge, const TopoDS_Face& face) {
-  double first = 0.0, last = 0.0;
-  const Handle(Geom2d_Curve) pcurve = BRep_Tool::CurveOnSurface(edge, face, first, last);
-  if (pcurve.IsNull()) {
-    return Status::error(StatusCode::unsupported, "edge without a parameter-space curve");
-  }
-  Handle(Geom2d_BSplineCurve) bspline = Handle(Geom2d_BSplineCurve)::DownCast(pcurve);
-  if (bspline.IsNull() || bspline->FirstParameter() != first || bspline->LastParameter() != last) {
-    bspline = Geom2dConvert::CurveToBSplineCurve(new Geom2d_TrimmedCurve(pcurve, first, last));
-  } else {
-    bspline = Handle(Geom2d_BSplineCurve)::DownCast(bspline->Copy());
-  }
-  if (bspline->IsPeriodic()) bspline->SetNotPeriodic();
-  const int degree = bspline->Degree();
-  if (bspline->Multiplicity(1) <= degree || bspline->Multiplicity(bspline->NbKnots()) <= degree) {
-    // Unclamped ends: segmenting to the full range clamps them, same curve.
-    bspline->Segment(bspline->FirstParameter(), bspline->LastParameter());
-  }
-  if (edge.Orientation() == TopAbs_REVERSED) bspline->Reverse();
-  return to_argil(bspline);
-}
-
 double signed_area(const std::vector<Eigen::Vector2d>& polygon) {
   double area = 0.0;
   for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
@@ -365,7 +329,9 @@ void reverse_loop(TrimLoop& loop) {
   std::reverse(loop.curves.begin(), loop.curves.end());
   for (TrimCurve& c : loop.curves) {
     const double a = c.knots[0], b = c.knots[c.knots.size() - 1];
-    c.knots = (a + b - c.knots.reverse().array()).matrix();
+    // eval(): the mirror reads the vector it writes (aliasing), which left
+    // repeated knots 1e-15 apart and out of order (Ventilator.stp #361).
+    c.knots = (a + b - c.knots.reverse().array()).matrix().eval();
     c.points = c.points.colwise().reverse().eval();
     if (c.is_rational()) c.weights = c.weights.reverse().eval();
   }
@@ -400,7 +366,7 @@ Result<std::vector<TrimLoop>> face_loops(const TopoDS_Face& face) {
     loop.outer = wire.IsSame(outer);
     int edges_in_order = 0;
     for (BRepTools_WireExplorer e(wire, face); e.More(); e.Next()) {
-      Result<TrimCurve> curve = edge_trim(e.Current(), face);
+      Result<TrimCurve> curve = detail::edge_pcurve(e.Current(), face, detail::PcurveDirection::wire);
       if (!curve.ok()) return curve.status();
       loop.curves.push_back(std::move(curve).value());
       ++edges_in_order;
@@ -411,7 +377,7 @@ Result<std::vector<TrimLoop>> face_loops(const TopoDS_Face& face) {
       // A wire OCCT cannot chain: keep its stored order rather than drop edges.
       loop.curves.clear();
       for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next()) {
-        Result<TrimCurve> curve = edge_trim(TopoDS::Edge(e.Current()), face);
+        Result<TrimCurve> curve = detail::edge_pcurve(TopoDS::Edge(e.Current()), face, detail::PcurveDirection::wire);
         if (!curve.ok()) return curve.status();
         loop.curves.push_back(std::move(curve).value());
       }
@@ -550,7 +516,10 @@ void restore_seam(BSplineSurface& s, const WrittenNet& net, bool unwrapped_u, bo
 }
 
 // `written`: the face's net as its file entity holds it (restore_seam).
-Result<FaceRecord> face_record(const TopoDS_Face& oriented_face, const WrittenNet& written) {
+// `source` learns which face the record was made from (for the topology).
+Result<FaceRecord> face_record(const TopoDS_Face& oriented_face, const WrittenNet& written,
+                               detail::ReadFace& source) {
+  source.original = oriented_face;
   FaceRecord record;
   record.reversed = oriented_face.Orientation() == TopAbs_REVERSED;
   TopoDS_Face face = TopoDS::Face(oriented_face.Oriented(TopAbs_FORWARD));
@@ -567,7 +536,12 @@ Result<FaceRecord> face_record(const TopoDS_Face& oriented_face, const WrittenNe
           StatusCode::unsupported,
           std::string("cannot convert ") + surface->DynamicType()->Name() + " to a B-spline");
     }
+    for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
+      const TopoDS_Shape forward = e.Current().Oriented(TopAbs_FORWARD);
+      if (!source.edges.IsBound(forward)) source.edges.Bind(forward, convert.ModifiedShape(forward));
+    }
     face = TopoDS::Face(convert.Shape().Oriented(TopAbs_FORWARD));
+    source.converted = face;
     Handle(Geom_Surface) converted = BRep_Tool::Surface(face);
     const auto converted_trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(converted);
     if (!converted_trimmed.IsNull()) converted = converted_trimmed->BasisSurface();
@@ -592,49 +566,107 @@ Result<FaceRecord> face_record(const TopoDS_Face& oriented_face, const WrittenNe
   return record;
 }
 
-// First failure OCCT recorded while loading, if any ("" when none).
-std::string first_load_failure(const Handle(XSControl_WorkSession) & session, CadFormat format) {
+const char* format_name(CadFormat format) { return format == CadFormat::step ? "STEP" : "IGES"; }
+
+// Defects of one kind: how many entities, and the first few by label.
+struct DefectGroup {
+  std::size_t count = 0;
+  std::string first;  // "#56, #60, #64"
+};
+
+constexpr std::size_t kLabelsListed = 3;
+
+void add_to(DefectGroup& group, const std::string& label) {
+  if (group.count < kLabelsListed) group.first += (group.count == 0 ? "" : ", ") + label;
+  ++group.count;
+}
+
+std::string listed(const DefectGroup& group) {
+  return group.first + (group.count > kLabelsListed ? ", ..." : "");
+}
+
+// Entities the reader loaded with a defect (a null name where the schema wants
+// a string, a styling value it does not know), grouped by type and message.
+// OpenCASCADE transfers them as far as it can, so each group is a warning.
+std::vector<std::string> load_warnings(const Handle(XSControl_WorkSession) & session,
+                                       CadFormat format) {
   const Handle(Interface_InterfaceModel) model = session->Model();
+  std::map<std::string, DefectGroup> groups;
   const Interface_CheckIterator checks = session->ModelCheckList();
   for (checks.Start(); checks.More(); checks.Next()) {
     const Handle(Interface_Check) check = checks.Value();
-    if (check->HasFailed()) {
-      const int number = checks.Number();
-      std::string text;
-      if (number > 0 && number <= model->NbEntities()) {
-        text = " at entity " + entity_label(model, model->Value(number), format) + " (" +
-               model->TypeName(model->Value(number), false) + ")";
-      }
-      if (check->NbFails() > 0) text += ": " + std::string(check->CFail(1));
-      return text;
+    if (!check->HasFailed() || check->NbFails() == 0) continue;
+    const int number = checks.Number();
+    std::string type = "the file header", label;
+    if (number > 0 && number <= model->NbEntities()) {
+      type = model->TypeName(model->Value(number), false);
+      label = entity_label(model, model->Value(number), format);
     }
+    add_to(groups[type + ": " + std::string(check->CFail(1))], label);
   }
-  return "";
+  std::vector<std::string> warnings;
+  for (const auto& [what, group] : groups) {
+    warnings.push_back(std::to_string(group.count) + " " + format_name(format) +
+                       (group.count == 1 ? " entity" : " entities") + " read despite a defect (" +
+                       listed(group) + ") " + what);
+  }
+  return warnings;
 }
 
-// Entities the reader did not recognise; a CAD import that silently dropped
-// geometry would be worse than a clear refusal.
-std::string first_unsupported_entity(const Handle(Interface_InterfaceModel) & model,
-                                     CadFormat format) {
+// Entities of types the reader does not know, grouped by type. The transfer
+// skips them; when geometry needed one, its face fails to transfer and
+// transfer_warnings says so.
+std::vector<std::string> unknown_entity_warnings(const Handle(Interface_InterfaceModel) & model,
+                                                 CadFormat format) {
+  std::map<std::string, DefectGroup> groups;
   for (int n = 1; n <= model->NbEntities(); ++n) {
     const Handle(Standard_Transient) entity = model->Value(n);
+    std::string type;
     if (format == CadFormat::step) {
       const auto unknown = Handle(StepData_UndefinedEntity)::DownCast(entity);
-      if (!unknown.IsNull()) {
-        return entity_label(model, entity, format) + " (" + std::string(unknown->StepType()) + ")";
-      }
+      if (!unknown.IsNull()) type = unknown->StepType();
     } else {
       const auto unknown = Handle(IGESData_UndefinedEntity)::DownCast(entity);
-      if (!unknown.IsNull()) {
-        return entity_label(model, entity, format) + " (type " +
-               std::to_string(unknown->TypeNumber()) + ")";
-      }
+      if (!unknown.IsNull()) type = "type " + std::to_string(unknown->TypeNumber());
     }
+    if (!type.empty()) add_to(groups[type], entity_label(model, entity, format));
   }
-  return "";
+  std::vector<std::string> warnings;
+  for (const auto& [type, group] : groups) {
+    warnings.push_back(std::to_string(group.count) + " " + format_name(format) +
+                       (group.count == 1 ? " entity" : " entities") + " of unsupported type " +
+                       type + " skipped (" + listed(group) + ")");
+  }
+  return warnings;
 }
 
-const char* format_name(CadFormat format) { return format == CadFormat::step ? "STEP" : "IGES"; }
+// Entities whose transfer failed (geometry OpenCASCADE could not build).
+std::vector<std::string> transfer_warnings(const Handle(XSControl_WorkSession) & session,
+                                           CadFormat format) {
+  const Handle(XSControl_TransferReader) reader = session->TransferReader();
+  if (reader.IsNull() || reader->TransientProcess().IsNull()) return {};
+  const Handle(Interface_InterfaceModel) model = session->Model();
+  std::map<std::string, DefectGroup> groups;
+  const Interface_CheckIterator checks = reader->TransientProcess()->CheckList(false);
+  for (checks.Start(); checks.More(); checks.Next()) {
+    const Handle(Interface_Check) check = checks.Value();
+    if (!check->HasFailed() || check->NbFails() == 0) continue;
+    const Handle(Standard_Transient) entity = check->Entity();
+    std::string type = "entity", label;
+    if (!entity.IsNull() && model->Number(entity) > 0) {
+      type = model->TypeName(entity, false);
+      label = entity_label(model, entity, format);
+    }
+    add_to(groups[type + ": " + std::string(check->CFail(1))], label);
+  }
+  std::vector<std::string> warnings;
+  for (const auto& [what, group] : groups) {
+    warnings.push_back(std::to_string(group.count) + " " + format_name(format) +
+                       (group.count == 1 ? " entity" : " entities") + " did not transfer (" +
+                       listed(group) + ") " + what);
+  }
+  return warnings;
+}
 
 // The reader for the format, with the import settings made first (the IGES
 // controller must be initialised before its settings exist).
@@ -674,6 +706,7 @@ struct LoadedShape {
   TopoDS_Shape shape;
   Handle(XSControl_WorkSession) session;
   SourceUnit unit;
+  std::vector<std::string> warnings;  // what the reader recovered from
 };
 
 // Reads and transfers the file; STEP and IGES differ only in the reader.
@@ -685,31 +718,39 @@ Result<LoadedShape> load_shape(const std::filesystem::path& path, CadFormat form
   if (reader->ReadFile(path.c_str()) != IFSelect_RetDone) {
     return file_error(path, StatusCode::parse_error, "malformed " + kind + " file");
   }
-  if (const std::string bad = first_unsupported_entity(out.session->Model(), format);
-      !bad.empty()) {
-    return file_error(path, StatusCode::unsupported, "unsupported " + kind + " entity " + bad);
+  // What OpenCASCADE transfers, we read: defects it reads past are warnings,
+  // and an error only when nothing transfers (naming what the reader met).
+  out.warnings = load_warnings(out.session, format);
+  for (std::string& w : unknown_entity_warnings(out.session->Model(), format)) {
+    out.warnings.push_back(std::move(w));
   }
-  if (const std::string fail = first_load_failure(out.session, format); !fail.empty()) {
-    return file_error(path, StatusCode::parse_error, "malformed " + kind + " data" + fail);
-  }
+  const auto nothing = [&](const std::string& what) {
+    std::string message = what;
+    if (!out.warnings.empty()) message += "; the reader met: " + out.warnings.front();
+    if (out.warnings.size() > 1) message += " (and " + std::to_string(out.warnings.size() - 1) + " more)";
+    return file_error(path, StatusCode::unsupported, message);
+  };
   out.unit = declared_unit(*reader, format);
-  if (reader->NbRootsForTransfer() == 0) {
-    return file_error(path, StatusCode::unsupported, "no shapes to transfer (no faces)");
-  }
+  if (reader->NbRootsForTransfer() == 0) return nothing("no shapes to transfer (no faces)");
   reader->TransferRoots();
+  for (std::string& w : transfer_warnings(out.session, format)) out.warnings.push_back(std::move(w));
   out.shape = reader->OneShape();
+  if (out.shape.IsNull()) return nothing("no shape could be read (no faces)");
   return out;
 }
 
 // Every face of the shape as a record, or the first face's failure naming
 // its index and source entity.
+// `sources`: the face each record was made from.
 Result<std::vector<FaceRecord>> face_records(const std::filesystem::path& path,
-                                             const LoadedShape& loaded, CadFormat format) {
+                                             const LoadedShape& loaded, CadFormat format,
+                                             std::vector<detail::ReadFace>& sources) {
   std::vector<FaceRecord> faces;
   int index = 0;
   for (TopExp_Explorer e(loaded.shape, TopAbs_FACE); e.More(); e.Next(), ++index) {
     const WrittenNet written = written_net(source_entity(loaded.session, e.Current()), format);
-    Result<FaceRecord> record = face_record(TopoDS::Face(e.Current()), written);
+    Result<FaceRecord> record =
+        face_record(TopoDS::Face(e.Current()), written, sources.emplace_back());
     if (!record.ok()) {
       FaceRecord source;  // only for the entity id in the message
       describe_source(loaded.session, e.Current(), format, source);
@@ -724,6 +765,24 @@ Result<std::vector<FaceRecord>> face_records(const std::filesystem::path& path,
   return faces;
 }
 
+// The name of the one product a file without a product tree holds: STEP's
+// first PRODUCT, else the file's name without extension.
+std::string product_name(const LoadedShape& loaded, const std::filesystem::path& path,
+                         CadFormat format) {
+  if (format == CadFormat::step) {
+    const Handle(Interface_InterfaceModel) model = loaded.session->Model();
+    for (int n = 1; n <= model->NbEntities(); ++n) {
+      const auto product = Handle(StepBasic_Product)::DownCast(model->Value(n));
+      if (product.IsNull()) continue;
+      // Some systems leave the name empty and put it in the id (Ventilator.stp).
+      for (const auto& text : {product->Name(), product->Id()}) {
+        if (!text.IsNull() && text->Length() > 0) return text->ToCString();
+      }
+    }
+  }
+  return path.stem().string();
+}
+
 Result<Model> read_with_occt(const std::filesystem::path& path, CadFormat format) {
   Result<LoadedShape> loaded = load_shape(path, format);
   if (!loaded.ok()) return loaded.status();
@@ -736,16 +795,20 @@ Result<Model> read_with_occt(const std::filesystem::path& path, CadFormat format
   }
   model.metadata["source_file"] = path.filename().string();
   model.metadata["source_format"] = format_name(format);
-  if (loaded.value().shape.IsNull()) {
-    return file_error(path, StatusCode::unsupported, "no shape could be read (no faces)");
-  }
-  Result<std::vector<FaceRecord>> faces = face_records(path, loaded.value(), format);
+  model.warnings = loaded.value().warnings;
+  std::vector<detail::ReadFace> sources;
+  Result<std::vector<FaceRecord>> faces = face_records(path, loaded.value(), format, sources);
   if (!faces.ok()) return faces.status();
   model.faces = std::move(faces).value();
   if (model.faces.empty()) {
     return file_error(path, StatusCode::unsupported,
                       std::string(format_name(format)) + " file has no faces");
   }
+  Result<Topology> topology =
+      detail::read_topology(loaded.value().shape, sources, loaded.value().session,
+                            format == CadFormat::step, product_name(loaded.value(), path, format));
+  if (!topology.ok()) return file_error(path, topology.status().code, topology.status().message);
+  model.topology = std::move(topology).value();
   return model;
 }
 

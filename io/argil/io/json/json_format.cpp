@@ -165,6 +165,141 @@ class Reader {
     return check.ok() || fail(path, check.message);
   }
 
+  // A list index; -1 in the file is kNoIndex where `optional`.
+  bool index(const Json& value, const std::string& path, std::size_t& out, bool optional = false) {
+    if (!value.is_number_integer()) return fail(path, "expected an index");
+    const auto wide = value.get<long long>();
+    if (optional && wide == -1) {
+      out = kNoIndex;
+      return true;
+    }
+    if (wide < 0 || wide > 1000000000LL) return fail(path, "index out of range");
+    out = static_cast<std::size_t>(wide);
+    return true;
+  }
+
+  bool indices(const Json& object, const std::string& path, const char* key,
+               std::vector<std::size_t>& out) {
+    const Json* list = member(object, path, key, false);
+    if (list == nullptr) return true;
+    const std::string list_path = path + "." + key;
+    if (!list->is_array()) return fail(list_path, "expected an array of indices");
+    out.resize(list->size());
+    for (std::size_t k = 0; k < list->size(); ++k) {
+      if (!index((*list)[k], list_path + "[" + std::to_string(k) + "]", out[k])) return false;
+    }
+    return true;
+  }
+
+  bool array(const Json& object, const std::string& path, const char* key, const Json*& out) {
+    out = member(object, path, key, false);
+    if (out == nullptr) return true;
+    return out->is_array() || fail(path + "." + key, "expected an array");
+  }
+
+  bool product(const Json& value, const std::string& path, Product& out) {
+    if (const Json* name = member(value, path, "name", false)) {
+      if (!name->is_string()) return fail(path + ".name", "expected a string");
+      out.name = name->get<std::string>();
+    }
+    if (const Json* instance = member(value, path, "instance", false)) {
+      if (!instance->is_string()) return fail(path + ".instance", "expected a string");
+      out.instance = instance->get<std::string>();
+    }
+    if (const Json* parent = member(value, path, "parent", false)) {
+      if (!index(*parent, path + ".parent", out.parent, true)) return false;
+    }
+    if (const Json* placement = member(value, path, "placement", false)) {
+      Eigen::VectorXd numbers;
+      if (!vector(*placement, path + ".placement", numbers)) return false;
+      if (numbers.size() != 12) {
+        return fail(path + ".placement", "expected 12 numbers (3 rows of 4)");
+      }
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 4; ++c) out.placement(r, c) = numbers[4 * r + c];
+      }
+    }
+    return indices(value, path, "solids", out.solids) &&
+           indices(value, path, "shells", out.shells) && indices(value, path, "faces", out.faces);
+  }
+
+  bool edge(const Json& value, const std::string& path, Edge& out) {
+    if (const Json* start = member(value, path, "start", false)) {
+      if (!index(*start, path + ".start", out.start, true)) return false;
+    }
+    if (const Json* end = member(value, path, "end", false)) {
+      if (!index(*end, path + ".end", out.end, true)) return false;
+    }
+    if (const Json* degenerate = member(value, path, "degenerate", false)) {
+      if (!degenerate->is_boolean()) return fail(path + ".degenerate", "expected true or false");
+      out.degenerate = degenerate->get<bool>();
+    }
+    if (const Json* tolerance = member(value, path, "tolerance", false)) {
+      if (!number(*tolerance, path + ".tolerance", out.tolerance)) return false;
+    }
+    const Json* uses = member(value, path, "uses");
+    if (uses == nullptr) return false;
+    if (!uses->is_array()) return fail(path + ".uses", "expected an array");
+    out.uses.resize(uses->size());
+    for (std::size_t u = 0; u < uses->size(); ++u) {
+      const std::string use_path = path + ".uses[" + std::to_string(u) + "]";
+      const Json* face_index = member((*uses)[u], use_path, "face");
+      const Json* pcurve = member((*uses)[u], use_path, "pcurve");
+      if (face_index == nullptr || pcurve == nullptr ||
+          !index(*face_index, use_path + ".face", out.uses[u].face) ||
+          !curve(*pcurve, use_path + ".pcurve", out.uses[u].pcurve)) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  bool topology(const Json& value, Topology& out) {
+    const std::string path = "topology";
+    const Json *products = nullptr, *solids = nullptr, *shells = nullptr, *edges = nullptr,
+               *vertices = nullptr;
+    if (!array(value, path, "products", products) || !array(value, path, "solids", solids) ||
+        !array(value, path, "shells", shells) || !array(value, path, "edges", edges) ||
+        !array(value, path, "vertices", vertices)) {
+      return false;
+    }
+    const auto item = [&](const char* list, std::size_t k) {
+      return path + "." + list + "[" + std::to_string(k) + "]";
+    };
+    for (std::size_t k = 0; products != nullptr && k < products->size(); ++k) {
+      if (!product((*products)[k], item("products", k), out.products.emplace_back())) return false;
+    }
+    for (std::size_t k = 0; solids != nullptr && k < solids->size(); ++k) {
+      if (!indices((*solids)[k], item("solids", k), "shells", out.solids.emplace_back().shells)) {
+        return false;
+      }
+    }
+    for (std::size_t k = 0; shells != nullptr && k < shells->size(); ++k) {
+      Shell& shell = out.shells.emplace_back();
+      if (!indices((*shells)[k], item("shells", k), "faces", shell.faces)) return false;
+      if (const Json* closed = member((*shells)[k], item("shells", k), "closed", false)) {
+        if (!closed->is_boolean()) return fail(item("shells", k) + ".closed", "expected true or false");
+        shell.closed = closed->get<bool>();
+      }
+    }
+    for (std::size_t k = 0; edges != nullptr && k < edges->size(); ++k) {
+      if (!edge((*edges)[k], item("edges", k), out.edges.emplace_back())) return false;
+    }
+    for (std::size_t k = 0; vertices != nullptr && k < vertices->size(); ++k) {
+      Vertex& vertex = out.vertices.emplace_back();
+      const Json* point = member((*vertices)[k], item("vertices", k), "point");
+      if (point == nullptr) return false;
+      Eigen::VectorXd xyz;
+      if (!vector(*point, item("vertices", k) + ".point", xyz)) return false;
+      if (xyz.size() != 3) return fail(item("vertices", k) + ".point", "expected 3 coordinates");
+      vertex.point = xyz;
+      if (const Json* tolerance = member((*vertices)[k], item("vertices", k), "tolerance", false)) {
+        if (!number(*tolerance, item("vertices", k) + ".tolerance", vertex.tolerance)) return false;
+      }
+    }
+    return true;
+  }
+
   bool face(const Json& value, const std::string& path, FaceRecord& out) {
     const Json* surface_json = member(value, path, "surface");
     if (surface_json == nullptr || !surface(*surface_json, path + ".surface", out.surface)) {
@@ -219,9 +354,9 @@ class Reader {
     }
     int version_number = 0;
     if (!integer(*version, "version", version_number)) return false;
-    if (version_number != kJsonFormatVersion) {
+    if (version_number < 1 || version_number > kJsonFormatVersion) {
       return fail("version", "unknown schema version " + std::to_string(version_number) +
-                                 " (this build reads version " +
+                                 " (this build reads versions 1 to " +
                                  std::to_string(kJsonFormatVersion) + ")");
     }
     if (const Json* units = member(root, "(root)", "units", false)) {
@@ -254,6 +389,21 @@ class Reader {
     for (std::size_t f = 0; f < faces->size(); ++f) {
       if (!face((*faces)[f], "faces[" + std::to_string(f) + "]", out.faces[f])) return false;
     }
+    if (version_number < 2) return true;  // version 1: loose faces, no warnings
+    if (const Json* warnings = member(root, "(root)", "warnings", false)) {
+      if (!warnings->is_array()) return fail("warnings", "expected an array of strings");
+      for (std::size_t k = 0; k < warnings->size(); ++k) {
+        if (!(*warnings)[k].is_string()) {
+          return fail("warnings[" + std::to_string(k) + "]", "expected a string");
+        }
+        out.warnings.push_back((*warnings)[k].get<std::string>());
+      }
+    }
+    if (const Json* t = member(root, "(root)", "topology", false)) {
+      if (!topology(*t, out.topology)) return false;
+      const Status valid = validate_topology(out.topology, out.faces.size());
+      if (!valid.ok()) return fail("topology", valid.message);
+    }
     return true;
   }
 
@@ -277,6 +427,66 @@ Json points_json(const Matrix& points) {
     array.push_back(std::move(point));
   }
   return array;
+}
+
+template <class Curve>
+Json curve_json(const Curve& curve) {
+  Json c;
+  c["degree"] = curve.degree;
+  c["knots"] = vector_json(curve.knots);
+  c["poles"] = points_json(curve.points);
+  if (curve.is_rational()) c["weights"] = vector_json(curve.weights);
+  return c;
+}
+
+// kNoIndex as -1.
+Json index_json(std::size_t index) {
+  return index == kNoIndex ? Json(-1) : Json(index);
+}
+
+Json topology_json(const Topology& t) {
+  Json out;
+  Json products = Json::array();
+  for (const Product& p : t.products) {
+    Json placement = Json::array();
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 4; ++c) placement.push_back(p.placement(r, c));
+    }
+    products.push_back({{"name", p.name},
+                        {"instance", p.instance},
+                        {"parent", index_json(p.parent)},
+                        {"placement", std::move(placement)},
+                        {"solids", p.solids},
+                        {"shells", p.shells},
+                        {"faces", p.faces}});
+  }
+  out["products"] = std::move(products);
+  Json solids = Json::array();
+  for (const Solid& s : t.solids) solids.push_back({{"shells", s.shells}});
+  out["solids"] = std::move(solids);
+  Json shells = Json::array();
+  for (const Shell& s : t.shells) shells.push_back({{"faces", s.faces}, {"closed", s.closed}});
+  out["shells"] = std::move(shells);
+  Json edges = Json::array();
+  for (const Edge& e : t.edges) {
+    Json uses = Json::array();
+    for (const EdgeUse& use : e.uses) {
+      uses.push_back({{"face", use.face}, {"pcurve", curve_json(use.pcurve)}});
+    }
+    edges.push_back({{"start", index_json(e.start)},
+                     {"end", index_json(e.end)},
+                     {"degenerate", e.degenerate},
+                     {"tolerance", e.tolerance},
+                     {"uses", std::move(uses)}});
+  }
+  out["edges"] = std::move(edges);
+  Json vertices = Json::array();
+  for (const Vertex& v : t.vertices) {
+    vertices.push_back({{"point", {v.point.x(), v.point.y(), v.point.z()}},
+                        {"tolerance", v.tolerance}});
+  }
+  out["vertices"] = std::move(vertices);
+  return out;
 }
 
 }  // namespace
@@ -335,14 +545,7 @@ Result<std::string> to_json(const Model& model) {
     Json trims = Json::array();
     for (const TrimLoop& loop : face.loops) {
       Json curves = Json::array();
-      for (const TrimCurve& curve : loop.curves) {
-        Json c;
-        c["degree"] = curve.degree;
-        c["knots"] = vector_json(curve.knots);
-        c["poles"] = points_json(curve.points);
-        if (curve.is_rational()) c["weights"] = vector_json(curve.weights);
-        curves.push_back(std::move(c));
-      }
+      for (const TrimCurve& curve : loop.curves) curves.push_back(curve_json(curve));
       trims.push_back({{"outer", loop.outer}, {"curves", std::move(curves)}});
     }
     Json entry;
@@ -354,6 +557,12 @@ Result<std::string> to_json(const Model& model) {
     faces.push_back(std::move(entry));
   }
   root["faces"] = std::move(faces);
+  root["warnings"] = model.warnings;
+  if (!model.topology.empty()) {
+    const Status valid = validate_topology(model.topology, model.faces.size());
+    if (!valid.ok()) return Status::error(valid.code, "topology: " + valid.message);
+    root["topology"] = topology_json(model.topology);
+  }
   try {
     // Invalid UTF-8 in names would throw; replace it rather than fail the export.
     return root.dump(1, ' ', false, Json::error_handler_t::replace) + "\n";

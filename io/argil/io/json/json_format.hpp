@@ -13,8 +13,9 @@ namespace argil::io {
 
 /// The "format" value of an argil surface file.
 inline constexpr std::string_view kJsonFormatName = "argil.surfaces";
-/// The schema version this build writes, and the only one it reads.
-inline constexpr int kJsonFormatVersion = 1;
+/// The schema version this build writes; it reads this and every earlier one
+/// (version 1: faces only; 2 adds the topology and the reader's warnings).
+inline constexpr int kJsonFormatVersion = 2;
 
 /// Parses a document. `source_name` (usually the file path) starts every error
 /// message, followed by the field path, e.g. "faces[3].surface.knots_u[7]".

@@ -11,6 +11,7 @@
 #include "argil/core/geometry/bspline_curve.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
 #include "argil/core/geometry/trim_region.hpp"
+#include "argil/io/model/topology.hpp"
 
 namespace argil::io {
 
@@ -42,11 +43,15 @@ struct SourceUnit {
   double to_mm = 1.0;
 };
 
-/// A set of faces with units and free-form metadata (key -> text).
+/// A set of faces with units, the B-rep that joins them (empty for loose
+/// faces), free-form metadata (key -> text) and what the reader recovered
+/// from (a file's quirks that did not stop it: one line each).
 struct Model {
   SourceUnit source_unit;
   std::vector<FaceRecord> faces;
+  Topology topology;
   std::map<std::string, std::string> metadata;
+  std::vector<std::string> warnings;
 };
 
 /// Axis-aligned box of all control points of all faces [mm]; encloses the
