@@ -1,7 +1,9 @@
 // Checks the outputs of `argil sculpt` on an example, for CTest:
-//  1. the exported surfaces (STEP, IGES, JSON) re-import through argil::io,
-//     each the input face or its exact refinement (a deformable face the tool
-//     works on may be refined before the run), with control points identical
+//  1. the exported models (STEP, IGES, JSON) re-import through argil::io with
+//     every face of the input file: a face the scene does not name is the
+//     input's, every field bit for bit (JSON); a named face is the input face
+//     or its exact refinement (a deformable face the tool works on may be
+//     refined before the run); every face has control points identical
 //     to the JSON export's (bit for bit; IGES has no face orientation, so a
 //     reversed face comes back on the mirrored surface: its net is then the
 //     JSON's in reverse order along one direction, bit for bit);
@@ -71,6 +73,31 @@ bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 }
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+bool same_bits(const BSplineSurface& a, const BSplineSurface& b) {
+  return a.degree == b.degree && same_bits(a.knots[0], b.knots[0]) &&
+         same_bits(a.knots[1], b.knots[1]) && same_bits(a.control_points, b.control_points) &&
+         same_bits(a.weights, b.weights);
+}
+
+/// Every field of a face, bit for bit: its surface, trims, orientation and
+/// source entity (JSON keeps them all exactly).
+bool same_face(const argil::io::FaceRecord& a, const argil::io::FaceRecord& b) {
+  if (!same_bits(a.surface, b.surface) || a.reversed != b.reversed || a.source_id != b.source_id ||
+      a.name != b.name || a.loops.size() != b.loops.size())
+    return false;
+  for (std::size_t l = 0; l < a.loops.size(); ++l) {
+    const argil::io::TrimLoop &la = a.loops[l], &lb = b.loops[l];
+    if (la.outer != lb.outer || la.curves.size() != lb.curves.size()) return false;
+    for (std::size_t k = 0; k < la.curves.size(); ++k) {
+      const argil::BSplineCurve &ca = la.curves[k], &cb = lb.curves[k];
+      if (ca.degree != cb.degree || !same_bits(ca.knots, cb.knots) ||
+          !same_bits(ca.points, cb.points) || !same_bits(ca.weights, cb.weights))
+        return false;
+    }
+  }
+  return true;
+}
 
 bool same_structure(const BSplineSurface& a, const BSplineSurface& b) {
   // Eigen compares vectors of equal size only: a refined face has more knots.
@@ -348,24 +375,44 @@ int main(int argc, char** argv) {
     const auto input = argil::io::read_model(spec.file);
     check(input.ok(), spec.name + ": input model reads");
     if (!input.ok()) return 1;
-    std::vector<argil::io::FaceRecord> before;
-    std::vector<int> file_face;  // face index in the model's file
+    const std::vector<argil::io::FaceRecord>& file_faces = input.value().faces;
+    std::vector<int> file_face;  // face index in the model's file of each named face
     if (spec.faces.empty()) {    // "all"
-      for (std::size_t f = 0; f < input.value().faces.size(); ++f)
-        file_face.push_back(static_cast<int>(f));
+      for (std::size_t f = 0; f < file_faces.size(); ++f) file_face.push_back(static_cast<int>(f));
     } else {
       file_face = spec.faces;
     }
-    for (const int f : file_face)
-      before.push_back(input.value().faces[static_cast<std::size_t>(f)]);
+    std::vector<bool> named(file_faces.size(), false);
+    std::vector<argil::io::FaceRecord> before;  // the named faces, as read
+    for (const int f : file_face) {
+      named[static_cast<std::size_t>(f)] = true;
+      before.push_back(file_faces[static_cast<std::size_t>(f)]);
+    }
 
+    // The exports hold the whole file, every face in its place.
     const auto json = argil::io::read_model(out / (spec.name + ".json"));
     check(json.ok(),
           spec.name + ".json re-imports" + (json.ok() ? "" : ": " + json.status().message));
     if (!json.ok()) return 1;
-    const std::vector<argil::io::FaceRecord>& after = json.value().faces;
-    check(after.size() == before.size(), spec.name + ".json has the scene's faces");
-    if (after.size() != before.size()) return 1;
+    const std::vector<argil::io::FaceRecord>& exported = json.value().faces;
+    check(exported.size() == file_faces.size(), spec.name + ".json holds every face of the file (" +
+                                                    std::to_string(exported.size()) + " of " +
+                                                    std::to_string(file_faces.size()) + ")");
+    if (exported.size() != file_faces.size()) return 1;
+    int unnamed = 0, unnamed_changed = 0;
+    for (std::size_t f = 0; f < file_faces.size(); ++f) {
+      if (named[f]) continue;
+      ++unnamed;
+      if (!same_face(exported[f], file_faces[f])) ++unnamed_changed;
+    }
+    if (unnamed > 0) {
+      check(unnamed_changed == 0,
+            spec.name + ".json: the " + std::to_string(unnamed) +
+                " faces the scene does not name are the input's, bit for bit (" +
+                std::to_string(unnamed_changed) + " differ)");
+    }
+    std::vector<argil::io::FaceRecord> after;  // the named faces, as exported
+    for (const int f : file_face) after.push_back(exported[static_cast<std::size_t>(f)]);
     for (const char* ext : {".step", ".iges"}) {
       const bool wanted = std::string(ext) == ".step" ? scene.outputs.step : scene.outputs.iges;
       if (!wanted) continue;
@@ -373,21 +420,22 @@ int main(int argc, char** argv) {
       check(cad.ok(),
             spec.name + ext + " re-imports" + (cad.ok() ? "" : ": " + cad.status().message));
       if (!cad.ok()) continue;
-      bool same = cad.value().faces.size() == after.size();
+      bool same = cad.value().faces.size() == exported.size();
       int mirrored = 0;
-      for (std::size_t f = 0; same && f < after.size(); ++f) {
+      for (std::size_t f = 0; same && f < exported.size(); ++f) {
         const BSplineSurface& c = cad.value().faces[f].surface;
-        const BSplineSurface& j = after[f].surface;
+        const BSplineSurface& j = exported[f].surface;
         same = same_structure(c, j) && same_bits(c.control_points, j.control_points);
         // IGES 144 has no orientation flag (docs/io.md): a reversed face
         // comes back forward on the mirrored surface.
-        if (!same && std::string(ext) == ".iges" && after[f].reversed &&
+        if (!same && std::string(ext) == ".iges" && exported[f].reversed &&
             !cad.value().faces[f].reversed && mirrored_copy(c, j)) {
           same = true;
           ++mirrored;
         }
       }
-      check(same, spec.name + ext + " holds the JSON's control points bit for bit" +
+      check(same, spec.name + ext + " holds the JSON's " + std::to_string(exported.size()) +
+                      " faces, control points bit for bit" +
                       (mirrored > 0 ? " (" + std::to_string(mirrored) +
                                           " reversed faces mirrored, as IGES stores them)"
                                     : ""));

@@ -94,14 +94,14 @@ TEST_CASE("a plane the script presses is refined exactly before the first tick, 
   CHECK_THAT(refinement_text(r),
              Catch::Contains("degree 1 x 1 -> 3 x 3") && Catch::Contains("spans <= 4 mm"));
   const BSplineSurface original = plane(40.0, 0.0, 0.0);
-  const BSplineSurface refined = session.current_model(0).faces[0].surface;
+  const BSplineSurface refined = session.current_faces(0).faces[0].surface;
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int k = 0; k < 400; ++k) {
     const double u = unit(rng), v = unit(rng);
     CHECK((evaluate(refined, u, v) - evaluate(original, u, v)).norm() <= 1e-12 * 40.0);
   }
-  CHECK(session.current_model(0).faces[1].surface.control_points ==
+  CHECK(session.current_faces(0).faces[1].surface.control_points ==
         plane(40.0, 200.0, 0.0).control_points);
 
   // The press dents under the sphere: the surface there sinks by a good part
@@ -112,7 +112,7 @@ TEST_CASE("a plane the script presses is refined exactly before the first tick, 
     INFO(t.status().message);
     REQUIRE(t.ok());
   }
-  const BSplineSurface pressed = session.current_model(0).faces[0].surface;
+  const BSplineSurface pressed = session.current_faces(0).faces[0].surface;
   const double under = -evaluate(pressed, 0.5, 0.5).z();
   const double beside = std::abs(evaluate(pressed, 0.8, 0.5).z());
   CAPTURE(under, beside);
@@ -148,7 +148,7 @@ TEST_CASE("resolution 0 and a point tool refine nothing", "[session][refinement]
     Result<Session> created = Session::create(scene, "", path_of(script));
     REQUIRE(created.ok());
     CHECK(created.value().refinements().empty());
-    CHECK(created.value().current_model(0).faces[0].surface.control_points.rows() == 4);
+    CHECK(created.value().current_faces(0).faces[0].surface.control_points.rows() == 4);
   }
   // An explicit resolution on a point tool refines.
   const Scene pin = scene_with(R"({"name": "pin", "type": "point"})", R"("resolution": 5,)");

@@ -1,7 +1,8 @@
 // Sessions: determinism (same scene and script give bit-identical control
 // points), recorded scripts replay exactly, undo and redo restore exact
-// states, only the named faces are loaded, and every face touches the tool
-// only where it has material (its trims).
+// states, only the named faces are loaded (the whole file is kept for the
+// exports), and every face touches the tool only where it has material (its
+// trims).
 #include <unistd.h>
 #include <catch2/catch.hpp>
 #include <cstring>
@@ -31,7 +32,7 @@ bool same_bits(const ControlNet& a, const ControlNet& b) {
          std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
 }
 
-ControlNet points_of(Session& s) { return s.current_model(0).faces[0].surface.control_points; }
+ControlNet points_of(Session& s) { return s.current_faces(0).faces[0].surface.control_points; }
 
 /// Runs every tick of `sampler` through a fresh session; returns the session
 /// and appends each tick's force to `forces`.
@@ -192,7 +193,7 @@ std::filesystem::path open_loop_model() {
                                                "material": "clay"}])");
   Result<Session> sheet = Session::create(sheet_scene.value());
   REQUIRE(sheet.ok());
-  io::Model model = sheet.value().current_model(0);
+  io::Model model = sheet.value().current_faces(0);
   const ParamRect d = domain_of(model.faces[0].surface);
   TrimLoop loop = test::rectangle_loop(d.lower(), d.upper(), true);
   loop.curves[3].points(1, 1) = d.v0 + 0.5 * d.height();  // stops half way down
@@ -201,7 +202,8 @@ std::filesystem::path open_loop_model() {
   return path;
 }
 
-TEST_CASE("a session loads only the faces its scene names", "[session]") {
+TEST_CASE("a session puts only the faces its scene names in the world, and keeps the whole file",
+          "[session]") {
   const Scene scene = parse(
       R"([{"name": "ring", "file": "bearing.iges", "faces": [161, 5],
            "material": "clay"},
@@ -215,7 +217,14 @@ TEST_CASE("a session loads only the faces its scene names", "[session]") {
   CHECK(s.models()[0].initial.faces.size() == 2);
   CHECK(s.models()[0].bodies.size() == 2);
   CHECK(s.models()[1].file_faces == std::vector<int>{7});
-  CHECK(s.current_model(0).faces[1].source_id == s.models()[0].initial.faces[1].source_id);
+  CHECK(s.current_faces(0).faces[1].source_id == s.models()[0].initial.faces[1].source_id);
+  // The whole file is kept for the exports, each face in its file place.
+  const io::Model whole = s.current_file_model(0);
+  REQUIRE(whole.faces.size() == s.models()[0].file_model.faces.size());
+  REQUIRE(whole.faces.size() > 161);
+  CHECK(whole.faces[161].source_id == s.models()[0].initial.faces[0].source_id);
+  CHECK(whole.faces[5].source_id == s.models()[0].initial.faces[1].source_id);
+  CHECK(whole.metadata.at("sculpt_model") == "ring");
 }
 
 TEST_CASE("a press on a real trimmed face touches only its material", "[session][trim]") {
@@ -249,7 +258,7 @@ TEST_CASE("a press on a real trimmed face touches only its material", "[session]
   // The edge's distance from a point: S(c(t)) on the face as sculpted now,
   // densely sampled (1000 points per curve, 0.026 mm apart).
   const auto edge_distance = [&](const Eigen::Vector3d& p) {
-    const BSplineSurface now = s.current_model(0).faces[0].surface;
+    const BSplineSurface now = s.current_faces(0).faces[0].surface;
     double nearest = std::numeric_limits<double>::infinity();
     for (const io::TrimLoop& loop : face.loops)
       for (const Eigen::Vector2d& uv : test::dense_polygon(loop, 1000))

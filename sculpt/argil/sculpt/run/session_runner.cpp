@@ -86,7 +86,7 @@ std::vector<SculptedFace> sculpted_faces(const Session& session,
   for (std::size_t m = 0; m < session.models().size(); ++m) {
     const LoadedModel& loaded = session.models()[m];
     if (!loaded.spec.deformable) continue;
-    const io::Model after = session.current_model(static_cast<int>(m));
+    const io::Model after = session.current_faces(static_cast<int>(m));
     for (std::size_t f = 0; f < after.faces.size(); ++f) {
       faces.push_back({.model = loaded.spec.name,
                        .face = loaded.file_faces[f],
@@ -99,10 +99,12 @@ std::vector<SculptedFace> sculpted_faces(const Session& session,
   return faces;
 }
 
-std::vector<io::Model> current_models(Session& session) {
+/// The faces each model's scene names, as they are now (parallel to
+/// LoadedModel::file_faces).
+std::vector<io::Model> current_faces(const Session& session) {
   std::vector<io::Model> models;
   for (int m = 0; m < static_cast<int>(session.models().size()); ++m) {
-    models.push_back(session.current_model(m));
+    models.push_back(session.current_faces(m));
   }
   return models;
 }
@@ -116,7 +118,7 @@ Result<RunReport> run_session(const RunOptions& options) {
   Result<Session> prepared = prepare(in);
   if (!prepared.ok()) return prepared.status();
   Session& session = prepared.value();
-  const std::vector<io::Model> before = current_models(session);
+  const std::vector<io::Model> before = current_faces(session);
   Result<OpenedJournal> journal = open_journal(in, options.fresh);
   if (!journal.ok()) return journal.status();
 

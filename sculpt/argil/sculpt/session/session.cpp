@@ -44,14 +44,16 @@ Result<ToolShape> tool_shape(const ToolOptions& tool, const std::string& field) 
   return ToolShape{SurfaceToolShape{faces[static_cast<std::size_t>(tool.face)].surface}};
 }
 
-/// Model m of the scene: the faces it names (all when none), as read.
+/// Model m of the scene: its whole file, and the faces it names (all when
+/// none), as read.
 Result<LoadedModel> load_model(const Scene& scene, std::size_t m) {
   const ModelOptions& spec = scene.models[m];
   Result<io::Model> read = read_for(spec.file, model_path(m) + ".file");
   if (!read.ok()) return read.status();
-  io::Model& file = read.value();
   LoadedModel loaded;
   loaded.spec = spec;
+  loaded.file_model = std::move(read).value();
+  const io::Model& file = loaded.file_model;
   loaded.initial.source_unit = file.source_unit;
   loaded.initial.metadata = file.metadata;
   loaded.initial.metadata["sculpt_scene"] = scene.source.string();
@@ -73,7 +75,7 @@ Result<LoadedModel> load_model(const Scene& scene, std::size_t m) {
       return Status::error(trims.status().code, model_path(m) + " face " + std::to_string(f) +
                                                     ": " + trims.status().message);
     }
-    loaded.initial.faces.push_back(std::move(file.faces[static_cast<std::size_t>(f)]));
+    loaded.initial.faces.push_back(file.faces[static_cast<std::size_t>(f)]);
     loaded.file_faces.push_back(f);
     loaded.trims.push_back(std::move(trims).value());
   }
@@ -242,11 +244,23 @@ Status Session::replay_history() {
   return Status::success();
 }
 
-io::Model Session::current_model(int index) const {
+io::Model Session::current_faces(int index) const {
   const LoadedModel& loaded = models_[static_cast<std::size_t>(index)];
   io::Model model = loaded.initial;
   for (std::size_t f = 0; f < model.faces.size(); ++f) {
     model.faces[f].surface = world_->surface(loaded.bodies[f]);
+  }
+  return model;
+}
+
+io::Model Session::current_file_model(int index) const {
+  const LoadedModel& loaded = models_[static_cast<std::size_t>(index)];
+  // A copy of the whole io::Model, so fields beyond the faces come along.
+  io::Model model = loaded.file_model;
+  model.metadata = loaded.initial.metadata;
+  for (std::size_t f = 0; f < loaded.file_faces.size(); ++f) {
+    model.faces[static_cast<std::size_t>(loaded.file_faces[f])].surface =
+        world_->surface(loaded.bodies[f]);
   }
   return model;
 }

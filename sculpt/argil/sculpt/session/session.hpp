@@ -45,11 +45,17 @@ struct TickReport {
   bool stroke_finished = false;  // this sample released the tool
 };
 
-/// One scene model as loaded: the faces the scene names (with their trims,
-/// in the scene's order) and their bodies in the world.
+/// One scene model as loaded: its whole file (the exports write it back with
+/// the sculpted faces in place), and the faces the scene names with their
+/// trims and bodies in the world, in the scene's order.
 struct LoadedModel {
   ModelOptions spec;
-  io::Model initial;              // the named faces only, as read
+  /// The file's model as read: every face in file order, every other field.
+  io::Model file_model;
+  /// The named faces only, as their bodies start: as read, or refined
+  /// exactly (refine_faces). Metadata: the file's plus "sculpt_scene" and
+  /// "sculpt_model".
+  io::Model initial;
   std::vector<int> file_faces;    // face index in the file of each loaded face
   std::vector<TrimRegion> trims;  // of each loaded face (empty: untrimmed)
   std::vector<int> bodies;        // world body of each loaded face
@@ -57,12 +63,13 @@ struct LoadedModel {
 
 class Session {
  public:
-  /// Reads the faces the scene names (only those), builds a body for each
-  /// (deformable with the model's material and boundary conditions, or rigid)
-  /// with the face's trims (contact only with material) and the tool
-  /// `tool_name` (empty: the scene's first tool). Errors name the scene field
-  /// ("models[1].faces[2]: face 9 is out of range ...", "models[0] face 12:
-  /// loop 0 curve 3 ends at ...").
+  /// Reads each model's file, keeps it whole (LoadedModel::file_model), and
+  /// builds a body for each face the scene names (only those: deformable with
+  /// the model's material and boundary conditions, or rigid) with the face's
+  /// trims (contact only with material), and the tool `tool_name` (empty:
+  /// the scene's first tool). Errors name the scene field ("models[1].faces[2]:
+  /// face 9 is out of range ...", "models[0] face 12: loop 0 curve 3 ends at
+  /// ...").
   /// With `tool_paths` (where the device goes while engaged: engaged_paths()
   /// of the script), the deformable faces they come near are first refined
   /// exactly to the scene's resolution (face_refinement.hpp; refinements()).
@@ -93,8 +100,16 @@ class Session {
   /// The faces create() refined for the tool's path.
   const std::vector<FaceRefinement>& refinements() const { return refinements_; }
   const std::vector<LoadedModel>& models() const { return models_; }
-  /// Model `index` with every face's current (sculpted) surface.
-  io::Model current_model(int index) const;
+  /// The faces the scene names of model `index` with their current
+  /// (sculpted) surfaces: LoadedModel::initial's faces, in its order (face f
+  /// is file face file_faces[f]).
+  io::Model current_faces(int index) const;
+  /// The whole of model `index`'s file as it is now: file_model, every face
+  /// in file order, each named face's surface replaced by its current one
+  /// (perhaps refined: more control points and knots, the same trims), the
+  /// other faces as read, bit for bit; metadata as in `initial`. The run's
+  /// STEP, IGES and JSON exports.
+  io::Model current_file_model(int index) const;
   /// The tool the device holds.
   const ToolOptions& tool() const { return scene_.tools[static_cast<std::size_t>(tool_index_)]; }
   /// FNV-1a hash of every body's control points and the proxy state: equal

@@ -19,24 +19,23 @@ void record(RunOutputs& outputs, const std::filesystem::path& path, const Status
   }
 }
 
-/// The sculpted models, each exported in the formats asked for; a format that
-/// fails does not stop the others. STEP and IGES edges are built at the scene's eps.
-std::vector<io::Model> write_models(const RunInputs& in, Session& session, RunOutputs& outputs) {
+/// The sculpted models, each the whole of its file with the named faces as
+/// sculpted, exported in the formats asked for; a format that fails does not
+/// stop the others. STEP and IGES edges are built at the scene's eps.
+void write_models(const RunInputs& in, const Session& session, RunOutputs& outputs) {
   io::WriteOptions options;
   options.cad.tolerance_mm = in.scene.tolerance;
-  std::vector<io::Model> after;
   for (int m = 0; m < static_cast<int>(session.models().size()); ++m) {
     const std::string& name = session.models()[static_cast<std::size_t>(m)].spec.name;
-    after.push_back(session.current_model(m));
+    const io::Model after = session.current_file_model(m);
     for (const auto& [wanted, extension] :
          {std::pair{in.outputs.step, ".step"}, std::pair{in.outputs.iges, ".iges"},
           std::pair{in.outputs.json, ".json"}}) {
       if (!wanted) continue;
       const std::filesystem::path path = in.out / (name + extension);
-      record(outputs, path, io::write_model(after.back(), path, options));
+      record(outputs, path, io::write_model(after, path, options));
     }
   }
-  return after;
 }
 
 void write_file(const std::filesystem::path& path, const std::string& bytes, RunOutputs& outputs) {
@@ -59,16 +58,19 @@ void write_logs(const RunInputs& in, const Session& session, const RunState& sta
          write_script(record_script(state.received, session.tool().name), recorded));
 }
 
-void write_pictures(const RunInputs& in, const std::vector<io::Model>& before,
-                    const std::vector<io::Model>& after, const RunState& state,
+/// Pictures of the faces the scene names, before and after: where the tool
+/// works (the whole of a large file would shrink the change to a few pixels).
+void write_pictures(const RunInputs& in, const Session& session,
+                    const std::vector<io::Model>& before, const RunState& state,
                     RunOutputs& outputs) {
   SessionPicturesRequest pictures;
   pictures.times = state.log.times();
   pictures.forces = state.log.forces();
   pictures.title = in.scene_name;
-  for (std::size_t m = 0; m < after.size(); ++m) {
+  for (std::size_t m = 0; m < before.size(); ++m) {
     for (const io::FaceRecord& f : before[m].faces) pictures.before.faces.push_back(f);
-    for (const io::FaceRecord& f : after[m].faces) pictures.after.faces.push_back(f);
+    for (const io::FaceRecord& f : session.current_faces(static_cast<int>(m)).faces)
+      pictures.after.faces.push_back(f);
   }
   for (const DeviceSample& s : state.received) {
     pictures.path.positions.push_back(s.X_WD.p);
@@ -92,10 +94,10 @@ RunOutputs write_run_outputs(const RunInputs& in, Session& session,
                              const TimingSummary& wall, const TimingSummary& cpu,
                              const RunSummary& summary) {
   RunOutputs outputs;
-  const std::vector<io::Model> after = write_models(in, session, outputs);
+  write_models(in, session, outputs);
   write_logs(in, session, state, wall, cpu, outputs);
   write_file(in.out / "summary.json", summary_json(summary, in.scene_path.string()), outputs);
-  if (in.outputs.pictures) write_pictures(in, before, after, state, outputs);
+  if (in.outputs.pictures) write_pictures(in, session, before, state, outputs);
   return outputs;
 }
 

@@ -22,11 +22,13 @@ struct RunOutputs {
   std::vector<OutputFailure> failures;       // not written, in order
 };
 
-/// Writes what `in.outputs` asks for into `in.out`: each model's sculpted
-/// faces (STEP, IGES, JSON), forces.csv, contacts.csv, timing.json, always
-/// recorded.csv and summary.json (of `summary`), and the pictures (`before` holds each model as
-/// loaded). An output that fails (a face STEP cannot take, a full disk) is recorded and the others
-/// are still written.
+/// Writes what `in.outputs` asks for into `in.out`: each model's whole file
+/// with its named faces as sculpted (Session::current_file_model; STEP, IGES,
+/// JSON), forces.csv, contacts.csv, timing.json, always recorded.csv and
+/// summary.json (of `summary`), and the pictures of the named faces (`before`
+/// holds each model's as loaded: Session::current_faces before the first
+/// tick). An output that fails (a face STEP cannot take, a full disk) is
+/// recorded and the others are still written.
 RunOutputs write_run_outputs(const RunInputs& in, Session& session,
                              const std::vector<io::Model>& before, const RunState& state,
                              const TimingSummary& wall, const TimingSummary& cpu,
