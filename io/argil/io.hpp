@@ -11,6 +11,7 @@
 #include "argil/io/base/text_file.hpp"     // IWYU pragma: export
 // model
 #include "argil/io/model/model.hpp"       // IWYU pragma: export
+#include "argil/io/model/topology.hpp"    // IWYU pragma: export
 #include "argil/io/model/trim_curve.hpp"  // IWYU pragma: export
 // json
 #include "argil/io/json/json_format.hpp"    // IWYU pragma: export

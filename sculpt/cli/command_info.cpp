@@ -23,18 +23,19 @@ void print_topology(const io::Topology& topology) {
     return;
   }
   const io::TopologyCounts c = io::count_topology(topology);
-  std::printf("topology: %zu products, %zu solids, %zu shells (%zu closed), %zu edges "
-              "(%zu shared, %zu seams, %zu free, %zu degenerate), %zu vertices\n",
-              c.products, c.solids, c.shells, c.closed_shells, c.edges, c.shared_edges,
-              c.seam_edges, c.free_edges, c.degenerate_edges, c.vertices);
+  std::printf(
+      "topology: %zu products, %zu solids, %zu shells (%zu closed), %zu edges "
+      "(%zu shared, %zu seams, %zu free, %zu degenerate), %zu vertices\n",
+      c.products, c.solids, c.shells, c.closed_shells, c.edges, c.shared_edges, c.seam_edges,
+      c.free_edges, c.degenerate_edges, c.vertices);
   for (std::size_t p = 0; p < topology.products.size(); ++p) {
     const io::Product& product = topology.products[p];
     int depth = 0;
     for (std::size_t up = product.parent; up != io::kNoIndex; up = topology.products[up].parent) {
       ++depth;
     }
-    std::printf("  %*sproduct %zu \"%s\"%s%s: %zu solids, %zu shells, %zu faces\n", 2 * depth, "", p,
-                product.name.c_str(), product.instance.empty() ? "" : " as ",
+    std::printf("  %*sproduct %zu \"%s\"%s%s: %zu solids, %zu shells, %zu faces\n", 2 * depth, "",
+                p, product.name.c_str(), product.instance.empty() ? "" : " as ",
                 product.instance.c_str(), product.solids.size(), product.shells.size(),
                 product.faces.size());
   }

@@ -73,7 +73,7 @@ TEST_CASE("JSON: invalid surfaces are rejected naming file, face and defect", "[
 TEST_CASE("JSON: an unknown schema version or format is rejected", "[io][bad][json]") {
   test::TempDir dir;
   test::write_bytes(dir / "v3.json",
-                    test::replace_first(panel_text(), "\"version\": 2", "\"version\": 3"));
+                    test::replace_first(panel_text(), "\"version\": 1", "\"version\": 3"));
   CHECK_THAT(test::read_error(dir / "v3.json").message, Catch::Contains("version 3"));
   test::write_bytes(dir / "other.json",
                     test::replace_first(panel_text(), "argil.surfaces", "someone.elses"));

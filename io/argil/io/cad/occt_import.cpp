@@ -29,7 +29,6 @@
 #include <Standard_Failure.hxx>
 #include <StepBasic_Product.hxx>
 #include <StepData_StepModel.hxx>
-#include <Transfer_TransientProcess.hxx>
 #include <StepData_UndefinedEntity.hxx>
 #include <StepGeom_BSplineSurface.hxx>
 #include <StepRepr_RepresentationItem.hxx>
@@ -65,8 +64,8 @@
 #include "argil/io/cad/cad_exchange.hpp"
 #include "argil/io/cad/detail/isolated_read.hpp"
 #include "argil/io/cad/detail/occt_pcurve.hpp"
-#include "argil/io/cad/detail/occt_topology_reader.hpp"
 #include "argil/io/cad/detail/occt_session.hpp"
+#include "argil/io/cad/detail/occt_topology_reader.hpp"
 #include "argil/io/model/trim_curve.hpp"
 
 namespace argil::io {
@@ -366,7 +365,8 @@ Result<std::vector<TrimLoop>> face_loops(const TopoDS_Face& face) {
     loop.outer = wire.IsSame(outer);
     int edges_in_order = 0;
     for (BRepTools_WireExplorer e(wire, face); e.More(); e.Next()) {
-      Result<TrimCurve> curve = detail::edge_pcurve(e.Current(), face, detail::PcurveDirection::wire);
+      Result<TrimCurve> curve =
+          detail::edge_pcurve(e.Current(), face, detail::PcurveDirection::wire);
       if (!curve.ok()) return curve.status();
       loop.curves.push_back(std::move(curve).value());
       ++edges_in_order;
@@ -377,7 +377,8 @@ Result<std::vector<TrimLoop>> face_loops(const TopoDS_Face& face) {
       // A wire OCCT cannot chain: keep its stored order rather than drop edges.
       loop.curves.clear();
       for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next()) {
-        Result<TrimCurve> curve = detail::edge_pcurve(TopoDS::Edge(e.Current()), face, detail::PcurveDirection::wire);
+        Result<TrimCurve> curve =
+            detail::edge_pcurve(TopoDS::Edge(e.Current()), face, detail::PcurveDirection::wire);
         if (!curve.ok()) return curve.status();
         loop.curves.push_back(std::move(curve).value());
       }
@@ -538,7 +539,8 @@ Result<FaceRecord> face_record(const TopoDS_Face& oriented_face, const WrittenNe
     }
     for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
       const TopoDS_Shape forward = e.Current().Oriented(TopAbs_FORWARD);
-      if (!source.edges.IsBound(forward)) source.edges.Bind(forward, convert.ModifiedShape(forward));
+      if (!source.edges.IsBound(forward))
+        source.edges.Bind(forward, convert.ModifiedShape(forward));
     }
     face = TopoDS::Face(convert.Shape().Oriented(TopAbs_FORWARD));
     source.converted = face;
@@ -709,6 +711,15 @@ struct LoadedShape {
   std::vector<std::string> warnings;  // what the reader recovered from
 };
 
+// The error for a file that gave no faces, with what the reader met in it.
+Status nothing_read(const std::filesystem::path& path, const std::string& what,
+                    const std::vector<std::string>& warnings) {
+  std::string message = what;
+  if (!warnings.empty()) message += "; the reader met: " + warnings.front();
+  if (warnings.size() > 1) message += " (and " + std::to_string(warnings.size() - 1) + " more)";
+  return file_error(path, StatusCode::unsupported, message);
+}
+
 // Reads and transfers the file; STEP and IGES differ only in the reader.
 Result<LoadedShape> load_shape(const std::filesystem::path& path, CadFormat format) {
   const std::string kind = format_name(format);
@@ -725,15 +736,13 @@ Result<LoadedShape> load_shape(const std::filesystem::path& path, CadFormat form
     out.warnings.push_back(std::move(w));
   }
   const auto nothing = [&](const std::string& what) {
-    std::string message = what;
-    if (!out.warnings.empty()) message += "; the reader met: " + out.warnings.front();
-    if (out.warnings.size() > 1) message += " (and " + std::to_string(out.warnings.size() - 1) + " more)";
-    return file_error(path, StatusCode::unsupported, message);
+    return nothing_read(path, what, out.warnings);
   };
   out.unit = declared_unit(*reader, format);
   if (reader->NbRootsForTransfer() == 0) return nothing("no shapes to transfer (no faces)");
   reader->TransferRoots();
-  for (std::string& w : transfer_warnings(out.session, format)) out.warnings.push_back(std::move(w));
+  for (std::string& w : transfer_warnings(out.session, format))
+    out.warnings.push_back(std::move(w));
   out.shape = reader->OneShape();
   if (out.shape.IsNull()) return nothing("no shape could be read (no faces)");
   return out;
@@ -801,8 +810,8 @@ Result<Model> read_with_occt(const std::filesystem::path& path, CadFormat format
   if (!faces.ok()) return faces.status();
   model.faces = std::move(faces).value();
   if (model.faces.empty()) {
-    return file_error(path, StatusCode::unsupported,
-                      std::string(format_name(format)) + " file has no faces");
+    return nothing_read(path, std::string(format_name(format)) + " file has no faces",
+                        model.warnings);
   }
   Result<Topology> topology =
       detail::read_topology(loaded.value().shape, sources, loaded.value().session,

@@ -278,7 +278,8 @@ class Reader {
       Shell& shell = out.shells.emplace_back();
       if (!indices((*shells)[k], item("shells", k), "faces", shell.faces)) return false;
       if (const Json* closed = member((*shells)[k], item("shells", k), "closed", false)) {
-        if (!closed->is_boolean()) return fail(item("shells", k) + ".closed", "expected true or false");
+        if (!closed->is_boolean())
+          return fail(item("shells", k) + ".closed", "expected true or false");
         shell.closed = closed->get<bool>();
       }
     }
@@ -440,9 +441,7 @@ Json curve_json(const Curve& curve) {
 }
 
 // kNoIndex as -1.
-Json index_json(std::size_t index) {
-  return index == kNoIndex ? Json(-1) : Json(index);
-}
+Json index_json(std::size_t index) { return index == kNoIndex ? Json(-1) : Json(index); }
 
 Json topology_json(const Topology& t) {
   Json out;
@@ -482,8 +481,8 @@ Json topology_json(const Topology& t) {
   out["edges"] = std::move(edges);
   Json vertices = Json::array();
   for (const Vertex& v : t.vertices) {
-    vertices.push_back({{"point", {v.point.x(), v.point.y(), v.point.z()}},
-                        {"tolerance", v.tolerance}});
+    vertices.push_back(
+        {{"point", {v.point.x(), v.point.y(), v.point.z()}}, {"tolerance", v.tolerance}});
   }
   out["vertices"] = std::move(vertices);
   return out;

@@ -16,9 +16,8 @@ std::string at(const char* list, std::size_t index) {
 Status check_index(std::size_t index, std::size_t size, const std::string& field,
                    const char* what) {
   if (index < size) return Status::success();
-  return Status::error(StatusCode::invalid_argument, field + ": " + std::to_string(index) +
-                                                         " of " + std::to_string(size) + " " +
-                                                         what);
+  return Status::error(StatusCode::invalid_argument, field + ": " + std::to_string(index) + " of " +
+                                                         std::to_string(size) + " " + what);
 }
 
 Status check_indices(const std::vector<std::size_t>& indices, std::size_t size,
@@ -72,7 +71,8 @@ Status check_edges(const Topology& t, std::size_t face_count) {
         return Status::error(s.code, use + ".pcurve: " + s.message);
       }
     }
-    for (const auto& [vertex, name] : {std::pair{edge.start, ".start"}, std::pair{edge.end, ".end"}}) {
+    for (const auto& [vertex, name] :
+         {std::pair{edge.start, ".start"}, std::pair{edge.end, ".end"}}) {
       if (vertex == kNoIndex) continue;
       if (Status s = check_index(vertex, t.vertices.size(), field + name, "vertices"); !s.ok()) {
         return s;
@@ -116,15 +116,15 @@ Status validate_topology(const Topology& topology, std::size_t face_count) {
     if (solid.shells.empty()) {
       return Status::error(StatusCode::invalid_argument, at("solids", s) + ".shells: none");
     }
-    if (Status c = check_indices(solid.shells, topology.shells.size(),
-                                 at("solids", s) + ".shells", "shells");
+    if (Status c = check_indices(solid.shells, topology.shells.size(), at("solids", s) + ".shells",
+                                 "shells");
         !c.ok()) {
       return c;
     }
   }
   for (std::size_t s = 0; s < topology.shells.size(); ++s) {
-    if (Status c = check_indices(topology.shells[s].faces, face_count,
-                                 at("shells", s) + ".faces", "faces");
+    if (Status c = check_indices(topology.shells[s].faces, face_count, at("shells", s) + ".faces",
+                                 "faces");
         !c.ok()) {
       return c;
     }

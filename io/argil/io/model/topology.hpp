@@ -55,11 +55,11 @@ struct Solid {
 /// A part or an assembly (an instance of it, where the source instances one
 /// part several times: each instance has its own faces in the model).
 struct Product {
-  std::string name;                 // the product's name in the source
-  std::string instance;             // the instance's name (STEP: the usage occurrence), may be empty
-  std::size_t parent = kNoIndex;    // into Topology::products
+  std::string name;               // the product's name in the source
+  std::string instance;           // the instance's name (STEP: the usage occurrence), may be empty
+  std::size_t parent = kNoIndex;  // into Topology::products
   Eigen::Matrix<double, 3, 4> placement = Eigen::Matrix<double, 3, 4>::Identity();  // in the parent
-  std::vector<std::size_t> solids;  // directly held
+  std::vector<std::size_t> solids;                                                  // directly held
   std::vector<std::size_t> shells;  // directly held, outside any solid
   std::vector<std::size_t> faces;   // directly held, outside any shell
 };

@@ -181,13 +181,16 @@ class TopologyReader {
   void hold(const TopoDS_Shape& shape, std::size_t p, const TopLoc_Location& frame) {
     switch (shape.ShapeType()) {
       case TopAbs_SOLID:
-        if (solid_index_.IsBound(shape)) topology_.products[p].solids.push_back(solid_index_.Find(shape));
+        if (solid_index_.IsBound(shape))
+          topology_.products[p].solids.push_back(solid_index_.Find(shape));
         return;
       case TopAbs_SHELL:
-        if (shell_index_.IsBound(shape)) topology_.products[p].shells.push_back(shell_index_.Find(shape));
+        if (shell_index_.IsBound(shape))
+          topology_.products[p].shells.push_back(shell_index_.Find(shape));
         return;
       case TopAbs_FACE:
-        if (face_index_.IsBound(shape)) topology_.products[p].faces.push_back(face_index_.Find(shape));
+        if (face_index_.IsBound(shape))
+          topology_.products[p].faces.push_back(face_index_.Find(shape));
         return;
       case TopAbs_COMPOUND:
       case TopAbs_COMPSOLID:

@@ -19,8 +19,8 @@ namespace argil::io::detail {
 /// its record was made from (the same face, or its conversion to B-splines,
 /// whose parameters the record's surface and trims use).
 struct ReadFace {
-  TopoDS_Face original;   // located and oriented, as TopExp_Explorer gave it
-  TopoDS_Face converted;  // FORWARD; null: `original` itself
+  TopoDS_Face original;                // located and oriented, as TopExp_Explorer gave it
+  TopoDS_Face converted;               // FORWARD; null: `original` itself
   TopTools_DataMapOfShapeShape edges;  // an edge of `original` -> its edge on `converted`
 };
 
