@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
 
   argil::io::Model out = model.value();
   out.faces = {out.faces[face]};
+  out.topology = {};  // one face alone: the model's B-rep (shared edges, solid) is not its
   out.faces[0].surface = world.surface(body.value());
   const double moved =
       (out.faces[0].surface.control_points - surface.control_points).rowwise().norm().maxCoeff();

@@ -49,11 +49,15 @@ int run_convert(const std::vector<std::string>& args) {
   options.tessellation.chord_tolerance_mm =
       tolerance_mm > 0.0 ? tolerance_mm
                          : kDefaultRelativeChordTolerance * io::model_box(read.value()).diagonal();
+  std::vector<std::string> warnings;
+  options.cad.warnings = &warnings;
   const Status written = io::write_model(read.value(), paths[1], options);
   if (!written.ok()) {
     std::fprintf(stderr, "argil convert: %s\n", written.message.c_str());
     return kExitFailure;
   }
+  for (const std::string& w : warnings)
+    std::fprintf(stderr, "argil convert: warning: %s\n", w.c_str());
   std::printf("converted %s -> %s (%zu faces)\n", paths[0].c_str(), paths[1].c_str(),
               read.value().faces.size());
   return kExitOk;

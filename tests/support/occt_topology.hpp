@@ -61,8 +61,8 @@ struct OcctTopology {
   int vertices = 0;
   /// BRepCheck_Analyzer(shape).IsValid() on the whole transferred shape.
   bool valid = false;
-  /// Sum of BRepGProp::VolumeProperties over the distinct solids [mm^3] (a
-  /// solid whose shells face inwards adds a negative volume).
+  /// Sum of BRepGProp::VolumeProperties (adaptive, 1e-7 relative) over the distinct solids [mm^3]
+  /// (a solid whose shells face inwards adds a negative volume).
   double volume = 0.0;
   /// STEP: each PRODUCT's name attribute (its second, not the id) in file order,
   /// "" for an empty or null (`$`) name; IGES: empty.

@@ -35,9 +35,13 @@ FaceRecord collapsed_to_a_point(FaceRecord face) {
   return face;
 }
 
+// The screw's faces without their B-rep: these tests are about one face at a
+// time, as the face-by-face export builds and names it (a face whose trims no
+// longer match its edges cannot be written with shared edges at all).
 Model screw() {
   Result<Model> model = read_model(test::shared_data("screw.step"));
   REQUIRE(model.ok());
+  model.value().topology = {};
   return std::move(model).value();
 }
 

@@ -10,6 +10,7 @@
 #include <TopoDS.hxx>
 
 #include <catch2/catch.hpp>
+#include <map>
 #include <random>
 #include <sstream>
 
@@ -173,23 +174,26 @@ TEST_CASE("exported STEP and IGES pass BRepCheck and declare millimetres", "[io]
                         [](const FaceRecord& r) { return r.surface.is_rational(); });
         if (rational) CHECK_THAT(text, Catch::Contains("RATIONAL_B_SPLINE_SURFACE("));
       } else {
-        // Global section: unit flag 2 and name MM; directory entries of type 144 and 128.
+        // Global section: unit flag 2 and name MM; directory entries: loose
+        // faces as 144 over 128, a solid as 186 over 514 shells and 510 faces.
         CHECK_THAT(text, Catch::Contains(",2,2HMM,"));
         std::istringstream lines(text);
         std::string line;
-        std::size_t trimmed_surfaces = 0, bspline_surfaces = 0;
+        std::map<int, std::size_t> entities;
         bool odd = true;
         while (std::getline(lines, line)) {
           if (line.size() < 73 || line[72] != 'D') continue;
-          if (odd) {
-            const int type = std::stoi(line.substr(0, 8));
-            trimmed_surfaces += type == 144 ? 1u : 0u;
-            bspline_surfaces += type == 128 ? 1u : 0u;
-          }
+          if (odd) ++entities[std::stoi(line.substr(0, 8))];
           odd = !odd;
         }
-        CHECK(trimmed_surfaces == model->faces.size());
-        CHECK(bspline_surfaces == model->faces.size());
+        CHECK(entities[128] == model->faces.size());
+        if (model->topology.solids.empty()) {
+          CHECK(entities[144] == model->faces.size());
+        } else {
+          CHECK(entities[186] == model->topology.solids.size());
+          CHECK(entities[510] == model->faces.size());
+          CHECK(entities[144] == 0);
+        }
       }
     }
   }

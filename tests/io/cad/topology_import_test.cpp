@@ -35,6 +35,12 @@ TEST_CASE("every real file imports with OpenCASCADE's faces, solids, shells and 
     const Model& model = read.value();
     const TopologyCounts ours = count_topology(model.topology);
     CHECK(validate_topology(model.topology, model.faces.size()).ok());
+    // Every use knows its place in its face's loops, and a trimmed face's
+    // uses are its trim curves, one each (what the export rebuilds wires from).
+    CHECK(uses_placed(model.topology));
+    const Status placed = validate_topology(model);
+    INFO(placed.message);
+    CHECK(placed.ok());
     CHECK(model.faces.size() == static_cast<std::size_t>(occt.faces));
     CHECK(ours.solids == static_cast<std::size_t>(occt.solids));
     CHECK(ours.shells == static_cast<std::size_t>(occt.shells));
@@ -118,6 +124,9 @@ TEST_CASE("the topology and the warnings survive the native JSON format", "[io][
       for (std::size_t u = 0; u < a.edges[e].uses.size(); ++u) {
         CHECK(a.edges[e].uses[u].face == b.edges[e].uses[u].face);
         CHECK(a.edges[e].uses[u].pcurve.points == b.edges[e].uses[u].pcurve.points);
+        CHECK(a.edges[e].uses[u].loop == b.edges[e].uses[u].loop);
+        CHECK(a.edges[e].uses[u].curve == b.edges[e].uses[u].curve);
+        CHECK(a.edges[e].uses[u].along == b.edges[e].uses[u].along);
       }
     }
     REQUIRE(a.products.size() == b.products.size());
@@ -142,6 +151,31 @@ TEST_CASE("a topology that points outside its lists is refused, naming the field
   CHECK_FALSE(status.ok());
   CHECK_THAT(status.message, Catch::Contains("edges[3].uses[1].face: 40 of 10 faces"));
   CHECK_FALSE(to_json(model).ok());
+}
+
+TEST_CASE("a use placed on the wrong trim curve is refused, naming use and curve",
+          "[io][topology][bad]") {
+  const Result<Model> read = read_model(test::shared_data("screw.step"));
+  REQUIRE(read.ok());
+  Model model = read.value();
+  // Two uses of one trimmed face swap places: each now stands for a curve it is not.
+  EdgeUse* first = nullptr;
+  for (Edge& edge : model.topology.edges) {
+    for (EdgeUse& use : edge.uses) {
+      if (use.face != 0) continue;
+      if (first == nullptr) {
+        first = &use;
+      } else if (use.curve != first->curve) {
+        std::swap(use.curve, first->curve);
+        const Status status = validate_topology(model);
+        CHECK_FALSE(status.ok());
+        CHECK_THAT(status.message, Catch::Contains("not the curve of face 0 loop 0"));
+        CHECK_FALSE(to_json(model).ok());
+        return;
+      }
+    }
+  }
+  FAIL("screw.step face 0 has fewer than two edge uses");
 }
 
 }  // namespace

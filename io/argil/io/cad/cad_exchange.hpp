@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <filesystem>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "argil/core/base/status.hpp"
 #include "argil/io/model/model.hpp"
@@ -59,6 +61,10 @@ struct CadWriteOptions {
   /// BRepCheck-valid face. false: skip that read (a faster export whose faces
   /// passed BRepCheck as built, but are not known to survive the file).
   bool read_back = true;
+  /// Receives one line when a model with a B-rep could not be written whole
+  /// (its shared edges torn apart by faces sculpted independently, say) and its
+  /// faces were written one by one instead; may be null.
+  std::vector<std::string>* warnings = nullptr;
 };
 
 /// Export tolerances relative to the model size (the diagonal of model_box()).

@@ -1,7 +1,12 @@
 // STEP and IGES export through OpenCASCADE (one of the two OCCT seams; the other
 // is occt_import.cpp). OCCT types stay in this file and in cad/detail/.
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepCheck.hxx>
 #include <BRepCheck_Analyzer.hxx>
+#include <BRepCheck_ListOfStatus.hxx>
+#include <BRepCheck_Result.hxx>
 #include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Writer.hxx>
@@ -10,22 +15,32 @@
 #include <IGESSelect_WorkLibrary.hxx>
 #include <Interface_FloatWriter.hxx>
 #include <Interface_Static.hxx>
+#include <STEPCAFControl_Writer.hxx>
 #include <STEPControl_Controller.hxx>
 #include <STEPControl_Writer.hxx>
 #include <Standard_Failure.hxx>
 #include <StepData_Protocol.hxx>
 #include <StepData_StepModel.hxx>
 #include <StepData_StepWriter.hxx>
+#include <TDataStd_Name.hxx>
+#include <TDocStd_Document.hxx>
+#include <TopExp_Explorer.hxx>
 #include <TopoDS_Compound.hxx>
+#include <XCAFApp_Application.hxx>
+#include <XCAFDoc_DocumentTool.hxx>
+#include <XCAFDoc_ShapeTool.hxx>
 #include <XSControl_WorkSession.hxx>
 
 #include <algorithm>
 #include <fstream>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "argil/io/base/atomic_write.hpp"
 #include "argil/io/cad/cad_exchange.hpp"
+#include "argil/io/cad/detail/occt_brep_builder.hpp"
 #include "argil/io/cad/detail/occt_face_builder.hpp"
 #include "argil/io/cad/detail/occt_face_check.hpp"
 #include "argil/io/cad/detail/occt_read_back.hpp"
@@ -111,9 +126,9 @@ TopoDS_Shape compound_of(const std::vector<TopoDS_Face>& faces) {
   return compound;
 }
 
-Status write_step_file(const TopoDS_Shape& shape, const std::filesystem::path& temporary) {
-  // The controller defines the writer's settings: setting one before it exists
-  // does nothing, as the first write of a process found.
+// The writers' settings: the controller defines them, so setting one before
+// it exists does nothing, as the first write of a process found.
+void set_step_options() {
   STEPControl_Controller::Init();
   // Must precede the writer's construction, else the file declares metres.
   Interface_Static::SetCVal("write.step.unit", "MM");
@@ -122,10 +137,10 @@ Status write_step_file(const TopoDS_Shape& shape, const std::filesystem::path& t
   // which OpenCASCADE's reader dropped runaway faces (135 of 11752.stp's 1018
   // moved by 1e7 face sizes; 18 at the smallest, docs/io.md).
   Interface_Static::SetIVal("write.precision.mode", -1);
-  STEPControl_Writer writer;
-  if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone) {
-    return Status::error(StatusCode::io_error, "STEP transfer failed");
-  }
+}
+
+// The transferred model printed with 17 significant digits.
+Status print_step(STEPControl_Writer& writer, const std::filesystem::path& temporary) {
   const auto protocol = Handle(StepData_Protocol)::DownCast(writer.WS()->Protocol());
   StepData_StepWriter step(writer.Model());
   step.FloatWriter().SetFormat("%#.17G");
@@ -137,10 +152,95 @@ Status write_step_file(const TopoDS_Shape& shape, const std::filesystem::path& t
   return Status::success();
 }
 
-Status write_iges_file(const TopoDS_Shape& shape, const std::filesystem::path& temporary) {
+Status write_step_file(const TopoDS_Shape& shape, const std::filesystem::path& temporary) {
+  set_step_options();
+  STEPControl_Writer writer;
+  if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone) {
+    return Status::error(StatusCode::io_error, "STEP transfer failed");
+  }
+  return print_step(writer, temporary);
+}
+
+gp_Trsf placement_trsf(const Eigen::Matrix<double, 3, 4>& m) {
+  gp_Trsf t;
+  t.SetValues(m(0, 0), m(0, 1), m(0, 2), m(0, 3), m(1, 0), m(1, 1), m(1, 2), m(1, 3), m(2, 0),
+              m(2, 1), m(2, 2), m(2, 3));
+  return t;
+}
+
+// A product's content in its own frame: the world-frame shapes moved back by
+// its world placement (geometry transformed: XCAF would make a located shape
+// an assembly of one). Unplaced products keep their geometry bit for bit.
+TopoDS_Shape in_own_frame(const TopoDS_Shape& shape, const gp_Trsf& world) {
+  if (shape.IsNull() || world.Form() == gp_Identity) return shape;
+  return BRepBuilderAPI_Transform(shape, world.Inverted(), true).Shape();
+}
+
+// The product tree as an XCAF document: one part per product holding shapes,
+// assemblies for products with children (their own shapes one more part in
+// them), every product named, every instance placed and named.
+void fill_products(const Handle(TDocStd_Document) & document, const Topology& topology,
+                   const detail::BuiltBrep& brep) {
+  const Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(document->Main());
+  const std::size_t n = topology.products.size();
+  std::vector<gp_Trsf> world(n);
+  std::vector<std::vector<std::size_t>> children(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const Product& product = topology.products[p];
+    world[p] = placement_trsf(product.placement);
+    if (product.parent != kNoIndex) {
+      world[p] = world[product.parent] * world[p];
+      children[product.parent].push_back(p);
+    }
+  }
+  const auto named = [](const TDF_Label& label, const std::string& name) {
+    if (!name.empty()) TDataStd_Name::Set(label, TCollection_ExtendedString(name.c_str(), true));
+  };
+  std::vector<TDF_Label> labels(n);
+  for (std::size_t p = n; p-- > 0;) {  // children come after their parents
+    const Product& product = topology.products[p];
+    const TopoDS_Shape own = in_own_frame(brep.products[p], world[p]);
+    if (children[p].empty()) {
+      labels[p] = tool->AddShape(own.IsNull() ? TopoDS_Compound() : own, false);
+    } else {
+      labels[p] = tool->NewShape();
+      if (!own.IsNull())
+        tool->AddComponent(labels[p], tool->AddShape(own, false), TopLoc_Location());
+      for (const std::size_t c : children[p]) {
+        const TDF_Label instance = tool->AddComponent(
+            labels[p], labels[c], TopLoc_Location(placement_trsf(topology.products[c].placement)));
+        named(instance, topology.products[c].instance);
+      }
+    }
+    named(labels[p], product.name);
+  }
+  if (!brep.unheld.IsNull()) tool->AddShape(brep.unheld, false);
+  tool->UpdateAssemblies();
+}
+
+// STEP with the products, their names and placements (XCAF).
+Status write_step_products(const Model& model, const detail::BuiltBrep& brep,
+                           const std::filesystem::path& temporary) {
+  set_step_options();
+  const Handle(XCAFApp_Application) app = XCAFApp_Application::GetApplication();
+  Handle(TDocStd_Document) document;
+  app->NewDocument("MDTV-XCAF", document);
+  fill_products(document, model.topology, brep);
+  STEPCAFControl_Writer writer;
+  writer.SetNameMode(true);
+  const bool transferred = writer.Transfer(document, STEPControl_AsIs);
+  app->Close(document);
+  if (!transferred) return Status::error(StatusCode::io_error, "STEP transfer failed");
+  return print_step(writer.ChangeWriter(), temporary);
+}
+
+// `brep`: solids and shells as 186/514/510 (MSBO, shell, face), else trimmed
+// surfaces (144 over 128).
+Status write_iges_file(const TopoDS_Shape& shape, const std::filesystem::path& temporary,
+                       bool brep) {
   IGESControl_Controller::Init();
-  Interface_Static::SetIVal("write.iges.brep.mode", 0);  // faces: 144 over 128
-  IGESControl_Writer writer("MM", 0);
+  Interface_Static::SetIVal("write.iges.brep.mode", brep ? 1 : 0);
+  IGESControl_Writer writer("MM", brep ? 1 : 0);
   if (!writer.AddShape(shape)) return Status::error(StatusCode::io_error, "IGES transfer failed");
   writer.ComputeModel();
   IGESData_IGESWriter iges(writer.Model());
@@ -154,7 +254,8 @@ Status write_iges_file(const TopoDS_Shape& shape, const std::filesystem::path& t
 }
 
 Status write_file(const TopoDS_Shape& shape, const std::filesystem::path& file, CadFormat format) {
-  return format == CadFormat::step ? write_step_file(shape, file) : write_iges_file(shape, file);
+  return format == CadFormat::step ? write_step_file(shape, file)
+                                   : write_iges_file(shape, file, false);
 }
 
 // A face read back from `file` that fails BRepCheck_Analyzer, named as in the model.
@@ -198,6 +299,152 @@ std::vector<std::string> read_back_failures(const Model& model,
   return failures;
 }
 
+// What BRepCheck_Analyzer finds wrong with the shells and solids of `shape`
+// ("shell 2: BRepCheck_NotClosed"); empty when they are valid.
+std::string brep_defects(const TopoDS_Shape& shape) {
+  BRepCheck_Analyzer analyzer(shape);
+  if (analyzer.IsValid()) return "";
+  std::ostringstream out;
+  for (const auto& [type, name] : {std::pair{TopAbs_SOLID, "solid"}, {TopAbs_SHELL, "shell"}}) {
+    int index = 0;
+    for (TopExp_Explorer x(shape, type); x.More(); x.Next(), ++index) {
+      const Handle(BRepCheck_Result) result = analyzer.Result(x.Current());
+      if (result.IsNull()) continue;
+      for (const BRepCheck_Status status : result->Status()) {
+        if (status == BRepCheck_NoError) continue;
+        out << (out.tellp() > 0 ? "; " : "") << name << " " << index << ": ";
+        BRepCheck::Print(status, out);
+      }
+    }
+  }
+  const std::string found = out.str();
+  return found.empty() ? "an edge or vertex shared by faces" : found;
+}
+
+// Every face built on its shared edges and checked, then the shells and
+// solids; the error lists every face that failed.
+Result<detail::BuiltBrep> checked_brep(const Model& model, double tolerance) {
+  if (const Status s = validate_topology(model); !s.ok()) {
+    return Status::error(s.code, "topology: " + s.message);
+  }
+  Result<detail::BuiltBrep> brep = detail::build_occt_brep(model, tolerance);
+  if (!brep.ok()) return brep.status();
+  std::vector<std::string> failures;
+  for (std::size_t f = 0; f < model.faces.size(); ++f) {
+    const std::string defects = detail::face_defects(detail::BuiltFace{brep.value().faces[f], {}});
+    if (!defects.empty()) {
+      failures.push_back(face_label(model.faces[f], f) + " fails BRepCheck_Analyzer: " + defects);
+    }
+  }
+  if (!failures.empty()) {
+    return failed_faces(failures, model.faces.size(), "cannot be exported valid");
+  }
+  return brep;
+}
+
+TopoDS_Shape everything(const detail::BuiltBrep& brep) {
+  BRep_Builder builder;
+  TopoDS_Compound compound;
+  builder.MakeCompound(compound);
+  for (const TopoDS_Shape& shape : brep.products) {
+    if (!shape.IsNull()) builder.Add(compound, shape);
+  }
+  if (!brep.unheld.IsNull()) builder.Add(compound, brep.unheld);
+  return compound;
+}
+
+// Open shells are not compared: a writer wraps loose faces in shells of their own.
+struct ShellCensus {
+  int solids = 0, closed_shells = 0;
+  bool operator==(const ShellCensus&) const = default;
+};
+
+ShellCensus shell_census(const TopoDS_Shape& shape) {
+  ShellCensus c;
+  for (TopExp_Explorer x(shape, TopAbs_SOLID); x.More(); x.Next()) ++c.solids;
+  for (TopExp_Explorer x(shape, TopAbs_SHELL); x.More(); x.Next()) {
+    c.closed_shells += BRep_Tool::IsClosed(x.Current()) ? 1 : 0;
+  }
+  return c;
+}
+
+std::string census_text(const ShellCensus& c) {
+  return std::to_string(c.solids) + " solids and " + std::to_string(c.closed_shells) +
+         " closed shells";
+}
+
+// The written file read back holds the solids and closed shells that were
+// written, valid; else what differs.
+std::string brep_read_back(const TopoDS_Shape& written, const std::filesystem::path& file,
+                           CadFormat format) {
+  const Result<TopoDS_Shape> back = detail::read_back_shape(file, format);
+  if (!back.ok()) return back.status().message;
+  const ShellCensus expected = shell_census(written), got = shell_census(back.value());
+  if (!(expected == got)) {
+    return "the file reads back with " + census_text(got) + ", " + census_text(expected) +
+           " written";
+  }
+  const std::string defects = brep_defects(back.value());
+  return defects.empty() ? "" : "the file reads back invalid: " + defects;
+}
+
+// An OpenCASCADE exception as a status.
+template <typename Write>
+Status guarded(Write&& write) {
+  try {
+    return write();
+  } catch (const Standard_Failure& failure) {
+    return Status::error(StatusCode::invalid_surface, std::string("OpenCASCADE failed: ") +
+                                                          failure.GetMessageString() + " (" +
+                                                          failure.DynamicType()->Name() + ")");
+  }
+}
+
+// Writes the model's B-rep whole, checked as built and as read back.
+Status write_whole(const Model& model, const std::filesystem::path& path, CadFormat format,
+                   double tolerance, bool read_back) {
+  Result<detail::BuiltBrep> built = checked_brep(model, tolerance);
+  if (!built.ok()) return built.status();
+  const detail::BuiltBrep& brep = built.value();
+  const TopoDS_Shape shape = everything(brep);
+  if (const std::string defects = brep_defects(shape); !defects.empty()) {
+    return Status::error(StatusCode::invalid_surface,
+                         "the B-rep fails BRepCheck_Analyzer: " + defects);
+  }
+  return write_atomically(path, [&](const std::filesystem::path& temporary) {
+    return guarded([&] {
+      const Status written = format == CadFormat::step ? write_step_products(model, brep, temporary)
+                                                       : write_iges_file(shape, temporary, true);
+      if (!written.ok() || !read_back) return written;
+      const std::vector<std::string> failures =
+          read_back_failures(model, brep.faces, temporary, format);
+      if (!failures.empty()) {
+        return failed_faces(failures, model.faces.size(), "do not read back valid");
+      }
+      const std::string lost = brep_read_back(shape, temporary, format);
+      return lost.empty() ? written : Status::error(StatusCode::invalid_surface, lost);
+    });
+  });
+}
+
+// Writes every face alone, checked as built and as read back.
+Status write_faces(const Model& model, const std::filesystem::path& path, CadFormat format,
+                   double tolerance, bool read_back) {
+  const Result<std::vector<TopoDS_Face>> faces = checked_faces(model, tolerance);
+  if (!faces.ok()) return faces.status();
+  const TopoDS_Shape shape = compound_of(faces.value());
+  return write_atomically(path, [&](const std::filesystem::path& temporary) {
+    return guarded([&] {
+      const Status written = write_file(shape, temporary, format);
+      if (!written.ok() || !read_back) return written;
+      const std::vector<std::string> failures =
+          read_back_failures(model, faces.value(), temporary, format);
+      if (failures.empty()) return written;
+      return failed_faces(failures, model.faces.size(), "do not read back valid");
+    });
+  });
+}
+
 }  // namespace
 
 double export_tolerance(const Model& model, double eps_mm) {
@@ -215,29 +462,32 @@ Status write_cad(const Model& model, const std::filesystem::path& path, CadForma
   if (model.faces.empty()) {
     return failed(Status::error(StatusCode::invalid_argument, "the model has no faces"));
   }
-  try {
-    const Result<std::vector<TopoDS_Face>> faces =
-        checked_faces(model, export_tolerance(model, options.tolerance_mm));
-    if (!faces.ok()) return failed(faces.status());
-    const TopoDS_Shape shape = compound_of(faces.value());
-    return write_atomically(path, [&](const std::filesystem::path& temporary) {
-      try {
-        const Status written = write_file(shape, temporary, format);
-        if (!written.ok()) return failed(written);
-        if (!options.read_back) return written;
-        const std::vector<std::string> failures =
-            read_back_failures(model, faces.value(), temporary, format);
-        if (failures.empty()) return written;
-        return failed(failed_faces(failures, model.faces.size(), "do not read back valid"));
-      } catch (const Standard_Failure& failure) {
-        return failed(Status::error(StatusCode::io_error, std::string("OpenCASCADE failed: ") +
-                                                              failure.GetMessageString()));
-      }
-    });
-  } catch (const Standard_Failure& failure) {
-    return failed(Status::error(StatusCode::invalid_argument,
-                                std::string("OpenCASCADE failed: ") + failure.GetMessageString()));
+  const double tolerance = export_tolerance(model, options.tolerance_mm);
+  // IGES writes a B-rep only around solids: loose faces are trimmed surfaces
+  // (144), which more systems read. Models without placed uses (JSON written
+  // before they were recorded, models built in code) are loose faces.
+  const bool whole = !model.topology.edges.empty() && uses_placed(model.topology) &&
+                     (format == CadFormat::step || !model.topology.solids.empty());
+  std::string torn;
+  if (whole) {
+    const Status written =
+        guarded([&] { return write_whole(model, path, format, tolerance, options.read_back); });
+    if (written.ok()) return written;
+    if (written.code == StatusCode::io_error) return failed(written);
+    // Faces sculpted apart across their shared edges make no valid B-rep;
+    // the faces alone may still be valid, and the user is told.
+    torn = written.message;
   }
+  const Status written =
+      guarded([&] { return write_faces(model, path, format, tolerance, options.read_back); });
+  if (!written.ok()) return failed(written);
+  if (!torn.empty() && options.warnings != nullptr) {
+    options.warnings->push_back(path.string() +
+                                ": the B-rep could not be written whole, faces written one by "
+                                "one (no shared edges, shells or solids): " +
+                                torn);
+  }
+  return written;
 }
 
 }  // namespace argil::io

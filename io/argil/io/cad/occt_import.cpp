@@ -324,6 +324,20 @@ std::vector<Eigen::Vector2d> coarse_polygon(const TrimLoop& loop) {
   return points;
 }
 
+// Points along the loop's curves themselves: a curved loop's control polygon
+// can enclose more than a straight loop around it (a rational circle's does).
+std::vector<Eigen::Vector2d> sampled_polygon(const TrimLoop& loop) {
+  constexpr int kSamplesPerCurve = 32;
+  std::vector<Eigen::Vector2d> points;
+  for (const TrimCurve& c : loop.curves) {
+    const double t0 = c.knots[0], t1 = c.knots[c.knots.size() - 1];
+    for (int k = 0; k < kSamplesPerCurve; ++k) {
+      points.push_back(evaluate_trim_curve(c, t0 + (t1 - t0) * k / kSamplesPerCurve));
+    }
+  }
+  return points;
+}
+
 void reverse_loop(TrimLoop& loop) {
   std::reverse(loop.curves.begin(), loop.curves.end());
   for (TrimCurve& c : loop.curves) {
@@ -356,41 +370,67 @@ bool is_natural_boundary(const std::vector<TrimLoop>& loops, const BSplineSurfac
   return std::abs(area - domain_area) <= 1e-9 * domain_area;
 }
 
-Result<std::vector<TrimLoop>> face_loops(const TopoDS_Face& face) {
-  std::vector<TrimLoop> loops;
-  const TopoDS_Wire outer = BRepTools::OuterWire(face);
+// The face's trim loops, outer first, each running the right way round;
+// `read` learns the edge behind each trim curve.
+Result<std::vector<TrimLoop>> face_loops(const TopoDS_Face& face,
+                                         std::vector<detail::ReadFace::Loop>& read) {
+  struct Read {
+    TrimLoop loop;
+    detail::ReadFace::Loop edges;
+  };
+  std::vector<Read> loops;
+  const auto add = [&](Read& out, const TopoDS_Edge& edge) -> Status {
+    Result<TrimCurve> curve = detail::edge_pcurve(edge, face, detail::PcurveDirection::wire);
+    if (!curve.ok()) return curve.status();
+    out.loop.curves.push_back(std::move(curve).value());
+    out.edges.edges.push_back(edge);
+    return Status::success();
+  };
   for (TopExp_Explorer w(face, TopAbs_WIRE); w.More(); w.Next()) {
     const TopoDS_Wire& wire = TopoDS::Wire(w.Current());
-    TrimLoop loop;
-    loop.outer = wire.IsSame(outer);
+    Read read_loop;
     int edges_in_order = 0;
     for (BRepTools_WireExplorer e(wire, face); e.More(); e.Next()) {
-      Result<TrimCurve> curve =
-          detail::edge_pcurve(e.Current(), face, detail::PcurveDirection::wire);
-      if (!curve.ok()) return curve.status();
-      loop.curves.push_back(std::move(curve).value());
+      if (Status s = add(read_loop, e.Current()); !s.ok()) return s;
       ++edges_in_order;
     }
     int edges = 0;
     for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next()) ++edges;
     if (edges_in_order != edges) {
       // A wire OCCT cannot chain: keep its stored order rather than drop edges.
-      loop.curves.clear();
+      read_loop = Read{};
       for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next()) {
-        Result<TrimCurve> curve =
-            detail::edge_pcurve(TopoDS::Edge(e.Current()), face, detail::PcurveDirection::wire);
-        if (!curve.ok()) return curve.status();
-        loop.curves.push_back(std::move(curve).value());
+        if (Status s = add(read_loop, TopoDS::Edge(e.Current())); !s.ok()) return s;
       }
     }
-    if (loop.curves.empty()) continue;
-    const double area = signed_area(coarse_polygon(loop));
-    if ((loop.outer && area < 0.0) || (!loop.outer && area > 0.0)) reverse_loop(loop);
-    loops.push_back(std::move(loop));
+    if (read_loop.loop.curves.empty()) continue;
+    loops.push_back(std::move(read_loop));
+  }
+  // The outer loop encloses the most area: OpenCASCADE's OuterWire can name
+  // a hole (Ventilator.stp #361: a hexagonal nut face, its round hole "outer").
+  std::vector<double> areas;
+  for (const Read& l : loops) areas.push_back(signed_area(sampled_polygon(l.loop)));
+  std::size_t largest = 0;
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    if (std::abs(areas[l]) > std::abs(areas[largest])) largest = l;
+  }
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    TrimLoop& loop = loops[l].loop;
+    loop.outer = l == largest;
+    if ((loop.outer && areas[l] < 0.0) || (!loop.outer && areas[l] > 0.0)) {
+      reverse_loop(loop);
+      std::reverse(loops[l].edges.edges.begin(), loops[l].edges.edges.end());
+      loops[l].edges.reversed = true;
+    }
   }
   // Outer loop first.
-  std::stable_partition(loops.begin(), loops.end(), [](const TrimLoop& l) { return l.outer; });
-  return loops;
+  std::stable_partition(loops.begin(), loops.end(), [](const Read& l) { return l.loop.outer; });
+  std::vector<TrimLoop> out;
+  for (Read& l : loops) {
+    out.push_back(std::move(l.loop));
+    read.push_back(std::move(l.edges));
+  }
+  return out;
 }
 
 // How the file itself names an entity: "#<id>" in STEP, "D<directory entry>" in IGES.
@@ -559,7 +599,7 @@ Result<FaceRecord> face_record(const TopoDS_Face& oriented_face, const WrittenNe
                seam_at_full_knot(bspline, false));
   const Status check = validate(record.surface);
   if (!check.ok()) return Status::error(StatusCode::invalid_surface, check.message);
-  Result<std::vector<TrimLoop>> loops = face_loops(face);
+  Result<std::vector<TrimLoop>> loops = face_loops(face, source.loops);
   if (!loops.ok()) return loops.status();
   record.loops = std::move(loops).value();
   if (is_natural_boundary(record.loops, record.surface)) record.loops.clear();

@@ -250,6 +250,18 @@ class Reader {
           !curve(*pcurve, use_path + ".pcurve", out.uses[u].pcurve)) {
         return false;
       }
+      // Placement in the face's loops: optional (files written before it).
+      EdgeUse& use = out.uses[u];
+      if (const Json* loop = member((*uses)[u], use_path, "loop", false)) {
+        if (!index(*loop, use_path + ".loop", use.loop, true)) return false;
+      }
+      if (const Json* curve_index = member((*uses)[u], use_path, "curve", false)) {
+        if (!index(*curve_index, use_path + ".curve", use.curve, true)) return false;
+      }
+      if (const Json* along = member((*uses)[u], use_path, "along", false)) {
+        if (!along->is_boolean()) return fail(use_path + ".along", "expected true or false");
+        use.along = along->get<bool>();
+      }
     }
     return true;
   }
@@ -402,7 +414,7 @@ class Reader {
     }
     if (const Json* t = member(root, "(root)", "topology", false)) {
       if (!topology(*t, out.topology)) return false;
-      const Status valid = validate_topology(out.topology, out.faces.size());
+      const Status valid = validate_topology(out);
       if (!valid.ok()) return fail("topology", valid.message);
     }
     return true;
@@ -470,7 +482,11 @@ Json topology_json(const Topology& t) {
   for (const Edge& e : t.edges) {
     Json uses = Json::array();
     for (const EdgeUse& use : e.uses) {
-      uses.push_back({{"face", use.face}, {"pcurve", curve_json(use.pcurve)}});
+      uses.push_back({{"face", use.face},
+                      {"loop", index_json(use.loop)},
+                      {"curve", index_json(use.curve)},
+                      {"along", use.along},
+                      {"pcurve", curve_json(use.pcurve)}});
     }
     edges.push_back({{"start", index_json(e.start)},
                      {"end", index_json(e.end)},
@@ -558,7 +574,7 @@ Result<std::string> to_json(const Model& model) {
   root["faces"] = std::move(faces);
   root["warnings"] = model.warnings;
   if (!model.topology.empty()) {
-    const Status valid = validate_topology(model.topology, model.faces.size());
+    const Status valid = validate_topology(model);
     if (!valid.ok()) return Status::error(valid.code, "topology: " + valid.message);
     root["topology"] = topology_json(model.topology);
   }

@@ -1,8 +1,12 @@
 #include "argil/io/model/topology.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 
+#include "argil/core/base/number_text.hpp"
+#include "argil/core/geometry/param_rect.hpp"
 #include "argil/io/model/trim_curve.hpp"
 
 namespace argil::io {
@@ -83,6 +87,92 @@ Status check_edges(const Topology& t, std::size_t face_count) {
   return Status::success();
 }
 
+std::string use_name(std::size_t edge, std::size_t use) {
+  return at("edges", edge) + "." + at("uses", use);
+}
+
+// The trim curve's point at fraction s of its parameter range.
+Eigen::Vector2d at_fraction(const TrimCurve& c, double s) {
+  const double t0 = c.knots[0], t1 = c.knots[c.knots.size() - 1];
+  return evaluate_trim_curve(c, t0 + s * (t1 - t0));
+}
+
+// How far apart in (u, v) the use's pcurve and the trim curve it stands for
+// are, sampled at matching fractions of their ranges (mirrored when the loop
+// runs against the edge).
+double trace_gap(const EdgeUse& use, const TrimCurve& trim) {
+  constexpr int kSamples = 8;
+  double gap = 0.0;
+  for (int k = 0; k <= kSamples; ++k) {
+    const double s = static_cast<double>(k) / kSamples;
+    const Eigen::Vector2d on_use = at_fraction(use.pcurve, use.along ? s : 1.0 - s);
+    gap = std::max(gap, (on_use - at_fraction(trim, s)).norm());
+  }
+  return gap;
+}
+
+// Where the uses are placed: each face's (loop, curve) slots are taken once,
+// without gaps; a trimmed face's slots are its trim curves.
+Status check_placement(const Model& model) {
+  const Topology& t = model.topology;
+  // face -> loop -> curve -> (edge, use)
+  std::vector<std::map<std::size_t, std::map<std::size_t, std::pair<std::size_t, std::size_t>>>>
+      slots(model.faces.size());
+  for (std::size_t e = 0; e < t.edges.size(); ++e) {
+    for (std::size_t u = 0; u < t.edges[e].uses.size(); ++u) {
+      const EdgeUse& use = t.edges[e].uses[u];
+      auto& slot = slots[use.face][use.loop];
+      if (slot.count(use.curve) != 0) {
+        const auto [e2, u2] = slot.at(use.curve);
+        return Status::error(StatusCode::invalid_argument,
+                             use_name(e, u) + ": loop " + std::to_string(use.loop) + " curve " +
+                                 std::to_string(use.curve) + " of face " +
+                                 std::to_string(use.face) + " is taken by " + use_name(e2, u2));
+      }
+      slot[use.curve] = {e, u};
+    }
+  }
+  for (std::size_t f = 0; f < model.faces.size(); ++f) {
+    const FaceRecord& face = model.faces[f];
+    const std::string name = "face " + std::to_string(f);
+    std::size_t expected_loop = 0;
+    for (const auto& [loop, curves] : slots[f]) {
+      if (loop != expected_loop++ || curves.rbegin()->first + 1 != curves.size()) {
+        return Status::error(StatusCode::invalid_argument,
+                             name + ": its edge uses leave a gap in loop " + std::to_string(loop));
+      }
+    }
+    if (!face.trimmed()) continue;
+    if (slots[f].size() != face.loops.size()) {
+      return Status::error(StatusCode::invalid_argument,
+                           name + ": " + std::to_string(face.loops.size()) + " trim loops, " +
+                               "its edge uses make " + std::to_string(slots[f].size()));
+    }
+    const double tolerance =
+        1e-9 * std::max(domain_of(face.surface).width(), domain_of(face.surface).height());
+    for (std::size_t l = 0; l < face.loops.size(); ++l) {
+      const auto& curves = slots[f].at(l);
+      if (curves.size() != face.loops[l].curves.size()) {
+        return Status::error(StatusCode::invalid_argument,
+                             name + " loop " + std::to_string(l) + ": " +
+                                 std::to_string(face.loops[l].curves.size()) +
+                                 " trim curves, edge uses for " + std::to_string(curves.size()));
+      }
+      for (const auto& [k, where] : curves) {
+        const EdgeUse& use = t.edges[where.first].uses[where.second];
+        if (const double gap = trace_gap(use, face.loops[l].curves[k]); !(gap <= tolerance)) {
+          return Status::error(StatusCode::invalid_argument,
+                               use_name(where.first, where.second) + ": not the curve of face " +
+                                   std::to_string(f) + " loop " + std::to_string(l) + " curve " +
+                                   std::to_string(k) + " (" + number_text(gap) +
+                                   " apart in (u, v))");
+        }
+      }
+    }
+  }
+  return Status::success();
+}
+
 }  // namespace
 
 TopologyCounts count_topology(const Topology& topology) {
@@ -140,6 +230,24 @@ Status validate_topology(const Topology& topology, std::size_t face_count) {
     }
   }
   return Status::success();
+}
+
+bool uses_placed(const Topology& topology) {
+  for (const Edge& edge : topology.edges) {
+    for (const EdgeUse& use : edge.uses) {
+      if (use.loop == kNoIndex || use.curve == kNoIndex) return false;
+    }
+  }
+  return true;
+}
+
+Status validate_topology(const Model& model) {
+  if (Status s = validate_topology(model.topology, model.faces.size()); !s.ok()) return s;
+  if (model.topology.edges.empty() || !uses_placed(model.topology)) return Status::success();
+  for (std::size_t f = 0; f < model.faces.size(); ++f) {
+    if (Status s = validate_face(model.faces[f], f); !s.ok()) return s;
+  }
+  return check_placement(model);
 }
 
 }  // namespace argil::io

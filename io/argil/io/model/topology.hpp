@@ -22,9 +22,18 @@ inline constexpr std::size_t kNoIndex = static_cast<std::size_t>(-1);
 /// from the edge's start vertex to its end. Two uses need not share a
 /// parametrisation (a circle converted to a rational B-spline is not), only
 /// their images: the same 3D curve within the edge's tolerance.
+///
+/// Where the use sits in the face's boundary: curve `curve` of loop `loop`, as
+/// the face was read (the face's trim loops when it is trimmed; a face whose
+/// boundary is its whole domain, recorded untrimmed, keeps the numbering of the
+/// loop it was read with), running along the edge or against it. This is what
+/// rebuilds the face's wires from shared edges on export; kNoIndex: unknown.
 struct EdgeUse {
   std::size_t face = 0;
   BSplineCurve pcurve;  // two columns, (u, v)
+  std::size_t loop = kNoIndex;
+  std::size_t curve = kNoIndex;
+  bool along = true;  // the loop runs from the edge's start to its end
 };
 
 /// A B-rep edge. One use: a free (boundary) edge; uses on two distinct faces:
@@ -93,5 +102,17 @@ TopologyCounts count_topology(const Topology& topology);
 /// every pcurve (validate_trim_curve rules) and every number for finiteness;
 /// the message names the field ("edges[12].uses[1].face: 40 of 38 faces").
 Status validate_topology(const Topology& topology, std::size_t face_count);
+
+/// True when every use knows its place in its face's boundary (loop, curve).
+bool uses_placed(const Topology& topology);
+
+struct Model;
+
+/// validate_topology(model.topology, faces) and, where the uses are placed,
+/// that they number each face's loops without gap or repeat, and that a
+/// trimmed face's uses are its trim loops: one use per trim curve, the same
+/// curve (reversed where the loop runs against the edge) within 1e-9 of the
+/// face's domain. The message names the edge, use or face and loop.
+Status validate_topology(const Model& model);
 
 }  // namespace argil::io

@@ -151,6 +151,7 @@ Result<RunReport> run_session(const RunOptions& options) {
       in, session, before, state, report.wall_timing, report.cpu_timing, report.summary);
   report.files = std::move(outputs.files);
   report.failed_outputs = std::move(outputs.failures);
+  for (std::string& w : outputs.warnings) report.warnings.push_back(std::move(w));
   const Status finished = journal.value().writer.finish();
   if (!finished.ok()) return finished;
   report.files.push_back(in.out / kJournalName);

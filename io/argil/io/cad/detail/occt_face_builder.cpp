@@ -26,13 +26,10 @@
 #include <string>
 
 #include "argil/core/base/number_text.hpp"
+#include "argil/io/cad/detail/occt_geometry.hpp"
 
 namespace argil::io::detail {
 namespace {
-
-// The writers' float format ("%#.17G") fills a 24-byte buffer: a number below
-// 1e-99 needs a three-digit exponent and would overflow it.
-double writable(double x) { return std::abs(x) < 1e-99 ? 0.0 : x; }
 
 // ShapeFix may raise a tolerance up to this many export tolerances (closing a
 // loop whose corner gaps it has to bridge); beyond that a defect is reported.
@@ -44,71 +41,6 @@ constexpr double kMaxFixTolerances = 1e3;
 // their precision, Precision::Confusion() unless the file says otherwise; a
 // longer collapsed side is kept as a (short) real edge, which every reader keeps.
 constexpr double kDegenerateLength = 1e-7;  // [mm], Precision::Confusion()
-
-struct OcctKnots {
-  TColStd_Array1OfReal values;
-  TColStd_Array1OfInteger multiplicities;
-};
-
-// Flat clamped knot vector to distinct values and multiplicities (exact comparison).
-OcctKnots occt_knots(const Eigen::VectorXd& flat) {
-  std::vector<double> values;
-  std::vector<int> counts;
-  for (Eigen::Index k = 0; k < flat.size(); ++k) {
-    const double t = writable(flat[k]);
-    if (!values.empty() && values.back() == t) {
-      ++counts.back();
-    } else {
-      values.push_back(t);
-      counts.push_back(1);
-    }
-  }
-  const int n = static_cast<int>(values.size());
-  OcctKnots out{TColStd_Array1OfReal(1, n), TColStd_Array1OfInteger(1, n)};
-  for (int i = 0; i < n; ++i) {
-    out.values(i + 1) = values[static_cast<std::size_t>(i)];
-    out.multiplicities(i + 1) = counts[static_cast<std::size_t>(i)];
-  }
-  return out;
-}
-
-Handle(Geom_BSplineSurface) to_occt(const BSplineSurface& s) {
-  const int nu = s.count(Direction::u), nv = s.count(Direction::v);
-  TColgp_Array2OfPnt poles(1, nu, 1, nv);
-  TColStd_Array2OfReal weights(1, nu, 1, nv);
-  for (int i = 0; i < nu; ++i) {
-    for (int j = 0; j < nv; ++j) {
-      const Eigen::Index row = s.pole_index(i, j);
-      poles(i + 1, j + 1) =
-          gp_Pnt(writable(s.control_points(row, 0)), writable(s.control_points(row, 1)),
-                 writable(s.control_points(row, 2)));
-      weights(i + 1, j + 1) = s.is_rational() ? s.weights[row] : 1.0;
-    }
-  }
-  const OcctKnots u = occt_knots(s.knots[0]);
-  const OcctKnots v = occt_knots(s.knots[1]);
-  if (s.is_rational()) {
-    return new Geom_BSplineSurface(poles, weights, u.values, v.values, u.multiplicities,
-                                   v.multiplicities, s.degree[0], s.degree[1]);
-  }
-  return new Geom_BSplineSurface(poles, u.values, v.values, u.multiplicities, v.multiplicities,
-                                 s.degree[0], s.degree[1]);
-}
-
-Handle(Geom2d_BSplineCurve) to_occt(const TrimCurve& c) {
-  const int n = c.count();
-  TColgp_Array1OfPnt2d poles(1, n);
-  TColStd_Array1OfReal weights(1, n);
-  for (int i = 0; i < n; ++i) {
-    poles(i + 1) = gp_Pnt2d(writable(c.points(i, 0)), writable(c.points(i, 1)));
-    weights(i + 1) = c.is_rational() ? c.weights[i] : 1.0;
-  }
-  const OcctKnots k = occt_knots(c.knots);
-  if (c.is_rational()) {
-    return new Geom2d_BSplineCurve(poles, weights, k.values, k.multiplicities, c.degree);
-  }
-  return new Geom2d_BSplineCurve(poles, k.values, k.multiplicities, c.degree);
-}
 
 gp_Pnt surface_point(const Handle(Geom_BSplineSurface) & s, const gp_Pnt2d& uv) {
   return s->Value(uv.X(), uv.Y());
@@ -257,26 +189,6 @@ Result<TopoDS_Wire> make_wire(const TrimLoop& loop, std::size_t loop_index,
   return wire;
 }
 
-// Edges: tolerance at least the export tolerance and the largest distance
-// between the 3D curve and the pcurve on the surface (an approximated 3D curve
-// is only as close as the approximation got; an exact one rounds at the size of
-// the coordinates). Vertices: cover the edge ends they join.
-void update_tolerances(const TopoDS_Face& face, double tolerance) {
-  BRep_Builder builder;
-  for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
-    const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
-    builder.UpdateEdge(edge, std::max(tolerance, BRep_Tool::Tolerance(edge)));
-    if (BRep_Tool::Degenerated(edge)) continue;
-    BRepLib_CheckCurveOnSurface check(edge, face);
-    check.Perform();
-    if (!check.IsDone()) continue;  // BRepCheck_Analyzer then reports the edge
-    // Margin for the rounding of the checker's own evaluation.
-    const double deviation = check.MaxDistance() * (1.0 + 1e-6);
-    if (deviation > BRep_Tool::Tolerance(edge)) builder.UpdateEdge(edge, deviation);
-  }
-  BRepLib::UpdateTolerances(face);
-}
-
 bool has_real_edge(const TopoDS_Face& face) {
   for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
     if (!BRep_Tool::Degenerated(TopoDS::Edge(e.Current()))) return true;
@@ -319,6 +231,26 @@ Result<BuiltFace> trimmed_face(const FaceRecord& record,
 }
 
 }  // namespace
+
+// Edges: tolerance at least the export tolerance and the largest distance
+// between the 3D curve and the pcurve on the surface (an approximated 3D curve
+// is only as close as the approximation got; an exact one rounds at the size of
+// the coordinates). Vertices: cover the edge ends they join.
+void update_tolerances(const TopoDS_Face& face, double tolerance) {
+  BRep_Builder builder;
+  for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
+    const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+    builder.UpdateEdge(edge, std::max(tolerance, BRep_Tool::Tolerance(edge)));
+    if (BRep_Tool::Degenerated(edge)) continue;
+    BRepLib_CheckCurveOnSurface check(edge, face);
+    check.Perform();
+    if (!check.IsDone()) continue;  // BRepCheck_Analyzer then reports the edge
+    // Margin for the rounding of the checker's own evaluation.
+    const double deviation = check.MaxDistance() * (1.0 + 1e-6);
+    if (deviation > BRep_Tool::Tolerance(edge)) builder.UpdateEdge(edge, deviation);
+  }
+  BRepLib::UpdateTolerances(face);
+}
 
 Result<BuiltFace> build_occt_face(const FaceRecord& record, double tolerance_mm) {
   const Handle(Geom_BSplineSurface) surface = to_occt(record.surface);

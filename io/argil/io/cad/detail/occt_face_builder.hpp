@@ -46,4 +46,10 @@ struct BuiltFace {
 /// collapses to a point; the message names the loop and curve, not the face.
 Result<BuiltFace> build_occt_face(const FaceRecord& record, double tolerance_mm);
 
+/// Raises every edge tolerance of `face` to at least `tolerance_mm` and to the
+/// largest distance between its 3D curve and its pcurve on the face's surface
+/// (BRepLib_CheckCurveOnSurface), then every vertex's to cover the edge ends
+/// it joins (BRepLib::UpdateTolerances).
+void update_tolerances(const TopoDS_Face& face, double tolerance_mm);
+
 }  // namespace argil::io::detail

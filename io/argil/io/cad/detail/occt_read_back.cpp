@@ -49,8 +49,7 @@ std::optional<PoleBox> pole_box(const TopoDS_Face& face) {
 
 }  // namespace
 
-Result<std::vector<TopoDS_Face>> read_back_faces(const std::filesystem::path& file,
-                                                 CadFormat format) {
+Result<TopoDS_Shape> read_back_shape(const std::filesystem::path& file, CadFormat format) {
   std::unique_ptr<XSControl_Reader> reader;
   if (format == CadFormat::step) {
     reader = std::make_unique<STEPControl_Reader>();
@@ -62,8 +61,15 @@ Result<std::vector<TopoDS_Face>> read_back_faces(const std::filesystem::path& fi
     return Status::error(StatusCode::io_error, "OpenCASCADE cannot read the file back");
   }
   reader->TransferRoots();
+  return reader->OneShape();
+}
+
+Result<std::vector<TopoDS_Face>> read_back_faces(const std::filesystem::path& file,
+                                                 CadFormat format) {
+  const Result<TopoDS_Shape> shape = read_back_shape(file, format);
+  if (!shape.ok()) return shape.status();
   std::vector<TopoDS_Face> faces;
-  for (TopExp_Explorer e(reader->OneShape(), TopAbs_FACE); e.More(); e.Next()) {
+  for (TopExp_Explorer e(shape.value(), TopAbs_FACE); e.More(); e.Next()) {
     faces.push_back(TopoDS::Face(e.Current()));
   }
   return faces;

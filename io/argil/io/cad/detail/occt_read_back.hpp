@@ -3,6 +3,7 @@
 // own readers, the way a user of the file reads it, to check what it holds.
 
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
 
 #include <filesystem>
 #include <vector>
@@ -11,6 +12,11 @@
 #include "argil/io/cad/cad_exchange.hpp"
 
 namespace argil::io::detail {
+
+/// The whole shape of the file, read and transferred with OpenCASCADE's
+/// readers and settings (a null shape when it holds nothing).
+/// Errors: the file cannot be read (io_error), naming nothing.
+Result<TopoDS_Shape> read_back_shape(const std::filesystem::path& file, CadFormat format);
 
 /// Every face of the file in TopExp_Explorer order (the order they were
 /// written in), read and transferred with OpenCASCADE's readers and settings.

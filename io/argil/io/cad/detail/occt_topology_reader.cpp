@@ -52,6 +52,8 @@ class TopologyReader {
       const TopoDS_Face forward = TopoDS::Face(face.original.Oriented(TopAbs_FORWARD));
       const TopoDS_Face on =
           face.converted.IsNull() ? forward : TopoDS::Face(face.converted.Oriented(TopAbs_FORWARD));
+      std::vector<std::vector<char>> taken;
+      for (const ReadFace::Loop& loop : face.loops) taken.emplace_back(loop.edges.size(), 0);
       for (TopExp_Explorer x(forward, TopAbs_EDGE); x.More(); x.Next()) {
         const TopoDS_Edge& edge = TopoDS::Edge(x.Current());
         const std::size_t id = static_cast<std::size_t>(edge_ids.Add(edge)) - 1;
@@ -63,7 +65,9 @@ class TopologyReader {
                                                          std::to_string(id) + ": " +
                                                          pcurve.status().message);
         }
-        topology_.edges[id].uses.push_back({f, std::move(pcurve).value()});
+        EdgeUse use{f, std::move(pcurve).value()};
+        place(use, face, converted_edge(face, edge), taken);
+        topology_.edges[id].uses.push_back(std::move(use));
       }
     }
     return Status::success();
@@ -109,6 +113,27 @@ class TopologyReader {
   Topology take() { return std::move(topology_); }
 
  private:
+  // The trim curve `edge` (a use on `face`, oriented as the face uses it)
+  // became: the same edge in the same orientation (a seam is in the loop
+  // twice, once each way), else the same edge.
+  static void place(EdgeUse& use, const ReadFace& face, const TopoDS_Edge& edge,
+                    std::vector<std::vector<char>>& taken) {
+    for (const bool exact : {true, false}) {
+      for (std::size_t l = 0; l < face.loops.size(); ++l) {
+        const std::vector<TopoDS_Edge>& edges = face.loops[l].edges;
+        for (std::size_t k = 0; k < edges.size(); ++k) {
+          if (taken[l][k] != 0 || !edges[k].IsSame(edge)) continue;
+          if (exact && edges[k].Orientation() != edge.Orientation()) continue;
+          taken[l][k] = 1;
+          use.loop = l;
+          use.curve = k;
+          use.along = (edges[k].Orientation() != TopAbs_REVERSED) != face.loops[l].reversed;
+          return;
+        }
+      }
+    }
+  }
+
   Edge new_edge(const TopoDS_Edge& edge, TopTools_IndexedMapOfShape& vertex_ids) {
     Edge out;
     out.degenerate = BRep_Tool::Degenerated(edge);

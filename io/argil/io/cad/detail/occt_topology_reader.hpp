@@ -3,6 +3,7 @@
 // shells, edges, vertices) in terms of the model's faces.
 
 #include <TopTools_DataMapOfShapeShape.hxx>
+#include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 #include <XSControl_WorkSession.hxx>
@@ -22,6 +23,15 @@ struct ReadFace {
   TopoDS_Face original;                // located and oriented, as TopExp_Explorer gave it
   TopoDS_Face converted;               // FORWARD; null: `original` itself
   TopTools_DataMapOfShapeShape edges;  // an edge of `original` -> its edge on `converted`
+  /// The face's loops as read, in the order of its trim loops: per trim curve,
+  /// the edge it came from, oriented as in its wire on the FORWARD face
+  /// (`converted` when not null), and whether the loop was reversed to run
+  /// the right way round in (u, v).
+  struct Loop {
+    std::vector<TopoDS_Edge> edges;
+    bool reversed = false;
+  };
+  std::vector<Loop> loops;
 };
 
 /// The topology of `shape`, whose faces `faces` are in TopExp_Explorer order.

@@ -25,6 +25,7 @@ void record(RunOutputs& outputs, const std::filesystem::path& path, const Status
 void write_models(const RunInputs& in, const Session& session, RunOutputs& outputs) {
   io::WriteOptions options;
   options.cad.tolerance_mm = in.scene.tolerance;
+  options.cad.warnings = &outputs.warnings;
   for (int m = 0; m < static_cast<int>(session.models().size()); ++m) {
     const std::string& name = session.models()[static_cast<std::size_t>(m)].spec.name;
     const io::Model after = session.current_file_model(m);

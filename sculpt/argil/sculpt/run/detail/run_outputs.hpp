@@ -3,6 +3,7 @@
 // folder, each atomically.
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "argil/core/base/status.hpp"
@@ -20,6 +21,7 @@ inline constexpr const char* kRecordedScriptName = "recorded.csv";
 struct RunOutputs {
   std::vector<std::filesystem::path> files;  // written, in order
   std::vector<OutputFailure> failures;       // not written, in order
+  std::vector<std::string> warnings;         // written, but not as asked (a B-rep as loose faces)
 };
 
 /// Writes what `in.outputs` asks for into `in.out`: each model's whole file
