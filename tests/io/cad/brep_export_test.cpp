@@ -3,6 +3,7 @@
 // converted to STEP (and IGES, where it holds solids) keeps its products,
 // solids, closed shells and shared edges, reads back valid with no free edge
 // on a closed shell, and every surface comes back bit for bit.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstring>
 #include <string>
@@ -35,9 +36,14 @@ void check_round_trip(const char* name, const char* extension) {
   const std::filesystem::path output = dir / (std::string("out") + extension);
   const Result<Model> read = read_model(input);
   REQUIRE(read.ok());
-  const Status written = write_model(read.value(), output);
+  std::vector<std::string> warnings;
+  WriteOptions options;
+  options.cad.warnings = &warnings;
+  const Status written = write_model(read.value(), output, options);
   INFO(written.message);
   REQUIRE(written.ok());
+  // Written whole, not as the loose faces of the fallback.
+  CHECK(warnings.empty());
 
   const test::OcctTopology in = test::occt_topology(input);
   const test::OcctTopology out = test::occt_topology(output);
@@ -75,6 +81,16 @@ void check_round_trip(const char* name, const char* extension) {
     same += same_surface(back.value().faces[f].surface, read.value().faces[f].surface) ? 1u : 0u;
   }
   if (!placed) CHECK(same == read.value().faces.size());
+  // Placed parts: moved into their frames and back, the same poles within rounding.
+  const double size = model_box(read.value()).diagonal();
+  double worst = 0.0;
+  for (std::size_t f = 0; f < read.value().faces.size(); ++f) {
+    const ControlNet& before = read.value().faces[f].surface.control_points;
+    const ControlNet& after = back.value().faces[f].surface.control_points;
+    REQUIRE(before.rows() == after.rows());
+    worst = std::max(worst, (before - after).cwiseAbs().maxCoeff());
+  }
+  CHECK(worst <= 1e-12 * size);
 }
 
 TEST_CASE("real solids converted to STEP keep products, solids, closed shells and shared edges",
@@ -98,6 +114,47 @@ TEST_CASE("loose IGES faces convert to STEP and IGES as loose faces", "[io][occt
     check_round_trip(name, ".step");
     check_round_trip(name, ".igs");
   }
+}
+
+TEST_CASE("a face moved off its neighbours exports as a solid whose open edges are reported",
+          "[io][occt][brep]") {
+  const Result<Model> read = read_model(test::shared_data("screw.step"));
+  REQUIRE(read.ok());
+  Model model = read.value();
+  // The bottom disc lowered by 0.05 mm, ten times eps: its edge opens.
+  model.faces[9].surface.control_points.col(2).array() -= 0.05;
+  test::TempDir dir;
+  std::vector<std::string> warnings;
+  WriteOptions options;
+  options.cad.tolerance_mm = 0.005;
+  options.cad.warnings = &warnings;
+  const Status written = write_model(model, dir / "opened.step", options);
+  INFO(written.message);
+  REQUIRE(written.ok());
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("shared edges are open wider than eps (0.005 mm)"));
+  CHECK_THAT(warnings[0], Catch::Contains("face 9"));
+  const test::OcctTopology out = test::occt_topology(dir / "opened.step");
+  CHECK(out.valid);
+  CHECK(out.solids == 1);
+  CHECK(out.faces == 10);
+  // As read, nothing is open at the same eps.
+  warnings.clear();
+  REQUIRE(write_model(read.value(), dir / "closed.step", options).ok());
+  CHECK(warnings.empty());
+}
+
+TEST_CASE("a placement that is not a rotation and a translation is refused by name",
+          "[io][topology][bad]") {
+  const Result<Model> read = read_model(test::shared_data("as1-oc-214.stp"));
+  REQUIRE(read.ok());
+  Model model = read.value();
+  REQUIRE(model.topology.products.size() > 1);
+  model.topology.products[1].placement.col(0) *= -1.0;  // a mirror
+  const Status status = validate_topology(model);
+  CHECK_FALSE(status.ok());
+  CHECK_THAT(status.message,
+             Catch::Contains("products[1].placement: not a rotation and a translation"));
 }
 
 TEST_CASE("11752.stp (1018 faces) converts to one product with one valid closed solid",

@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "argil/core/base/number_text.hpp"
 #include "argil/io/base/atomic_write.hpp"
 #include "argil/io/cad/cad_exchange.hpp"
 #include "argil/io/cad/detail/occt_brep_builder.hpp"
@@ -86,9 +87,9 @@ Result<TopoDS_Face> checked_face(const FaceRecord& record, std::size_t index, do
 // The error for faces that failed: how many, and each one's message (the first
 // kFacesListed, then a count).
 Status failed_faces(const std::vector<std::string>& failures, std::size_t face_count,
-                    const std::string& what) {
+                    const std::string& what, const char* outcome = ", nothing written: ") {
   std::string message = std::to_string(failures.size()) + " of " + std::to_string(face_count) +
-                        " faces " + what + ", nothing written: ";
+                        " faces " + what + outcome;
   for (std::size_t k = 0; k < std::min(failures.size(), kFacesListed); ++k) {
     message += (k == 0 ? "" : " | ") + failures[k];
   }
@@ -170,9 +171,10 @@ gp_Trsf placement_trsf(const Eigen::Matrix<double, 3, 4>& m) {
 
 // A product's content in its own frame: the world-frame shapes moved back by
 // its world placement (geometry transformed: XCAF would make a located shape
-// an assembly of one). Unplaced products keep their geometry bit for bit.
+// an assembly of one). The caller skips unplaced products, which keep their
+// geometry bit for bit.
 TopoDS_Shape in_own_frame(const TopoDS_Shape& shape, const gp_Trsf& world) {
-  if (shape.IsNull() || world.Form() == gp_Identity) return shape;
+  if (shape.IsNull()) return shape;
   return BRepBuilderAPI_Transform(shape, world.Inverted(), true).Shape();
 }
 
@@ -184,12 +186,15 @@ void fill_products(const Handle(TDocStd_Document) & document, const Topology& to
   const Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(document->Main());
   const std::size_t n = topology.products.size();
   std::vector<gp_Trsf> world(n);
+  std::vector<char> placed(n, 0);  // moved from the world frame: geometry transformed
   std::vector<std::vector<std::size_t>> children(n);
   for (std::size_t p = 0; p < n; ++p) {
     const Product& product = topology.products[p];
     world[p] = placement_trsf(product.placement);
+    placed[p] = product.placement.isIdentity(0.0) ? 0 : 1;
     if (product.parent != kNoIndex) {
       world[p] = world[product.parent] * world[p];
+      placed[p] = placed[p] != 0 || placed[product.parent] != 0 ? 1 : 0;
       children[product.parent].push_back(p);
     }
   }
@@ -199,9 +204,11 @@ void fill_products(const Handle(TDocStd_Document) & document, const Topology& to
   std::vector<TDF_Label> labels(n);
   for (std::size_t p = n; p-- > 0;) {  // children come after their parents
     const Product& product = topology.products[p];
-    const TopoDS_Shape own = in_own_frame(brep.products[p], world[p]);
+    const TopoDS_Shape own =
+        placed[p] ? in_own_frame(brep.products[p], world[p]) : brep.products[p];
     if (children[p].empty()) {
-      labels[p] = tool->AddShape(own.IsNull() ? TopoDS_Compound() : own, false);
+      // A product holding nothing (a wireframe part) is still a product.
+      labels[p] = own.IsNull() ? tool->NewShape() : tool->AddShape(own, false);
     } else {
       labels[p] = tool->NewShape();
       if (!own.IsNull())
@@ -225,12 +232,21 @@ Status write_step_products(const Model& model, const detail::BuiltBrep& brep,
   const Handle(XCAFApp_Application) app = XCAFApp_Application::GetApplication();
   Handle(TDocStd_Document) document;
   app->NewDocument("MDTV-XCAF", document);
+  if (document.IsNull()) return Status::error(StatusCode::io_error, "no XCAF document");
+  // The application keeps every open document: closed however this returns.
+  struct Closer {
+    const Handle(XCAFApp_Application) & app;
+    Handle(TDocStd_Document) & document;
+    ~Closer() { app->Close(document); }
+  } closer{app, document};
+  // Products are named from the model; unnamed ones stay unnamed ("COMPOUND" otherwise).
+  XCAFDoc_ShapeTool::SetAutoNaming(false);
   fill_products(document, model.topology, brep);
   STEPCAFControl_Writer writer;
   writer.SetNameMode(true);
-  const bool transferred = writer.Transfer(document, STEPControl_AsIs);
-  app->Close(document);
-  if (!transferred) return Status::error(StatusCode::io_error, "STEP transfer failed");
+  if (!writer.Transfer(document, STEPControl_AsIs)) {
+    return Status::error(StatusCode::invalid_surface, "STEP transfer of the B-rep failed");
+  }
   return print_step(writer.ChangeWriter(), temporary);
 }
 
@@ -241,7 +257,10 @@ Status write_iges_file(const TopoDS_Shape& shape, const std::filesystem::path& t
   IGESControl_Controller::Init();
   Interface_Static::SetIVal("write.iges.brep.mode", brep ? 1 : 0);
   IGESControl_Writer writer("MM", brep ? 1 : 0);
-  if (!writer.AddShape(shape)) return Status::error(StatusCode::io_error, "IGES transfer failed");
+  if (!writer.AddShape(shape)) {
+    return Status::error(brep ? StatusCode::invalid_surface : StatusCode::io_error,
+                         "IGES transfer failed");
+  }
   writer.ComputeModel();
   IGESData_IGESWriter iges(writer.Model());
   iges.FloatWriter().SetFormat("%#.17G");
@@ -337,7 +356,7 @@ Result<detail::BuiltBrep> checked_brep(const Model& model, double tolerance) {
     }
   }
   if (!failures.empty()) {
-    return failed_faces(failures, model.faces.size(), "cannot be exported valid");
+    return failed_faces(failures, model.faces.size(), "cannot be built on shared edges", ": ");
   }
   return brep;
 }
@@ -400,12 +419,44 @@ Status guarded(Write&& write) {
   }
 }
 
-// Writes the model's B-rep whole, checked as built and as read back.
+// Shared edges whose faces came apart by more than eps (the edge's tolerance
+// grew to cover the gap): a line naming how many and the widest, or "".
+std::string open_edges(const Model& model, const detail::BuiltBrep& brep, double eps) {
+  std::size_t open = 0, widest = 0;
+  double widest_gap = 0.0;
+  for (std::size_t e = 0; e < model.topology.edges.size(); ++e) {
+    const Edge& edge = model.topology.edges[e];
+    bool shared = false;
+    for (const EdgeUse& use : edge.uses) shared |= use.face != edge.uses.front().face;
+    if (!shared || edge.degenerate) continue;
+    const double gap = BRep_Tool::Tolerance(brep.edges[e]);
+    if (gap <= std::max(eps, edge.tolerance)) continue;
+    ++open;
+    if (gap > widest_gap) widest_gap = gap, widest = e;
+  }
+  if (open == 0) return "";
+  const Edge& edge = model.topology.edges[widest];
+  std::string faces;
+  for (const EdgeUse& use : edge.uses) {
+    faces += (faces.empty() ? "" : " and ") + face_label(model.faces[use.face], use.face);
+  }
+  return std::to_string(open) + " shared edges are open wider than eps (" + number_text(eps) +
+         " mm), written with tolerances that cover the gaps; the widest, edge " +
+         std::to_string(widest) + " between " + faces + ", by " + number_text(widest_gap) + " mm";
+}
+
+// Writes the model's B-rep whole, checked as built and as read back; `notes`
+// receives what the caller should hear about it (edges left open).
 Status write_whole(const Model& model, const std::filesystem::path& path, CadFormat format,
-                   double tolerance, bool read_back) {
+                   double tolerance, double eps, bool read_back, std::vector<std::string>& notes) {
   Result<detail::BuiltBrep> built = checked_brep(model, tolerance);
   if (!built.ok()) return built.status();
   const detail::BuiltBrep& brep = built.value();
+  if (eps > 0.0) {
+    if (std::string open = open_edges(model, brep, eps); !open.empty()) {
+      notes.push_back(std::move(open));
+    }
+  }
   const TopoDS_Shape shape = everything(brep);
   if (const std::string defects = brep_defects(shape); !defects.empty()) {
     return Status::error(StatusCode::invalid_surface,
@@ -419,7 +470,7 @@ Status write_whole(const Model& model, const std::filesystem::path& path, CadFor
       const std::vector<std::string> failures =
           read_back_failures(model, brep.faces, temporary, format);
       if (!failures.empty()) {
-        return failed_faces(failures, model.faces.size(), "do not read back valid");
+        return failed_faces(failures, model.faces.size(), "do not read back valid", ": ");
       }
       const std::string lost = brep_read_back(shape, temporary, format);
       return lost.empty() ? written : Status::error(StatusCode::invalid_surface, lost);
@@ -466,13 +517,25 @@ Status write_cad(const Model& model, const std::filesystem::path& path, CadForma
   // IGES writes a B-rep only around solids: loose faces are trimmed surfaces
   // (144), which more systems read. Models without placed uses (JSON written
   // before they were recorded, models built in code) are loose faces.
-  const bool whole = !model.topology.edges.empty() && uses_placed(model.topology) &&
-                     (format == CadFormat::step || !model.topology.solids.empty());
+  const bool has_brep = !model.topology.edges.empty() &&
+                        (format == CadFormat::step || !model.topology.solids.empty());
+  const bool whole = has_brep && uses_placed(model.topology);
   std::string torn;
+  if (has_brep && !whole) {
+    torn = "some edge uses do not say which trim curve they are (loop, curve)";
+  }
   if (whole) {
-    const Status written =
-        guarded([&] { return write_whole(model, path, format, tolerance, options.read_back); });
-    if (written.ok()) return written;
+    std::vector<std::string> notes;
+    const Status written = guarded([&] {
+      return write_whole(model, path, format, tolerance, options.tolerance_mm, options.read_back,
+                         notes);
+    });
+    if (written.ok()) {
+      for (const std::string& note : notes) {
+        if (options.warnings != nullptr) options.warnings->push_back(path.string() + ": " + note);
+      }
+      return written;
+    }
     if (written.code == StatusCode::io_error) return failed(written);
     // Faces sculpted apart across their shared edges make no valid B-rep;
     // the faces alone may still be valid, and the user is told.

@@ -1,5 +1,7 @@
 #include "argil/io/model/topology.hpp"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -50,6 +52,15 @@ Status check_products(const Topology& t, std::size_t face_count) {
     }
     if (!product.placement.allFinite()) {
       return Status::error(StatusCode::invalid_argument, field + ".placement: not finite");
+    }
+    // A rotation and a translation: STEP places parts rigidly, and a mirror or
+    // scale would turn a solid inside out or change its size.
+    const Eigen::Matrix3d rotation = product.placement.leftCols<3>();
+    const double off_orthogonal =
+        (rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+    if (off_orthogonal > 1e-9 || rotation.determinant() <= 0.0) {
+      return Status::error(StatusCode::invalid_argument,
+                           field + ".placement: not a rotation and a translation");
     }
     Status s = check_indices(product.solids, t.solids.size(), field + ".solids", "solids");
     if (s.ok()) s = check_indices(product.shells, t.shells.size(), field + ".shells", "shells");
@@ -130,6 +141,17 @@ Status check_placement(const Model& model) {
                                  std::to_string(use.face) + " is taken by " + use_name(e2, u2));
       }
       slot[use.curve] = {e, u};
+    }
+    // A seam: its face's loop runs along it once and against it once.
+    const auto& uses = t.edges[e].uses;
+    for (std::size_t a = 0; a < uses.size(); ++a) {
+      for (std::size_t b = a + 1; b < uses.size(); ++b) {
+        if (uses[a].face == uses[b].face && uses[a].along == uses[b].along) {
+          return Status::error(StatusCode::invalid_argument,
+                               use_name(e, b) + ": face " + std::to_string(uses[b].face) +
+                                   " runs the same way along its seam twice");
+        }
+      }
     }
   }
   for (std::size_t f = 0; f < model.faces.size(); ++f) {

@@ -115,6 +115,7 @@ class BrepBuilder {
     for (const TopoDS_Face& face : out.faces) builder.Add(all, face);
     BRepLib::UpdateTolerances(all);
     assemble(out);
+    out.edges = edges_;
     return out;
   }
 

@@ -4,6 +4,7 @@
 // faces that use it; one vertex per topology vertex; each face's wires from its
 // uses in loop order; shells, solids and products as recorded.
 
+#include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 
@@ -16,6 +17,7 @@ namespace argil::io::detail {
 
 struct BuiltBrep {
   std::vector<TopoDS_Face> faces;  // per model face, oriented as the model says
+  std::vector<TopoDS_Edge> edges;  // per topology edge
   /// Per product: a compound of the solids, shells and faces it holds
   /// directly, in the world frame; null when it holds none.
   std::vector<TopoDS_Shape> products;
