@@ -317,7 +317,27 @@ double DeformableBody::last_step_motion() const {
   for (int i = w.i0; i < w.i1; ++i)
     for (int j = w.j0; j < w.j1; ++j)
       largest = std::max(largest, velocities_.row(static_cast<Eigen::Index>(i) * nv + j).norm());
-  return step_dt_ * largest;
+  return std::max(step_dt_ * largest, displaced_motion_);
+}
+
+void DeformableBody::displace(const std::vector<Eigen::Index>& poles, const ControlNet& dp,
+                              const ControlNet& dv) {
+  const int nv = stiffness_.count_v();
+  PoleWindow moved;
+  for (std::size_t k = 0; k < poles.size(); ++k) {
+    const Eigen::Index p = poles[k];
+    if (fixed_[static_cast<std::size_t>(p)]) continue;
+    const Eigen::Index r = static_cast<Eigen::Index>(k);
+    points_.row(p) += dp.row(r);
+    velocities_.row(p) += dv.row(r);
+    displaced_motion_ = std::max(displaced_motion_, dp.row(r).norm());
+    const auto [i, j] = pole_ij(p, nv);
+    moved = moved.united({i, i + 1, j, j + 1});
+  }
+  if (moved.empty()) return;
+  displaced_ = displaced_.united(moved);
+  resting_ = false;
+  hierarchy_.set_control_points_in(points_, moved.i0, moved.i1, moved.j0, moved.j1);
 }
 
 bool DeformableBody::settled(double distance) const {
@@ -451,6 +471,35 @@ SymmetricBandMatrix DeformableBody::step_matrix(const SolveRegion& region, doubl
   return a;
 }
 
+Result<StepResponse> DeformableBody::step_response(const std::vector<Eigen::Index>& poles,
+                                                   const RowMajorMatrix& forces, double dt) const {
+  assert(forces.rows() == static_cast<Eigen::Index>(poles.size()));
+  const int nu = stiffness_.count_u(), nv = stiffness_.count_v();
+  PoleWindow loads;
+  for (const Eigen::Index p : poles) {
+    const auto [i, j] = pole_ij(p, nv);
+    loads = loads.united({i, i + 1, j, j + 1});
+  }
+  StepResponse out;
+  if (loads.empty()) return out;
+  const SolveRegion r = region(tie_closed(loads.grown(margin_[0], margin_[1], nu, nv)));
+  Result<BandedCholesky> factor = BandedCholesky::factorize(step_matrix(r, dt));
+  if (!factor.ok()) return factor.status();
+  RowMajorMatrix b = RowMajorMatrix::Zero(static_cast<Eigen::Index>(r.order.size()), forces.cols());
+  for (std::size_t k = 0; k < poles.size(); ++k) {
+    if (fixed_[static_cast<std::size_t>(poles[k])]) continue;
+    b.row(r.rank[static_cast<std::size_t>(poles[k])]) += forces.row(static_cast<Eigen::Index>(k));
+  }
+  tie_load(b, r.ties, r.rank);
+  factor.value().solve_in_place(b);
+  untie_solution(b, r.ties, r.rank);
+  for (std::size_t k = 0; k < r.order.size(); ++k)
+    if (fixed_[static_cast<std::size_t>(r.order[k])]) b.row(static_cast<Eigen::Index>(k)).setZero();
+  out.poles = r.order;
+  out.motion = dt * dt * b;
+  return out;
+}
+
 Status DeformableBody::factorize(double dt) {
   if (full_.solver && full_.dt == dt) return Status::success();
   Result<BandedCholesky> f = BandedCholesky::factorize(step_matrix(full_, dt));
@@ -505,6 +554,7 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
       if (w != 0.0) load_at(p);
   for (Eigen::Index p = 0; p < forces.rows(); ++p)
     if (!forces.row(p).isZero(0.0)) load_at(p);
+  loads = loads.united(displaced_);  // a joint moved them: solved as loaded
   if (!loads.empty()) {
     // Grow (never shrink) the window once the loads come within the influence
     // margin of its edge, with slack so the tool can travel before the next
@@ -625,6 +675,8 @@ Result<LoadPreview> DeformableBody::start_step(double dt, const ControlNet& forc
   }
   assert(forces.rows() == 0 || forces.rows() == masses_.size());
   if (Status s = plan_region(dt, forces, loads); !s.ok()) return s;
+  displaced_ = {};
+  displaced_motion_ = 0.0;
   const bool loaded = (loads && !loads->empty()) || !forces.isZero(0.0);
   if (loaded) resting_ = false;
   if (step_idle_) {

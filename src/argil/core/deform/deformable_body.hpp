@@ -55,6 +55,13 @@ inline constexpr double kCreateFactorWork = 1e8;
 /// many yields (the surface's own stretch is held at the yield).
 inline constexpr double kPlasticStretchCap = 3.0;
 
+/// How a body's poles move over one step under extra control-point forces
+/// (DeformableBody::step_response): one row per pole in `poles`.
+struct StepResponse {
+  std::vector<Eigen::Index> poles;
+  RowMajorMatrix motion;  // [mm] per unit of each force column
+};
+
 /// State P (control points), V (their velocities), P_rest (rest control
 /// points) and a material. One step, with h = dt, K the elastic stiffness
 /// (shell matrices times the material's stiffnesses), C = beta K and M' =
@@ -154,6 +161,23 @@ class DeformableBody {
   bool resting() const { return resting_; }
   /// A window is active or being factorised.
   bool window_planned() const { return local_.has_value() || pending_.has_value(); }
+
+  /// Adds a joint's correction (edge_joint.hpp) to some poles: P += dp, V +=
+  /// dv, held poles left alone. The body is no longer resting, and the next
+  /// step solves for those poles as for loaded ones; last_step_motion()
+  /// counts the move.
+  void displace(const std::vector<Eigen::Index>& poles, const ControlNet& dp, const ControlNet& dv);
+
+  /// How much further the poles move over one step of dt [s] when control-point
+  /// forces F are added to the step's load, the rest unchanged: h^2 S^-1 F,
+  /// S = M' + (h beta + h^2) K the step's matrix, over the window of the
+  /// poles in `poles` grown by the influence margin (poles outside it held,
+  /// as a local step holds them). `forces` has a row per entry of `poles` and
+  /// any number of columns (K acts alike on x, y and z: each column is one
+  /// coordinate of one force field). Held poles do not move. Factorises the
+  /// window once: a joint calls it when it is built, not every step.
+  Result<StepResponse> step_response(const std::vector<Eigen::Index>& poles,
+                                     const RowMajorMatrix& forces, double dt) const;
 
   /// Local solves (on by default; docs/deformation.md, Local solves): a step
   /// whose loads all lie inside the active window solves only the window's
@@ -256,6 +280,9 @@ class DeformableBody {
   /// Influence margin and growth slack of a window, in poles along u and v.
   std::array<int, 2> margin_{0, 0}, slack_{0, 0};
   PoleWindow stepped_window_;
+  /// Poles a joint moved since the last step, and how far the farthest went [mm].
+  PoleWindow displaced_;
+  double displaced_motion_ = 0.0;
   bool step_local_ = false;  // this step solves local_ (else full_)
   bool step_idle_ = false;   // this step changes nothing: exactly at rest, no load
   // Scratch over the whole net; a local step touches only rows near its window.

@@ -77,7 +77,10 @@ void HapticWorld::settle(const std::vector<char>& reach) {
     body.bound = {body.bound.min.cwiseMin(moved.min), body.bound.max.cwiseMax(moved.max)};
     // The test is on motion, not contact: a released body steps until it
     // settles, whatever the tool does.
-    if (options_.sleep && !reach[b] && d.settled(rest)) {
+    // A body its joints hold off its rest settles where they hold it.
+    const bool settled =
+        body.joint_force.rows() > 0 ? d.last_step_motion() < rest : d.settled(rest);
+    if (options_.sleep && !reach[b] && settled) {
       body.asleep = true;
       d.halt();
       body.bound = control_point_box(d.surface());

@@ -167,9 +167,10 @@ Status HapticWorld::relax(double dt) {
   for (Body& b : bodies_) {
     if (!b.deformable) continue;
     // A sleeping body goes on preparing its window, as it would awake.
-    Status s = b.asleep ? b.deformable->prepare_window(dt) : b.deformable->step(dt);
+    Status s = b.asleep ? b.deformable->prepare_window(dt) : b.deformable->step(dt, b.joint_force);
     if (!s.ok()) return s;
   }
+  if (Status s = enforce_joints(dt); !s.ok()) return s;
   // No tool: every body is out of reach.
   settle(std::vector<char>(bodies_.size(), 0));
   return Status::success();
@@ -230,6 +231,10 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
     r.status = std::move(load.status);
     return r;
   }
+  if (Status s = enforce_joints(dt); !s.ok()) {
+    r.status = std::move(s);
+    return r;
+  }
   settle(reach);
   r.force = load.force;
   r.body_force = load.body_force;
@@ -258,12 +263,12 @@ HapticWorld::Coupling HapticWorld::step_bodies(
                               ? sphere_contact_radius(sphere_->radius(), bodies_[b].pressing_force,
                                                       body.material().foundation_stiffness)
                               : 0.0;
-      p = body.begin_step(dt, {},
+      p = body.begin_step(dt, bodies_[b].joint_force,
                           footprint_pole_weights(body.surface(), body_contacts[b],
                                                  contact_shares(body_contacts[b], eps), disc,
                                                  trim(static_cast<int>(b))));
     } else {
-      p = body.begin_step(dt, {}, Eigen::VectorXd());
+      p = body.begin_step(dt, bodies_[b].joint_force, Eigen::VectorXd());
     }
     if (!p.ok()) return {p.status(), {0, 0, 0}, {0, 0, 0}, false};
     previews[b] = p.value();

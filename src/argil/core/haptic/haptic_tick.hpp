@@ -16,6 +16,7 @@
 
 #include "argil/core/collision/contact.hpp"
 #include "argil/core/deform/deformable_body.hpp"
+#include "argil/core/deform/edge_joint.hpp"
 #include "argil/core/deform/material.hpp"
 #include "argil/core/geometry/pose.hpp"
 #include "argil/core/geometry/trim_region.hpp"
@@ -121,6 +122,24 @@ class HapticWorld {
   /// Body `body`'s trims (empty: untrimmed).
   const TrimRegion& trim(int body) const;
 
+  /// Joins bodies a and b along the edge they share, given by its curve in
+  /// each one's (u, v) from the edge's start to its end (a == b: the seam of
+  /// a closed face). After every tick the joint moves both nets the least
+  /// (mass-weighted) that keeps the faces together along the edge and, where
+  /// they met tangent-continuously, tangent (edge_joint.hpp); a sleeping body
+  /// it moves wakes. At least one body must be deformable. Returns the
+  /// joint's index; fails (nothing changed) on a bad body index or curve.
+  Result<int> join(int a, const BSplineCurve& pcurve_a, int b, const BSplineCurve& pcurve_b);
+  int joint_count() const { return static_cast<int>(joints_.size()); }
+  struct Joint {
+    int a = 0, b = 0;
+    EdgeJoint joint;
+  };
+  const Joint& joint(int k) const { return joints_[static_cast<std::size_t>(k)]; }
+  /// How far the joint's faces have come apart along the edge since they
+  /// were joined [mm] (EdgeJoint::gap).
+  double joint_gap(int k) const;
+
   /// One tick of dt [s] with the device at `device.X_WD` (its tick and time
   /// are not read: the world keeps no clock).
   ///  1. The proxy moves from its last pose towards the device (god-object,
@@ -167,6 +186,9 @@ class HapticWorld {
     Box3 bound;
     bool asleep = false;
     bool in_reach = true;  // last tick
+    /// Forces its joints apply to its poles [N] (empty: none yet), added to
+    /// every step's load so a held edge does not spring open again.
+    ControlNet joint_force;
   };
   /// The proxy's move this tick (steps 1-2) and its contacts with every body.
   struct [[nodiscard]] ProxyMove {
@@ -211,6 +233,11 @@ class HapticWorld {
   int add_body(Body body);
   /// Steps every deformable body without tool load.
   Status relax(double dt);
+  /// Restores every joint whose bodies moved this tick of dt [s] (after they
+  /// stepped); fails only when a body's step matrix cannot be factorised.
+  Status enforce_joints(double dt);
+  /// Gives joint `j` its bodies' step responses at dt.
+  Status prepare_joint(Joint& j, double dt);
   ProxyMove move_sphere(const ProxyState& previous, const DeviceSample& device,
                         const std::vector<char>& reach);
   ProxyMove move_surface_tool(const ProxyState& previous, const DeviceSample& device,
@@ -225,6 +252,7 @@ class HapticWorld {
   WorldOptions options_;
   std::unique_ptr<OperatorCache> cache_;
   std::vector<Body> bodies_;
+  std::vector<Joint> joints_;
   std::vector<TrimRegion> trims_;  // per body; bodies past its end are untrimmed
   TrimRegion untrimmed_;
   std::optional<SphereProxy> sphere_;

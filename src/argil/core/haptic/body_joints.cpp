@@ -1,0 +1,115 @@
+// HapticWorld's joints: faces that share an edge kept together along it
+// (edge_joint.hpp) after every tick's steps.
+#include <array>
+#include <string>
+
+#include "argil/core/haptic/haptic_tick.hpp"
+
+namespace argil {
+
+namespace {
+
+/// A joint moves nothing for a residual below this fraction of eps: a body
+/// at rest is not woken by rounding.
+constexpr double kJointSlack = 1e-1;
+
+}  // namespace
+
+Result<int> HapticWorld::join(int a, const BSplineCurve& pcurve_a, int b,
+                              const BSplineCurve& pcurve_b) {
+  for (const int body : {a, b}) {
+    if (body < 0 || body >= body_count()) {
+      return Status::error(StatusCode::invalid_argument,
+                           "join: body " + std::to_string(body) + " is not one of the world's " +
+                               std::to_string(body_count()) + " bodies");
+    }
+  }
+  if (is_rigid(a) && is_rigid(b)) {
+    return Status::error(
+        StatusCode::invalid_argument,
+        "join: bodies " + std::to_string(a) + " and " + std::to_string(b) + " are both rigid");
+  }
+  for (const BSplineCurve* c : {&pcurve_a, &pcurve_b}) {
+    const Status s = validate(*c);
+    if (!s.ok()) return Status::error(s.code, "join: edge curve: " + s.message);
+    if (c->points.cols() != 2) {
+      return Status::error(
+          StatusCode::invalid_argument,
+          "join: edge curve has " + std::to_string(c->points.cols()) + " coordinates, not (u, v)");
+    }
+  }
+  const auto face_of = [&](int body) {
+    JointFace f;
+    f.surface = &surface(body);
+    const Eigen::Index n = f.surface->control_points.rows();
+    if (const DeformableBody* d = deformable(body)) {
+      f.held = d->fixed();
+    } else {
+      f.held.assign(static_cast<std::size_t>(n), 1);
+    }
+    return f;
+  };
+  const JointFace fa = face_of(a), fb = face_of(b);
+  Result<EdgeJoint> joint = EdgeJoint::create(
+      fa, fb, sample_shared_edge(*fa.surface, pcurve_a, *fb.surface, pcurve_b), a == b);
+  if (!joint.ok()) return joint.status();
+  joints_.push_back({a, b, std::move(joint).value()});
+  return joint_count() - 1;
+}
+
+double HapticWorld::joint_gap(int k) const {
+  const Joint& j = joints_[static_cast<std::size_t>(k)];
+  return j.joint.gap(surface(j.a), surface(j.b));
+}
+
+Status HapticWorld::prepare_joint(Joint& j, double dt) {
+  std::array<StepResponse, 2> response;
+  for (int side = 0; side < (j.joint.seam() ? 1 : 2); ++side) {
+    const DeformableBody* d = deformable(side == 0 ? j.a : j.b);
+    if (!d) continue;
+    Result<StepResponse> r =
+        d->step_response(j.joint.loaded_poles(side), j.joint.unit_forces(side), dt);
+    if (!r.ok()) return r.status();
+    response[static_cast<std::size_t>(side)] = std::move(r).value();
+  }
+  j.joint.set_response(response[0], response[1], dt);
+  return Status::success();
+}
+
+Status HapticWorld::enforce_joints(double dt) {
+  const double slack = kJointSlack * options_.tolerance;
+  for (Joint& j : joints_) {
+    Body& a = bodies_[static_cast<std::size_t>(j.a)];
+    Body& b = bodies_[static_cast<std::size_t>(j.b)];
+    const bool moving = (a.deformable && !a.asleep) || (b.deformable && !b.asleep);
+    if (!moving) continue;
+    EdgeJoint::Correction c =
+        j.joint.correction(surface(j.a).control_points, surface(j.b).control_points, slack);
+    if (!(c.residual > slack)) continue;
+    // Built when first needed: most joints of a large model are never reached.
+    if (!j.joint.ready() || j.joint.response_dt() != dt) {
+      if (Status s = prepare_joint(j, dt); !s.ok()) return s;
+      c = j.joint.correction(surface(j.a).control_points, surface(j.b).control_points, slack);
+    }
+    for (const auto& [body, change] : {std::pair{&a, &c.a}, std::pair{&b, &c.b}}) {
+      if (!body->deformable) continue;
+      DeformableBody& d = *body->deformable;
+      if (!change->loaded.empty() && body->joint_force.rows() == 0)
+        body->joint_force = ControlNet::Zero(d.masses().size(), 3);
+      for (std::size_t k = 0; k < change->loaded.size(); ++k)
+        body->joint_force.row(change->loaded[k]) +=
+            change->forces.row(static_cast<Eigen::Index>(k));
+      if (change->poles.empty()) continue;
+      d.displace(change->poles, change->points, change->velocities);
+      body->asleep = false;
+      const ControlNet& p = d.control_points();
+      for (const Eigen::Index pole : change->poles) {
+        body->bound.min = body->bound.min.cwiseMin(p.row(pole).transpose());
+        body->bound.max = body->bound.max.cwiseMax(p.row(pole).transpose());
+      }
+    }
+  }
+  return Status::success();
+}
+
+}  // namespace argil
