@@ -47,6 +47,7 @@
 #include "argil/core/deform/contact_footprint.hpp"    // IWYU pragma: export
 #include "argil/core/deform/contact_response.hpp"     // IWYU pragma: export
 #include "argil/core/deform/deformable_body.hpp"      // IWYU pragma: export
+#include "argil/core/deform/edge_joint.hpp"           // IWYU pragma: export
 #include "argil/core/deform/join_rows.hpp"            // IWYU pragma: export
 #include "argil/core/deform/material.hpp"             // IWYU pragma: export
 #include "argil/core/deform/pole_stencil_matrix.hpp"  // IWYU pragma: export
