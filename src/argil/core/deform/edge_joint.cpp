@@ -161,7 +161,6 @@ Result<EdgeJoint> EdgeJoint::create(const JointFace& a, const JointFace& b,
   }
   EdgeJoint j;
   j.seam_ = seam;
-  j.samples_ = samples;
   const BSplineSurface& sa = *a.surface;
   const BSplineSurface& sb = *b.surface;
   // The unknowns: every free pole a sample reaches (a seam's two sides share them).
@@ -190,9 +189,7 @@ Result<EdgeJoint> EdgeJoint::create(const JointFace& a, const JointFace& b,
     const Eigen::Vector2d ua = clamped(sa, samples[k].uv_a), ub = clamped(sb, samples[k].uv_b);
     point[k] = evaluate(sa, ua.x(), ua.y());
     normal[k] = {unit_normal(sa, ua.x(), ua.y()), unit_normal(sb, ub.x(), ub.y())};
-    j.rest_gap_.push_back((point[k] - evaluate(sb, ub.x(), ub.y())).norm());
-    j.rest_angle_.push_back(line_angle(normal[k][0], normal[k][1]));
-    j.tangent_.push_back(j.rest_angle_.back() <= kTangentJoinAngle);
+    j.tangent_.push_back(line_angle(normal[k][0], normal[k][1]) <= kTangentJoinAngle);
     if (k > 0) length += (point[k] - point[k - 1]).norm();
   }
   // Turn rows are scaled by the sample spacing: an angle times a length, like the G0 rows.
@@ -397,25 +394,6 @@ EdgeJoint::Correction EdgeJoint::correction(const ControlNet& pa, const ControlN
       c.forces.row(static_cast<Eigen::Index>(k)) = pushes[k];
   }
   return out;
-}
-
-double EdgeJoint::gap(const BSplineSurface& a, const BSplineSurface& b) const {
-  double widest = 0.0;
-  for (std::size_t k = 0; k < samples_.size(); ++k) {
-    const double d = (point_on(a, samples_[k].uv_a) - point_on(b, samples_[k].uv_b)).norm();
-    widest = std::max(widest, d - rest_gap_[k]);
-  }
-  return widest;
-}
-
-double EdgeJoint::angle_change(const BSplineSurface& a, const BSplineSurface& b) const {
-  double largest = 0.0;
-  for (std::size_t k = 0; k < samples_.size(); ++k) {
-    const Eigen::Vector2d ua = clamped(a, samples_[k].uv_a), ub = clamped(b, samples_[k].uv_b);
-    const double angle = line_angle(unit_normal(a, ua.x(), ua.y()), unit_normal(b, ub.x(), ub.y()));
-    largest = std::max(largest, std::abs(angle - rest_angle_[k]));
-  }
-  return largest;
 }
 
 }  // namespace argil

@@ -75,10 +75,8 @@ class EdgeJoint {
                                   const std::vector<EdgeSample>& samples, bool seam);
 
   bool seam() const { return seam_; }
-  int sample_count() const { return static_cast<int>(samples_.size()); }
   /// Samples where the faces meet tangent-continuously (G1).
   int tangent_count() const { return tangent_count_; }
-  const std::vector<EdgeSample>& samples() const { return samples_; }
 
   /// The poles of face `side` (0: a, 1: b; a seam has only side 0) the
   /// joint's forces act on, and those forces per unit multiplier as scalar
@@ -105,13 +103,6 @@ class EdgeJoint {
   };
   Correction correction(const ControlNet& pa, const ControlNet& pb, double slack) const;
 
-  /// Largest distance between the faces' points at the samples, less the
-  /// distance they were apart when joined [mm].
-  double gap(const BSplineSurface& a, const BSplineSurface& b) const;
-  /// Largest change of the angle between the faces' normals at the samples
-  /// since they were joined [rad].
-  double angle_change(const BSplineSurface& a, const BSplineSurface& b) const;
-
  private:
   EdgeJoint() = default;
   /// The unknowns' positions, three per unknown.
@@ -133,10 +124,8 @@ class EdgeJoint {
   std::vector<SampleRows> scalar_;
 
   bool seam_ = false;
-  std::vector<EdgeSample> samples_;
   std::vector<char> tangent_;  // per sample
   int tangent_count_ = 0;
-  std::vector<double> rest_gap_, rest_angle_;
   std::vector<int> side_;           // of each unknown: 0 (a) or 1 (b)
   std::vector<Eigen::Index> pole_;  // of each unknown
   Eigen::VectorXd rest_;            // the unknowns at rest, three per unknown

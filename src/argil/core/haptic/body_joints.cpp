@@ -57,11 +57,6 @@ Result<int> HapticWorld::join(int a, const BSplineCurve& pcurve_a, int b,
   return joint_count() - 1;
 }
 
-double HapticWorld::joint_gap(int k) const {
-  const Joint& j = joints_[static_cast<std::size_t>(k)];
-  return j.joint.gap(surface(j.a), surface(j.b));
-}
-
 Status HapticWorld::prepare_joint(Joint& j, double dt) {
   std::array<StepResponse, 2> response;
   for (int side = 0; side < (j.joint.seam() ? 1 : 2); ++side) {

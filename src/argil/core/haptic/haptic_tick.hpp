@@ -136,9 +136,6 @@ class HapticWorld {
     EdgeJoint joint;
   };
   const Joint& joint(int k) const { return joints_[static_cast<std::size_t>(k)]; }
-  /// How far the joint's faces have come apart along the edge since they
-  /// were joined [mm] (EdgeJoint::gap).
-  double joint_gap(int k) const;
 
   /// One tick of dt [s] with the device at `device.X_WD` (its tick and time
   /// are not read: the world keeps no clock).
