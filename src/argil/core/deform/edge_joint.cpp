@@ -340,8 +340,8 @@ void EdgeJoint::set_response(const StepResponse& a, const StepResponse& b, doubl
   }
   Eigen::MatrixXd g = rows_ * motion;
   g = 0.5 * (g + g.transpose()).eval();
-  solve_.compute(g);
-  const Eigen::VectorXd d = solve_.vectorD();
+  solve_.emplace(g);
+  const Eigen::VectorXd d = solve_->vectorD();
   pivot_floor_ = 1e-10 * std::max(d.cwiseAbs().maxCoeff(), 1e-300);
   response_dt_ = dt;
 }
@@ -351,12 +351,12 @@ Eigen::VectorXd EdgeJoint::pseudo_solve(const Eigen::VectorXd& b) const {
   // the pivoted LDL^T's tiny pivots mark what the conditions do not fix
   // independently, and get no multiplier (a pseudo-inverse, without an
   // eigendecomposition).
-  Eigen::VectorXd y = solve_.transpositionsP() * b;
-  solve_.matrixL().solveInPlace(y);
-  const Eigen::VectorXd d = solve_.vectorD();
+  Eigen::VectorXd y = solve_->transpositionsP() * b;
+  solve_->matrixL().solveInPlace(y);
+  const Eigen::VectorXd d = solve_->vectorD();
   for (Eigen::Index k = 0; k < y.size(); ++k) y[k] = d[k] > pivot_floor_ ? y[k] / d[k] : 0.0;
-  solve_.matrixU().solveInPlace(y);
-  return solve_.transpositionsP().transpose() * y;
+  solve_->matrixU().solveInPlace(y);
+  return solve_->transpositionsP().transpose() * y;
 }
 
 EdgeJoint::Correction EdgeJoint::correction(const ControlNet& pa, const ControlNet& pb,

@@ -20,6 +20,7 @@
 #include <Eigen/SparseCore>
 #include <array>
 #include <numbers>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -132,8 +133,10 @@ class EdgeJoint {
   /// A: one row per condition, three columns per unknown.
   Eigen::SparseMatrix<double, Eigen::RowMajor> rows_;
   std::array<StepResponse, 2> response_;
-  Eigen::LDLT<Eigen::MatrixXd> solve_;  // of G = A h^2 S^-1 A^T
-  double pivot_floor_ = 0.0;            // pivots below it: directions G leaves free
+  // Of G = A h^2 S^-1 A^T. Optional: a default LDLT leaves its status
+  // uninitialised, and moving the joint would copy it.
+  std::optional<Eigen::LDLT<Eigen::MatrixXd>> solve_;
+  double pivot_floor_ = 0.0;  // pivots below it: directions G leaves free
   double response_dt_ = 0.0;
 };
 
