@@ -146,6 +146,18 @@ Status Session::rebuild_world() {
       loaded.bodies.push_back(body.value());
       body_owner_.emplace_back(static_cast<int>(m), static_cast<int>(f));
     }
+    if (loaded.spec.deformable) {
+      std::vector<int> body_of(loaded.file_model.faces.size(), -1);
+      for (std::size_t f = 0; f < loaded.file_faces.size(); ++f)
+        body_of[static_cast<std::size_t>(loaded.file_faces[f])] = loaded.bodies[f];
+      for (const io::Edge& edge : loaded.file_model.topology.edges) {
+        if (edge.degenerate || edge.uses.size() != 2) continue;
+        const int a = body_of[edge.uses[0].face], b = body_of[edge.uses[1].face];
+        if (a < 0 || b < 0) continue;
+        const Result<int> j = world_->join(a, edge.uses[0].pcurve, b, edge.uses[1].pcurve);
+        if (!j.ok()) return j.status();
+      }
+    }
   }
   return Status::success();
 }

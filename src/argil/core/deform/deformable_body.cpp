@@ -340,6 +340,35 @@ void DeformableBody::displace(const std::vector<Eigen::Index>& poles, const Cont
   hierarchy_.set_control_points_in(points_, moved.i0, moved.i1, moved.j0, moved.j1);
 }
 
+bool DeformableBody::weld(const std::vector<std::pair<Eigen::Index, Eigen::Index>>& pairs) {
+  const int nv = stiffness_.count_v();
+  PoleWindow moved;
+  for (const auto& [first, second] : pairs) {
+    if (points_.row(first) == points_.row(second) &&
+        velocities_.row(first) == velocities_.row(second))
+      continue;
+    const bool hold_first = fixed_[static_cast<std::size_t>(first)] != 0;
+    const bool hold_second = fixed_[static_cast<std::size_t>(second)] != 0;
+    if (hold_first && hold_second) continue;  // both held: neither moves
+    const double w = hold_first ? 1.0 : hold_second ? 0.0 : 0.5;
+    const Eigen::RowVector3d point = w * points_.row(first) + (1.0 - w) * points_.row(second);
+    const Eigen::RowVector3d velocity =
+        w * velocities_.row(first) + (1.0 - w) * velocities_.row(second);
+    for (const Eigen::Index p : {first, second}) {
+      displaced_motion_ = std::max(displaced_motion_, (point - points_.row(p)).norm());
+      points_.row(p) = point;
+      velocities_.row(p) = velocity;
+      const auto [i, j] = pole_ij(p, nv);
+      moved = moved.united({i, i + 1, j, j + 1});
+    }
+  }
+  if (moved.empty()) return false;
+  displaced_ = displaced_.united(moved);
+  resting_ = false;
+  hierarchy_.set_control_points_in(points_, moved.i0, moved.i1, moved.j0, moved.j1);
+  return true;
+}
+
 bool DeformableBody::settled(double distance) const {
   if (!(last_step_motion() < distance)) return false;
   // A window opened on a body at rest holds the poles outside it at rest.

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "argil/core/deform/contact_response.hpp"
@@ -167,6 +168,11 @@ class DeformableBody {
   /// step solves for those poles as for loaded ones; last_step_motion()
   /// counts the move.
   void displace(const std::vector<Eigen::Index>& poles, const ControlNet& dp, const ControlNet& dv);
+  /// Makes each pair of poles equal to the bit, points and velocities, at
+  /// their mean (at the held one's place when one is held), as displace()
+  /// does: a closed face's seam rows kept exactly together. Returns whether
+  /// anything moved.
+  bool weld(const std::vector<std::pair<Eigen::Index, Eigen::Index>>& pairs);
 
   /// How much further the poles move over one step of dt [s] when control-point
   /// forces F are added to the step's load, the rest unchanged: h^2 S^-1 F,

@@ -1,5 +1,6 @@
 #include "argil/core/deform/edge_joint.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -340,23 +341,25 @@ void EdgeJoint::set_response(const StepResponse& a, const StepResponse& b, doubl
   }
   Eigen::MatrixXd g = rows_ * motion;
   g = 0.5 * (g + g.transpose()).eval();
-  solve_.emplace(g);
-  const Eigen::VectorXd d = solve_->vectorD();
-  pivot_floor_ = 1e-10 * std::max(d.cwiseAbs().maxCoeff(), 1e-300);
+  // Eigenpairs below 1e-10 of the largest are directions the conditions do
+  // not fix independently (rounding): they get no multiplier.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(g);
+  const Eigen::VectorXd& mu = eigen.eigenvalues();
+  const double floor = 1e-10 * std::max(mu.cwiseAbs().maxCoeff(), 1e-300);
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index k = 0; k < mu.size(); ++k)
+    if (mu[k] > floor) kept.push_back(k);
+  range_.resize(g.rows(), static_cast<Eigen::Index>(kept.size()));
+  inverse_eigen_.resize(static_cast<Eigen::Index>(kept.size()));
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    range_.col(static_cast<Eigen::Index>(k)) = eigen.eigenvectors().col(kept[k]);
+    inverse_eigen_[static_cast<Eigen::Index>(k)] = 1.0 / mu[kept[k]];
+  }
   response_dt_ = dt;
 }
 
 Eigen::VectorXd EdgeJoint::pseudo_solve(const Eigen::VectorXd& b) const {
-  // G is singular where there are more samples than the nets can follow:
-  // the pivoted LDL^T's tiny pivots mark what the conditions do not fix
-  // independently, and get no multiplier (a pseudo-inverse, without an
-  // eigendecomposition).
-  Eigen::VectorXd y = solve_->transpositionsP() * b;
-  solve_->matrixL().solveInPlace(y);
-  const Eigen::VectorXd d = solve_->vectorD();
-  for (Eigen::Index k = 0; k < y.size(); ++k) y[k] = d[k] > pivot_floor_ ? y[k] / d[k] : 0.0;
-  solve_->matrixU().solveInPlace(y);
-  return solve_->transpositionsP().transpose() * y;
+  return range_ * inverse_eigen_.cwiseProduct(range_.transpose() * b);
 }
 
 EdgeJoint::Correction EdgeJoint::correction(const ControlNet& pa, const ControlNet& pb,

@@ -15,12 +15,10 @@
 // forces are kept and applied in later steps, so a held edge does not spring
 // open again.
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <array>
 #include <numbers>
-#include <optional>
 #include <utility>
 #include <vector>
 
@@ -133,10 +131,12 @@ class EdgeJoint {
   /// A: one row per condition, three columns per unknown.
   Eigen::SparseMatrix<double, Eigen::RowMajor> rows_;
   std::array<StepResponse, 2> response_;
-  // Of G = A h^2 S^-1 A^T. Optional: a default LDLT leaves its status
-  // uninitialised, and moving the joint would copy it.
-  std::optional<Eigen::LDLT<Eigen::MatrixXd>> solve_;
-  double pivot_floor_ = 0.0;  // pivots below it: directions G leaves free
+  // G^+ = V diag(1/mu) V^T over G = A h^2 S^-1 A^T's eigenpairs above the
+  // floor: G is singular (more samples than the nets can follow), and a
+  // pivoted LDL^T with small pivots dropped is not a pseudo-inverse there:
+  // on the screw's shank and cone it left a 0.4 mm gap uncorrected.
+  Eigen::MatrixXd range_;          // V: the kept eigenvectors, one per column
+  Eigen::VectorXd inverse_eigen_;  // 1/mu for each
   double response_dt_ = 0.0;
 };
 

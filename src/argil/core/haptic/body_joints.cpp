@@ -1,6 +1,8 @@
 // HapticWorld's joints: faces that share an edge kept together along it
 // (edge_joint.hpp) after every tick's steps.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 
 #include "argil/core/haptic/haptic_tick.hpp"
@@ -12,6 +14,29 @@ namespace {
 /// A joint moves nothing for a residual below this fraction of eps: a body
 /// at rest is not woken by rounding.
 constexpr double kJointSlack = 1e-1;
+
+/// The pole pairs of a closed face's two coinciding boundary rows (along u,
+/// else along v), points and weights equal within 1e-9 of the net's size;
+/// empty when neither pair of rows coincides.
+std::vector<std::pair<Eigen::Index, Eigen::Index>> coinciding_rows(const BSplineSurface& s) {
+  const int nu = s.count(Direction::u), nv = s.count(Direction::v);
+  const double close = 1e-9 * std::max(control_point_box(s).diagonal(), 1e-300);
+  const auto same = [&](Eigen::Index p, Eigen::Index q) {
+    if ((s.control_points.row(p) - s.control_points.row(q)).norm() > close) return false;
+    return !s.is_rational() || std::abs(s.weights[p] - s.weights[q]) <= 1e-12 * s.weights[p];
+  };
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> pairs;
+  for (int j = 0; j < nv; ++j) pairs.emplace_back(s.pole_index(0, j), s.pole_index(nu - 1, j));
+  if (std::all_of(pairs.begin(), pairs.end(),
+                  [&](const auto& p) { return same(p.first, p.second); }))
+    return pairs;
+  pairs.clear();
+  for (int i = 0; i < nu; ++i) pairs.emplace_back(s.pole_index(i, 0), s.pole_index(i, nv - 1));
+  if (std::all_of(pairs.begin(), pairs.end(),
+                  [&](const auto& p) { return same(p.first, p.second); }))
+    return pairs;
+  return {};
+}
 
 }  // namespace
 
@@ -53,7 +78,9 @@ Result<int> HapticWorld::join(int a, const BSplineCurve& pcurve_a, int b,
   Result<EdgeJoint> joint = EdgeJoint::create(
       fa, fb, sample_shared_edge(*fa.surface, pcurve_a, *fb.surface, pcurve_b), a == b);
   if (!joint.ok()) return joint.status();
-  joints_.push_back({a, b, std::move(joint).value()});
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> welded;
+  if (a == b && deformable(a)) welded = coinciding_rows(*fa.surface);
+  joints_.push_back({a, b, std::move(joint).value(), std::move(welded)});
   return joint_count() - 1;
 }
 
@@ -80,7 +107,10 @@ Status HapticWorld::enforce_joints(double dt) {
     if (!moving) continue;
     EdgeJoint::Correction c =
         j.joint.correction(surface(j.a).control_points, surface(j.b).control_points, slack);
-    if (!(c.residual > slack)) continue;
+    if (!(c.residual > slack)) {
+      weld_seam(j);
+      continue;
+    }
     // Built when first needed: most joints of a large model are never reached.
     if (!j.joint.ready() || j.joint.response_dt() != dt) {
       if (Status s = prepare_joint(j, dt); !s.ok()) return s;
@@ -103,8 +133,22 @@ Status HapticWorld::enforce_joints(double dt) {
         body->bound.max = body->bound.max.cwiseMax(p.row(pole).transpose());
       }
     }
+    weld_seam(j);
   }
   return Status::success();
+}
+
+void HapticWorld::weld_seam(const Joint& j) {
+  if (j.welded.empty()) return;
+  Body& body = bodies_[static_cast<std::size_t>(j.a)];
+  DeformableBody& d = *body.deformable;
+  if (!d.weld(j.welded)) return;
+  body.asleep = false;
+  const ControlNet& p = d.control_points();
+  for (const auto& [first, second] : j.welded) {
+    body.bound.min = body.bound.min.cwiseMin(p.row(first).transpose());
+    body.bound.max = body.bound.max.cwiseMax(p.row(first).transpose());
+  }
 }
 
 }  // namespace argil

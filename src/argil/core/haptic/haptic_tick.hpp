@@ -124,16 +124,21 @@ class HapticWorld {
 
   /// Joins bodies a and b along the edge they share, given by its curve in
   /// each one's (u, v) from the edge's start to its end (a == b: the seam of
-  /// a closed face). After every tick the joint moves both nets the least
-  /// (mass-weighted) that keeps the faces together along the edge and, where
-  /// they met tangent-continuously, tangent (edge_joint.hpp); a sleeping body
-  /// it moves wakes. At least one body must be deformable. Returns the
-  /// joint's index; fails (nothing changed) on a bad body index or curve.
+  /// a closed face). After every tick's steps the joint's edge forces, through
+  /// each body's step response, keep the faces together along the edge and
+  /// turning alike about it (edge_joint.hpp); a sleeping body it moves wakes.
+  /// A seam whose boundary rows of poles coincide keeps them equal to the bit.
+  /// At least one body must be deformable. Returns the joint's index; fails
+  /// (nothing changed) on a bad body index or curve.
   Result<int> join(int a, const BSplineCurve& pcurve_a, int b, const BSplineCurve& pcurve_b);
   int joint_count() const { return static_cast<int>(joints_.size()); }
   struct Joint {
     int a = 0, b = 0;
     EdgeJoint joint;
+    /// A seam whose two boundary rows of poles coincide (a clamped closed
+    /// face): the pole pairs kept equal to the bit after every correction, so
+    /// the face stays exactly closed.
+    std::vector<std::pair<Eigen::Index, Eigen::Index>> welded;
   };
   const Joint& joint(int k) const { return joints_[static_cast<std::size_t>(k)]; }
 
@@ -235,6 +240,9 @@ class HapticWorld {
   Status enforce_joints(double dt);
   /// Gives joint `j` its bodies' step responses at dt.
   Status prepare_joint(Joint& j, double dt);
+  /// Moves each welded pole pair of seam `j` to its mean (to the held one's
+  /// place when one is held).
+  void weld_seam(const Joint& j);
   ProxyMove move_sphere(const ProxyState& previous, const DeviceSample& device,
                         const std::vector<char>& reach);
   ProxyMove move_surface_tool(const ProxyState& previous, const DeviceSample& device,
