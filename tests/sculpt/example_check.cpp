@@ -22,6 +22,8 @@
 //       came near, else by at most --quiet-max;
 //     - the faces stayed joined: along every edge two named faces (or a
 //       closed face's seam) share, the gap between them grew by at most eps
+//       and the angle between their normals changed by at most
+//       kTangentJoinAngle (1 degree)
 //       (33 points along one use, each against the other use's nearest of 513);
 //     - on the other faces every control point that moved (against that
 //       rebuilt refinement) more than --quiet-max lies within reach of the
@@ -52,6 +54,7 @@
 #include <string>
 #include <vector>
 
+#include "argil/core/deform/edge_joint.hpp"
 #include "argil/core/geometry/bspline_curve.hpp"
 #include "argil/core/geometry/degree_elevation.hpp"
 #include "argil/core/geometry/evaluate.hpp"
@@ -67,30 +70,53 @@ using argil::Direction;
 
 int failures = 0;
 
-Eigen::Vector3d point_at(const BSplineSurface& s, const argil::BSplineCurve& pcurve, double t) {
+Eigen::Vector2d uv_at(const BSplineSurface& s, const argil::BSplineCurve& pcurve, double t) {
   const Eigen::VectorXd uv = argil::evaluate(pcurve, t);
-  return argil::evaluate(
-      s, std::clamp(uv[0], s.domain_start(Direction::u), s.domain_end(Direction::u)),
-      std::clamp(uv[1], s.domain_start(Direction::v), s.domain_end(Direction::v)));
+  return {std::clamp(uv[0], s.domain_start(Direction::u), s.domain_end(Direction::u)),
+          std::clamp(uv[1], s.domain_start(Direction::v), s.domain_end(Direction::v))};
 }
 
-/// How far apart two faces are along an edge they share: 33 points along
-/// one use, each against the nearest of 513 along the other [mm].
-double edge_gap(const BSplineSurface& a, const argil::BSplineCurve& on_a, const BSplineSurface& b,
-                const argil::BSplineCurve& on_b) {
+Eigen::Vector3d point_at(const BSplineSurface& s, const argil::BSplineCurve& pcurve, double t) {
+  const Eigen::Vector2d uv = uv_at(s, pcurve, t);
+  return argil::evaluate(s, uv.x(), uv.y());
+}
+
+Eigen::Vector3d normal_at(const BSplineSurface& s, const argil::BSplineCurve& pcurve, double t) {
+  const Eigen::Vector2d uv = uv_at(s, pcurve, t);
+  return argil::unit_normal(s, uv.x(), uv.y());
+}
+
+/// Two faces along an edge they share, at 33 points along one use, each
+/// against the nearest of 513 along the other: how far apart they are [mm]
+/// and the angle between their normals as lines [rad] (a face's orientation
+/// in the file does not matter).
+struct EdgeSamples {
+  std::vector<double> gap, angle;
+};
+
+EdgeSamples edge_samples(const BSplineSurface& a, const argil::BSplineCurve& on_a,
+                         const BSplineSurface& b, const argil::BSplineCurve& on_b) {
   constexpr int kDense = 512, kSparse = 32;
   std::vector<Eigen::Vector3d> dense;
+  std::vector<double> dense_t;
   const double b0 = on_b.domain_start(), b1 = on_b.domain_end();
-  for (int k = 0; k <= kDense; ++k) dense.push_back(point_at(b, on_b, b0 + (b1 - b0) * k / kDense));
-  const double a0 = on_a.domain_start(), a1 = on_a.domain_end();
-  double gap = 0.0;
-  for (int k = 0; k <= kSparse; ++k) {
-    const Eigen::Vector3d p = point_at(a, on_a, a0 + (a1 - a0) * k / kSparse);
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& q : dense) nearest = std::min(nearest, (p - q).norm());
-    gap = std::max(gap, nearest);
+  for (int k = 0; k <= kDense; ++k) {
+    dense_t.push_back(b0 + (b1 - b0) * k / kDense);
+    dense.push_back(point_at(b, on_b, dense_t.back()));
   }
-  return gap;
+  const double a0 = on_a.domain_start(), a1 = on_a.domain_end();
+  EdgeSamples out;
+  for (int k = 0; k <= kSparse; ++k) {
+    const double t = a0 + (a1 - a0) * k / kSparse;
+    const Eigen::Vector3d p = point_at(a, on_a, t);
+    std::size_t nearest = 0;
+    for (std::size_t q = 1; q < dense.size(); ++q)
+      if ((p - dense[q]).norm() < (p - dense[nearest]).norm()) nearest = q;
+    out.gap.push_back((p - dense[nearest]).norm());
+    const Eigen::Vector3d na = normal_at(a, on_a, t), nb = normal_at(b, on_b, dense_t[nearest]);
+    out.angle.push_back(std::atan2(na.cross(nb).norm(), std::abs(na.dot(nb))));
+  }
+  return out;
 }
 
 void check(bool ok, const std::string& what) {
@@ -679,11 +705,13 @@ int main(int argc, char** argv) {
               ": some samples or control points lie beyond the reach (the check is not "
               "empty)");
 
-    // The faces stayed joined: no shared edge opened by more than eps.
+    // The faces stayed joined: no shared edge opened by more than eps, and
+    // none turned about itself by more than kTangentJoinAngle (a G1 edge stays
+    // G1, a crease keeps its angle).
     if (spec.deformable) {
-      int shared = 0, opened = 0;
-      double widest = 0.0, widest_before = 0.0;
-      std::size_t widest_edge = 0;
+      int shared = 0, opened = 0, turned = 0;
+      double widest = 0.0, widest_before = 0.0, most_turned = 0.0;
+      std::size_t widest_edge = 0, turned_edge = 0;
       for (std::size_t e = 0; e < topology.edges.size(); ++e) {
         const argil::io::Edge& edge = topology.edges[e];
         if (edge.degenerate || edge.uses.size() != 2) continue;
@@ -692,24 +720,36 @@ int main(int argc, char** argv) {
         // A face the scene does not name is not in the session: nothing joins it.
         if (!named[x.face] || !named[y.face]) continue;
         ++shared;
-        const double gap_before =
-            edge_gap(file_faces[x.face].surface, x.pcurve, file_faces[y.face].surface, y.pcurve);
-        const double gap_after =
-            edge_gap(exported[x.face].surface, x.pcurve, exported[y.face].surface, y.pcurve);
+        const EdgeSamples was = edge_samples(file_faces[x.face].surface, x.pcurve,
+                                             file_faces[y.face].surface, y.pcurve);
+        const EdgeSamples is =
+            edge_samples(exported[x.face].surface, x.pcurve, exported[y.face].surface, y.pcurve);
+        const double gap_before = *std::max_element(was.gap.begin(), was.gap.end());
+        const double gap_after = *std::max_element(is.gap.begin(), is.gap.end());
         if (gap_after - gap_before > widest - widest_before) {
           widest = gap_after;
           widest_before = gap_before;
           widest_edge = e;
         }
         if (gap_after > gap_before + eps) ++opened;
+        double turn = 0.0;
+        for (std::size_t k = 0; k < was.angle.size(); ++k)
+          turn = std::max(turn, std::abs(is.angle[k] - was.angle[k]));
+        if (turn > most_turned) most_turned = turn, turned_edge = e;
+        if (turn > argil::kTangentJoinAngle) ++turned;
       }
       if (shared > 0) {
         std::snprintf(line, sizeof line,
                       "%s stayed joined: %d of the %d edges its named faces share opened by more "
-                      "than eps; the most "
-                      "widened, edge %zu, %.3g mm apart (%.3g mm in the input)",
+                      "than eps; the most widened, edge %zu, %.3g mm apart (%.3g mm in the input)",
                       spec.name.c_str(), opened, shared, widest_edge, widest, widest_before);
         check(opened == 0, line);
+        std::snprintf(line, sizeof line,
+                      "%s kept its edges' angles: %d of %d turned by more than %.3g rad; the "
+                      "most, edge %zu, by %.3g rad",
+                      spec.name.c_str(), turned, shared, argil::kTangentJoinAngle, turned_edge,
+                      most_turned);
+        check(turned == 0, line);
       }
     }
   }
