@@ -354,8 +354,10 @@ bool DeformableBody::weld(const std::vector<std::pair<Eigen::Index, Eigen::Index
     const Eigen::RowVector3d point = w * points_.row(first) + (1.0 - w) * points_.row(second);
     const Eigen::RowVector3d velocity =
         w * velocities_.row(first) + (1.0 - w) * velocities_.row(second);
+    // Not counted in displaced_motion_: a weld closes what its seam joint
+    // already holds within its slack, and counting it could keep a body whose
+    // steps pull the seam apart by rounding from ever settling.
     for (const Eigen::Index p : {first, second}) {
-      displaced_motion_ = std::max(displaced_motion_, (point - points_.row(p)).norm());
       points_.row(p) = point;
       velocities_.row(p) = velocity;
       const auto [i, j] = pole_ij(p, nv);

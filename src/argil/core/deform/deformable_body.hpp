@@ -169,9 +169,10 @@ class DeformableBody {
   /// counts the move.
   void displace(const std::vector<Eigen::Index>& poles, const ControlNet& dp, const ControlNet& dv);
   /// Makes each pair of poles equal to the bit, points and velocities, at
-  /// their mean (at the held one's place when one is held), as displace()
-  /// does: a closed face's seam rows kept exactly together. Returns whether
-  /// anything moved.
+  /// their mean (at the held one's place when one is held): a closed face's
+  /// seam rows kept exactly together. Like displace() it marks them loaded for
+  /// the next step, but last_step_motion() does not count the move. Returns
+  /// whether anything moved.
   bool weld(const std::vector<std::pair<Eigen::Index, Eigen::Index>>& pairs);
 
   /// How much further the poles move over one step of dt [s] when control-point

@@ -344,6 +344,12 @@ void EdgeJoint::set_response(const StepResponse& a, const StepResponse& b, doubl
   // Eigenpairs below 1e-10 of the largest are directions the conditions do
   // not fix independently (rounding): they get no multiplier.
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(g);
+  response_dt_ = dt;
+  if (eigen.info() != Eigen::Success) {  // no multipliers: the joint holds nothing
+    range_.resize(g.rows(), 0);
+    inverse_eigen_.resize(0);
+    return;
+  }
   const Eigen::VectorXd& mu = eigen.eigenvalues();
   const double floor = 1e-10 * std::max(mu.cwiseAbs().maxCoeff(), 1e-300);
   std::vector<Eigen::Index> kept;
@@ -355,7 +361,6 @@ void EdgeJoint::set_response(const StepResponse& a, const StepResponse& b, doubl
     range_.col(static_cast<Eigen::Index>(k)) = eigen.eigenvectors().col(kept[k]);
     inverse_eigen_[static_cast<Eigen::Index>(k)] = 1.0 / mu[kept[k]];
   }
-  response_dt_ = dt;
 }
 
 Eigen::VectorXd EdgeJoint::pseudo_solve(const Eigen::VectorXd& b) const {

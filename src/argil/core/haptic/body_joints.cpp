@@ -15,27 +15,31 @@ namespace {
 /// at rest is not woken by rounding.
 constexpr double kJointSlack = 1e-1;
 
-/// The pole pairs of a closed face's two coinciding boundary rows (along u,
-/// else along v), points and weights equal within 1e-9 of the net's size;
-/// empty when neither pair of rows coincides.
-std::vector<std::pair<Eigen::Index, Eigen::Index>> coinciding_rows(const BSplineSurface& s) {
+/// The pole pairs of a closed face's two boundary rows across the seam that
+/// `pcurve` (one side of it) runs along: u = const rows when it lies on a u
+/// boundary, else v = const rows; empty unless the rows coincide (points and
+/// weights within 1e-9 of the net's size).
+std::vector<std::pair<Eigen::Index, Eigen::Index>> coinciding_rows(const BSplineSurface& s,
+                                                                   const BSplineCurve& pcurve) {
   const int nu = s.count(Direction::u), nv = s.count(Direction::v);
+  const Eigen::VectorXd mid = evaluate(pcurve, 0.5 * (pcurve.domain_start() + pcurve.domain_end()));
+  const double u0 = s.domain_start(Direction::u), u1 = s.domain_end(Direction::u);
+  const bool along_u_boundary =
+      std::min(std::abs(mid[0] - u0), std::abs(mid[0] - u1)) <= 1e-9 * std::max(u1 - u0, 1e-300);
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> pairs;
+  if (along_u_boundary) {
+    for (int j = 0; j < nv; ++j) pairs.emplace_back(s.pole_index(0, j), s.pole_index(nu - 1, j));
+  } else {
+    for (int i = 0; i < nu; ++i) pairs.emplace_back(s.pole_index(i, 0), s.pole_index(i, nv - 1));
+  }
   const double close = 1e-9 * std::max(control_point_box(s).diagonal(), 1e-300);
-  const auto same = [&](Eigen::Index p, Eigen::Index q) {
+  const auto same = [&](const std::pair<Eigen::Index, Eigen::Index>& pq) {
+    const auto [p, q] = pq;
     if ((s.control_points.row(p) - s.control_points.row(q)).norm() > close) return false;
     return !s.is_rational() || std::abs(s.weights[p] - s.weights[q]) <= 1e-12 * s.weights[p];
   };
-  std::vector<std::pair<Eigen::Index, Eigen::Index>> pairs;
-  for (int j = 0; j < nv; ++j) pairs.emplace_back(s.pole_index(0, j), s.pole_index(nu - 1, j));
-  if (std::all_of(pairs.begin(), pairs.end(),
-                  [&](const auto& p) { return same(p.first, p.second); }))
-    return pairs;
-  pairs.clear();
-  for (int i = 0; i < nu; ++i) pairs.emplace_back(s.pole_index(i, 0), s.pole_index(i, nv - 1));
-  if (std::all_of(pairs.begin(), pairs.end(),
-                  [&](const auto& p) { return same(p.first, p.second); }))
-    return pairs;
-  return {};
+  if (!std::all_of(pairs.begin(), pairs.end(), same)) pairs.clear();
+  return pairs;
 }
 
 }  // namespace
@@ -79,7 +83,7 @@ Result<int> HapticWorld::join(int a, const BSplineCurve& pcurve_a, int b,
       fa, fb, sample_shared_edge(*fa.surface, pcurve_a, *fb.surface, pcurve_b), a == b);
   if (!joint.ok()) return joint.status();
   std::vector<std::pair<Eigen::Index, Eigen::Index>> welded;
-  if (a == b && deformable(a)) welded = coinciding_rows(*fa.surface);
+  if (a == b && deformable(a)) welded = coinciding_rows(*fa.surface, pcurve_a);
   joints_.push_back({a, b, std::move(joint).value(), std::move(welded)});
   return joint_count() - 1;
 }
@@ -107,10 +111,7 @@ Status HapticWorld::enforce_joints(double dt) {
     if (!moving) continue;
     EdgeJoint::Correction c =
         j.joint.correction(surface(j.a).control_points, surface(j.b).control_points, slack);
-    if (!(c.residual > slack)) {
-      weld_seam(j);
-      continue;
-    }
+    if (!(c.residual > slack)) continue;
     // Built when first needed: most joints of a large model are never reached.
     if (!j.joint.ready() || j.joint.response_dt() != dt) {
       if (Status s = prepare_joint(j, dt); !s.ok()) return s;
@@ -133,8 +134,11 @@ Status HapticWorld::enforce_joints(double dt) {
         body->bound.max = body->bound.max.cwiseMax(p.row(pole).transpose());
       }
     }
-    weld_seam(j);
   }
+  // After every joint: a later one may move a seam's end poles (a cylinder's
+  // cap edge meets its seam there), and a tick must end with seams closed.
+  for (const Joint& j : joints_)
+    if (!bodies_[static_cast<std::size_t>(j.a)].asleep) weld_seam(j);
   return Status::success();
 }
 
