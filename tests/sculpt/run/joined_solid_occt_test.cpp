@@ -46,6 +46,22 @@ const fs::path kWork = fs::path(ARGIL_BINARY_DIR) / "joined-solid-test";
 const fs::path kScrew = fs::path(ARGIL_SOURCE_DIR) / "tests/data/screw.step";
 const fs::path kScene = fs::path(ARGIL_SOURCE_DIR) / "examples/screw_dent/scene.json";
 
+/// Runs `scene` into `out`, writing only STEP and JSON; every output written.
+void run_to_step_and_json(const fs::path& scene, const fs::path& out) {
+  RunOptions options{.scene = scene, .out = out, .fresh = true};
+  options.outputs = OutputOptions{.step = true,
+                                  .iges = false,
+                                  .json = true,
+                                  .forces = false,
+                                  .contacts = false,
+                                  .timing = false,
+                                  .pictures = false};
+  const Result<RunReport> run = run_session(options);
+  INFO(run.status().message);
+  REQUIRE(run.ok());
+  REQUIRE(run.value().failed_outputs.empty());
+}
+
 TopoDS_Shape read_step(const fs::path& file) {
   STEPControl_Reader reader;
   REQUIRE(reader.ReadFile(file.c_str()) == IFSelect_RetDone);
@@ -188,18 +204,7 @@ TEST_CASE(
   fs::create_directories(dir);
   write_box(dir / "box.step");
   write_box_scene(dir);
-  RunOptions options{.scene = dir / "scene.json", .out = dir / "out", .fresh = true};
-  options.outputs = OutputOptions{.step = true,
-                                  .iges = false,
-                                  .json = true,
-                                  .forces = false,
-                                  .contacts = false,
-                                  .timing = false,
-                                  .pictures = false};
-  const Result<RunReport> run = run_session(options);
-  INFO(run.status().message);
-  REQUIRE(run.ok());
-  REQUIRE(run.value().failed_outputs.empty());
+  run_to_step_and_json(dir / "scene.json", dir / "out");
 
   const TopoDS_Shape input = read_step(dir / "box.step");
   const TopoDS_Shape sculpted = read_step(dir / "out" / "box.step");
@@ -244,18 +249,7 @@ TEST_CASE(
 TEST_CASE("a press across the screw's rim keeps one valid closed solid, less the dent's volume",
           "[run][joint][occt]") {
   const fs::path out = kWork / "out";
-  RunOptions options{.scene = kScene, .out = out, .fresh = true};
-  options.outputs = OutputOptions{.step = true,
-                                  .iges = false,
-                                  .json = true,
-                                  .forces = false,
-                                  .contacts = false,
-                                  .timing = false,
-                                  .pictures = false};
-  const Result<RunReport> run = run_session(options);
-  INFO(run.status().message);
-  REQUIRE(run.ok());
-  REQUIRE(run.value().failed_outputs.empty());
+  run_to_step_and_json(kScene, out);
 
   const TopoDS_Shape input = read_step(kScrew);
   const TopoDS_Shape sculpted = read_step(out / "screw.step");
