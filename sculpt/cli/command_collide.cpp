@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "argil/core/base/number_text.hpp"
 #include "argil/core/collision/surface_intersection.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
@@ -121,82 +123,62 @@ void print_text(const Options& o, double eps, const CollisionResult& r) {
       r.counters.triangle_tests);
 }
 
-// ---- JSON output (hand-written: nlohmann stays inside argil::io) -----------
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char ch : s) {
-    const auto u = static_cast<unsigned char>(ch);
-    if (ch == '"' || ch == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (u < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(u));
-      out += buf;
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
-
-/// Reads back to the same double.
-std::string json_number(double x) { return number_text(x); }
+// ---- JSON output -----------------------------------------------------------
 
 template <class V>
-std::string json_vector(const V& v) {
-  std::string out = "[";
-  for (Eigen::Index k = 0; k < v.size(); ++k) out += (k ? ", " : "") + json_number(v[k]);
-  return out + "]";
+nlohmann::ordered_json json_vector(const V& v) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (Eigen::Index k = 0; k < v.size(); ++k) out.push_back(v[k]);
+  return out;
 }
 
-std::string json_curve_end(const IntersectionCurve& c, std::size_t i) {
-  return "{\"point\": " + json_vector(c.points[i]) + ", \"uv_a\": " + json_vector(c.uv_a[i]) +
-         ", \"uv_b\": " + json_vector(c.uv_b[i]) + "}";
+nlohmann::ordered_json json_contact(const Contact& c) {
+  return {{"region", c.region},
+          {"depth", c.depth},
+          {"point", json_vector(c.point)},
+          {"normal", json_vector(c.normal)},
+          {"uv_a", json_vector(c.uv_a)},
+          {"uv_b", json_vector(c.uv_b)}};
 }
 
+nlohmann::ordered_json json_curve(const IntersectionCurve& c) {
+  nlohmann::ordered_json points = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < c.points.size(); ++i)
+    points.push_back({{"point", json_vector(c.points[i])},
+                      {"uv_a", json_vector(c.uv_a[i])},
+                      {"uv_b", json_vector(c.uv_b[i])}});
+  return {{"closed", closed(c)}, {"length", curve_length(c)}, {"points", std::move(points)}};
+}
+
+/// nlohmann writes doubles in their shortest round-trip form.
 void print_json(const Options& o, double eps, const CollisionResult& r) {
-  std::string out = "{\n";
-  out += "  \"a\": {\"file\": " + json_string(o.path_a) +
-         ", \"face\": " + std::to_string(o.face_a) + "},\n";
-  out += "  \"b\": {\"file\": " + json_string(o.path_b) +
-         ", \"face\": " + std::to_string(o.face_b) + "},\n";
-  out += "  \"tolerance\": " + json_number(eps) + ",\n";
-  out += std::string("  \"refine\": ") + (o.refine ? "true" : "false") + ",\n";
-  out += "  \"contact_count\": " + std::to_string(r.contacts.size()) + ",\n";
-  out += "  \"regions\": [";
-  const std::vector<RegionSummary> regions = summarize_regions(r);
-  bool first = true;
-  for (const RegionSummary& s : regions) {
+  nlohmann::ordered_json out;
+  out["a"] = {{"file", o.path_a}, {"face", o.face_a}};
+  out["b"] = {{"file", o.path_b}, {"face", o.face_b}};
+  out["tolerance"] = eps;
+  out["refine"] = o.refine;
+  nlohmann::ordered_json regions = nlohmann::ordered_json::array();
+  for (const RegionSummary& s : summarize_regions(r)) {
     if (s.representative == nullptr) continue;
-    const Contact& c = *s.representative;
-    out += first ? "\n" : ",\n";
-    first = false;
-    out += "    {\"contacts\": " + std::to_string(s.contacts) +
-           ", \"deepest_depth\": " + json_number(s.deepest) +
-           ", \"point\": " + json_vector(c.point) + ", \"uv_a\": " + json_vector(c.uv_a) +
-           ", \"uv_b\": " + json_vector(c.uv_b) + "}";
+    nlohmann::ordered_json region = json_contact(*s.representative);
+    region.erase("region");
+    region.erase("depth");
+    regions.push_back({{"contacts", s.contacts}, {"deepest_depth", s.deepest}});
+    regions.back().update(region);
   }
-  out += first ? "],\n" : "\n  ],\n";
-  out += "  \"curves\": [";
-  first = true;
-  for (const IntersectionCurve& c : r.curves) {
-    if (c.points.empty()) continue;
-    out += first ? "\n" : ",\n";
-    first = false;
-    out += "    {\"points\": " + std::to_string(c.points.size()) +
-           ", \"length\": " + json_number(curve_length(c)) +
-           ", \"closed\": " + (closed(c) ? "true" : "false") +
-           ",\n     \"start\": " + json_curve_end(c, 0) +
-           ",\n     \"end\": " + json_curve_end(c, c.points.size() - 1) + "}";
-  }
-  out += first ? "],\n" : "\n  ],\n";
-  out += "  \"counters\": {\"nodes_visited\": " + std::to_string(r.counters.nodes_visited) +
-         ", \"nodes_refreshed\": " + std::to_string(r.counters.nodes_refreshed) +
-         ", \"leaf_pairs\": " + std::to_string(r.counters.leaf_pairs) +
-         ", \"triangle_tests\": " + std::to_string(r.counters.triangle_tests) + "}\n}\n";
-  std::fputs(out.c_str(), stdout);
+  out["regions"] = std::move(regions);
+  nlohmann::ordered_json contacts = nlohmann::ordered_json::array();
+  for (const Contact& c : r.contacts) contacts.push_back(json_contact(c));
+  out["contacts"] = std::move(contacts);
+  nlohmann::ordered_json curves = nlohmann::ordered_json::array();
+  for (const IntersectionCurve& c : r.curves)
+    if (!c.points.empty()) curves.push_back(json_curve(c));
+  out["curves"] = std::move(curves);
+  out["counters"] = {{"nodes_visited", r.counters.nodes_visited},
+                     {"nodes_refreshed", r.counters.nodes_refreshed},
+                     {"leaf_pairs", r.counters.leaf_pairs},
+                     {"triangle_tests", r.counters.triangle_tests}};
+  std::fputs((out.dump() + "\n").c_str(), stdout);
 }
 
 }  // namespace

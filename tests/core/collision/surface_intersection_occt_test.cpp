@@ -326,3 +326,46 @@ TEST_CASE(
   CHECK(steep_unrefined * 1000 <= our_points_steep);
   CHECK(worst_uv <= kRefinedRelative);
 }
+
+TEST_CASE(
+    "the wavy pair: our one curve lies on both surfaces (OCCT projection) and covers OCCT's") {
+  const auto [a, b] = argil::test::wavy_pair();
+  const Handle(Geom_BSplineSurface) oa = to_occt(a);
+  const Handle(Geom_BSplineSurface) ob = to_occt(b);
+  GeomAPI_ProjectPointOnSurf pa, pb;
+  pa.Init(oa, 0.0, 1.0, 0.0, 1.0, Precision::Confusion());
+  pb.Init(ob, 0.0, 1.0, 0.0, 1.0, Precision::Confusion());
+  GeomInt_IntSS occt(oa, ob, Precision::Confusion());
+  REQUIRE(occt.IsDone());
+  const double tol3d = occt.TolReached3d();
+  const auto ha = argil::test::hierarchy_for(a);
+  const auto hb = argil::test::hierarchy_for(b);
+  for (const double eps : {1e-3, 1e-4, 1e-5, 1e-6}) {
+    INFO("eps " << eps);
+    const argil::CollisionResult ours = argil::collide(ha, hb, {.tolerance = eps, .refine = true});
+    REQUIRE(ours.curves.size() == 1);
+    const argil::IntersectionCurve& c = ours.curves.front();
+    // OCCT's projection of every 16th point, and of both ends, onto each surface.
+    double worst = 0.0;
+    for (std::size_t k = 0; k < c.points.size(); k += (k + 16 < c.points.size() ? 16 : 1)) {
+      const Eigen::Vector3d& p = c.points[k];
+      pa.Perform(gp_Pnt(p.x(), p.y(), p.z()));
+      pb.Perform(gp_Pnt(p.x(), p.y(), p.z()));
+      REQUIRE(pa.NbPoints() > 0);
+      REQUIRE(pb.NbPoints() > 0);
+      worst = std::max({worst, pa.LowerDistance(), pb.LowerDistance()});
+    }
+    CHECK(worst <= 1e-10);
+    // Every OCCT sample that is on both surfaces lies within eps + its tolerance of our curve.
+    for (int i = 1; i <= occt.NbLines(); ++i) {
+      const Handle(Geom_Curve)& line = occt.Line(i);
+      const double t0 = line->FirstParameter(), t1 = line->LastParameter();
+      for (int k = 0; k <= 256; ++k) {
+        const Eigen::Vector3d p = eig(line->Value(t0 + (t1 - t0) * k / 256));
+        const Foot f = feet(pa, pb, oa, ob, p);
+        if (!f.found || f.distance > tol3d + eps) continue;
+        CHECK(argil::test::distance_to_result(p, ours) <= eps + tol3d);
+      }
+    }
+  }
+}

@@ -7,9 +7,11 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "argil/core.hpp"
@@ -101,6 +103,37 @@ inline double distance_to_result(const Eigen::Vector3d& p, const CollisionResult
   }
   for (const Contact& c : r.contacts) best = std::min(best, (c.point - p).norm());
   return best;
+}
+
+/// A clamped uniform bicubic n x n net over the unit square, poles at
+/// (i / (n - 1), j / (n - 1), z(x, y)).
+inline BSplineSurface unit_net(int n, const std::function<double(double, double)>& z) {
+  BSplineSurface s;
+  s.degree = {3, 3};
+  for (std::size_t d = 0; d < 2; ++d) {
+    s.knots[d].resize(n + 4);
+    for (int k = 0; k < n + 4; ++k)
+      s.knots[d][k] = std::clamp(static_cast<double>(k - 3) / (n - 3), 0.0, 1.0);
+  }
+  s.control_points.resize(n * n, 3);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = static_cast<double>(i) / (n - 1), y = static_cast<double>(j) / (n - 1);
+      s.control_points.row(s.pole_index(i, j)) << x, y, z(x, y);
+    }
+  return s;
+}
+
+/// The wavy pair: a 16x16 net z = 0.08 sin(2 pi x) cos(2 pi y) crossed by an
+/// 8x8 net z = 0.25 (x - 0.5) + 0.02 cos(3 pi y), in one curve from y = 0 to
+/// y = 1 through leaves of many sizes.
+inline std::pair<BSplineSurface, BSplineSurface> wavy_pair() {
+  constexpr double kPi = 3.14159265358979323846;
+  return {
+      unit_net(16, [](double x,
+                      double y) { return 0.08 * std::sin(2 * kPi * x) * std::cos(2 * kPi * y); }),
+      unit_net(8,
+               [](double x, double y) { return 0.25 * (x - 0.5) + 0.02 * std::cos(3 * kPi * y); })};
 }
 
 inline SurfaceHierarchy hierarchy_for(const BSplineSurface& s) {

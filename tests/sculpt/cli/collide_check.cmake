@@ -1,6 +1,6 @@
 # Runs `argil collide` on two crossing JSON faces for CTest: the text output
-# reports curves, and the --json output parses and holds the same curves with
-# parameters inside both faces' domains (both test faces are on [0, 1]^2).
+# reports curves, and the --json output parses and holds the same curves, every
+# point with parameters inside both faces' domains (both test faces are on [0, 1]^2).
 # Variables: ARGIL, A, B.
 cmake_minimum_required(VERSION 3.20)
 
@@ -29,20 +29,21 @@ if(NOT curves EQUAL text_curves)
 endif()
 math(EXPR last "${curves} - 1")
 foreach(c RANGE ${last})
-  string(JSON points GET "${json}" curves ${c} points)
+  string(JSON points LENGTH "${json}" curves ${c} points)
   if(points LESS 2)
     message(FATAL_ERROR "curve ${c} has ${points} points")
   endif()
-  foreach(end start end)
+  math(EXPR end "${points} - 1")
+  foreach(i 0 ${end})
     foreach(side uv_a uv_b)
       foreach(k 0 1)
-        string(JSON t GET "${json}" curves ${c} ${end} ${side} ${k})
+        string(JSON t GET "${json}" curves ${c} points ${i} ${side} ${k})
         # Parameters are plain decimal numbers in [0, 1] (shortest round-trip text may add an exponent).
         if(NOT t MATCHES "^-?[0-9.]+(e[-+]?[0-9]+)?$")
-          message(FATAL_ERROR "curve ${c} ${end} ${side}[${k}] is not a number: ${t}")
+          message(FATAL_ERROR "curve ${c} point ${i} ${side}[${k}] is not a number: ${t}")
         endif()
         if(t LESS 0 OR t GREATER 1)
-          message(FATAL_ERROR "curve ${c} ${end} ${side}[${k}] = ${t} is outside [0, 1]")
+          message(FATAL_ERROR "curve ${c} point ${i} ${side}[${k}] = ${t} is outside [0, 1]")
         endif()
       endforeach()
     endforeach()
@@ -50,7 +51,8 @@ foreach(c RANGE ${last})
 endforeach()
 string(JSON leaf_pairs GET "${json}" counters leaf_pairs)
 string(JSON regions LENGTH "${json}" regions)
-if(leaf_pairs LESS 1 OR regions LESS 1)
+string(JSON contacts LENGTH "${json}" contacts)
+if(leaf_pairs LESS 1 OR regions LESS 1 OR contacts LESS regions)
   message(FATAL_ERROR "expected leaf pairs and a contact region:\n${json}")
 endif()
 message(STATUS "${curves} curves, ${regions} regions, ${leaf_pairs} leaf pairs")

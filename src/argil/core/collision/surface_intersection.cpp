@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "argil/core/collision/detail/contact_regions.hpp"
+#include "argil/core/collision/detail/curve_tidy.hpp"
 #include "argil/core/collision/detail/segment_chains.hpp"
 #include "argil/core/collision/detail/surface_pair_refine.hpp"
 #include "argil/core/collision/surface_contact.hpp"
@@ -504,6 +505,7 @@ CollisionResult collide(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
       result.curves[ci] =
           refine_curve(pair, std::move(result.curves[ci]), chained.reaches[ci], request.tolerance);
   }
+  result.curves = detail::tidy_curves(std::move(result.curves), request.tolerance);
   std::vector<LeafContact> leaves;
   leaves.reserve(descent.pending.size());
   for (const PendingContact& p : descent.pending)

@@ -8,6 +8,9 @@ namespace argil::detail {
 
 namespace {
 
+/// Segments whose ends agree this closely (relative to eps) are one segment.
+constexpr double kRepeatFraction = 1e-3;
+
 /// End point `e` is point e % 2 of segment e / 2.
 class SegmentEnds {
  public:
@@ -116,9 +119,46 @@ class ChainWalker {
   ChainedCurves out_;
 };
 
+/// The segments less repeats: a segment whose ends both lie within `near` of
+/// another kept segment's ends (either way round). A curve along an edge two
+/// triangles or two leaves share is found once from each side; chaining both
+/// copies would fold the curve back on itself. Every point of a dropped
+/// segment lies within `near` of the copy kept.
+std::vector<Segment> without_repeats(const std::vector<Segment>& segments, double near) {
+  std::vector<std::size_t> by_x(segments.size());
+  for (std::size_t i = 0; i < segments.size(); ++i) by_x[i] = i;
+  const auto low_x = [&](std::size_t i) {
+    return std::min(segments[i].points[0].x(), segments[i].points[1].x());
+  };
+  std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) {
+    return std::make_pair(low_x(a), a) < std::make_pair(low_x(b), b);
+  });
+  const auto same = [near](const Segment& s, const Segment& t) {
+    const auto close = [near](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+      return (p - q).norm() <= near;
+    };
+    return (close(s.points[0], t.points[0]) && close(s.points[1], t.points[1])) ||
+           (close(s.points[0], t.points[1]) && close(s.points[1], t.points[0]));
+  };
+  std::vector<bool> dropped(segments.size(), false);
+  for (std::size_t x = 0; x < by_x.size(); ++x) {
+    if (dropped[by_x[x]]) continue;
+    for (std::size_t y = x + 1; y < by_x.size(); ++y) {
+      if (low_x(by_x[y]) - low_x(by_x[x]) > near) break;
+      if (!dropped[by_x[y]] && same(segments[by_x[x]], segments[by_x[y]])) dropped[by_x[y]] = true;
+    }
+  }
+  std::vector<Segment> kept;
+  kept.reserve(segments.size());
+  for (std::size_t i = 0; i < segments.size(); ++i)
+    if (!dropped[i]) kept.push_back(segments[i]);
+  return kept;
+}
+
 }  // namespace
 
-ChainedCurves chain_segments(const std::vector<Segment>& segments, double eps) {
+ChainedCurves chain_segments(const std::vector<Segment>& all_segments, double eps) {
+  const std::vector<Segment> segments = without_repeats(all_segments, kRepeatFraction * eps);
   const SegmentEnds ends(segments);
   ChainWalker walker(ends, match_ends(ends, eps));
   for (int e = 0; e < ends.count(); ++e)  // open chains from their free ends

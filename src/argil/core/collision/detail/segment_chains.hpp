@@ -25,7 +25,8 @@ struct ChainedCurves {
   std::vector<std::vector<double>> reaches;
 };
 
-/// Chains segments into polylines: end points coincide when they are within
+/// Chains segments into polylines (a segment whose ends both lie within 1e-3
+/// eps of another's is a repeat and is left out): end points coincide when they are within
 /// eps in space and within half the smaller leaf on each surface in
 /// parameters; they are matched greedily, closest pairs first (ties by index,
 /// so the result is deterministic). Open chains come first, from their free

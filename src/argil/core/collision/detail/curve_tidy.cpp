@@ -1,0 +1,200 @@
+#include "argil/core/collision/detail/curve_tidy.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <limits>
+#include <numeric>
+
+namespace argil::detail {
+
+namespace {
+
+double length_of(const IntersectionCurve& c) {
+  double l = 0.0;
+  for (std::size_t k = 0; k + 1 < c.points.size(); ++k) l += (c.points[k + 1] - c.points[k]).norm();
+  return l;
+}
+
+bool is_closed(const IntersectionCurve& c) {
+  return c.points.size() > 2 && c.points.front() == c.points.back() &&
+         c.uv_a.front() == c.uv_a.back();
+}
+
+double distance_to_curve(const Eigen::Vector3d& p, const IntersectionCurve& c) {
+  double best = std::numeric_limits<double>::infinity();
+  if (c.points.size() == 1) return (c.points[0] - p).norm();
+  for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
+    const Eigen::Vector3d d = c.points[k + 1] - c.points[k];
+    const double dd = d.squaredNorm();
+    const double t = dd > 0.0 ? std::clamp((p - c.points[k]).dot(d) / dd, 0.0, 1.0) : 0.0;
+    best = std::min(best, (c.points[k] + t * d - p).norm());
+  }
+  return best;
+}
+
+void reverse(IntersectionCurve& c) {
+  std::reverse(c.points.begin(), c.points.end());
+  std::reverse(c.uv_a.begin(), c.uv_a.end());
+  std::reverse(c.uv_b.begin(), c.uv_b.end());
+}
+
+/// Appends `tail` to `head`, the meeting points kept once when they coincide.
+void append(IntersectionCurve& head, const IntersectionCurve& tail) {
+  const std::size_t skip = head.points.back() == tail.points.front() ? 1 : 0;
+  head.points.insert(head.points.end(), tail.points.begin() + static_cast<long>(skip),
+                     tail.points.end());
+  head.uv_a.insert(head.uv_a.end(), tail.uv_a.begin() + static_cast<long>(skip), tail.uv_a.end());
+  head.uv_b.insert(head.uv_b.end(), tail.uv_b.begin() + static_cast<long>(skip), tail.uv_b.end());
+}
+
+/// The direction a curve leaves its last point (zero when it has no extent).
+Eigen::Vector3d out_of_end(const IntersectionCurve& c) {
+  for (std::size_t k = c.points.size() - 1; k > 0; --k) {
+    const Eigen::Vector3d d = c.points.back() - c.points[k - 1];
+    if (d.squaredNorm() > 0.0) return d;
+  }
+  return Eigen::Vector3d::Zero();
+}
+
+/// The direction a curve enters from its first point.
+Eigen::Vector3d into_start(const IntersectionCurve& c) {
+  for (std::size_t k = 1; k < c.points.size(); ++k) {
+    const Eigen::Vector3d d = c.points[k] - c.points.front();
+    if (d.squaredNorm() > 0.0) return d;
+  }
+  return Eigen::Vector3d::Zero();
+}
+
+/// True when `head`'s end meets `tail`'s start within eps and the curve runs
+/// on in the same direction across the meeting (a curve with no extent runs
+/// either way).
+bool continues(const IntersectionCurve& head, const IntersectionCurve& tail, double eps) {
+  if (!((head.points.back() - tail.points.front()).norm() <= eps)) return false;
+  return out_of_end(head).dot(into_start(tail)) >= 0.0;
+}
+
+/// A curve's bounding box grown by eps.
+struct Bounds {
+  Eigen::Vector3d lo, hi;
+  bool holds(const Eigen::Vector3d& p) const {
+    return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+  }
+  bool meets(const Bounds& o) const {
+    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+  }
+};
+
+Bounds bounds_of(const IntersectionCurve& c, double eps) {
+  Bounds b{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+           Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+  for (const Eigen::Vector3d& p : c.points) {
+    b.lo = b.lo.cwiseMin(p);
+    b.hi = b.hi.cwiseMax(p);
+  }
+  b.lo.array() -= eps;
+  b.hi.array() += eps;
+  return b;
+}
+
+/// True when every point of curve `self`, and every midpoint between its
+/// points, lies within eps of some curve other than `self` that is not dropped.
+bool covered_by_others(const std::vector<IntersectionCurve>& curves,
+                       const std::vector<Bounds>& bounds, std::size_t self,
+                       const std::vector<bool>& dropped, double eps) {
+  std::vector<std::size_t> near;  // the curves whose boxes meet this one's
+  for (std::size_t j = 0; j < curves.size(); ++j)
+    if (j != self && !dropped[j] && !curves[j].points.empty() && bounds[j].meets(bounds[self]))
+      near.push_back(j);
+  if (near.empty()) return false;
+  const auto near_other = [&](const Eigen::Vector3d& p) {
+    for (const std::size_t j : near)
+      if (bounds[j].holds(p) && distance_to_curve(p, curves[j]) <= eps) return true;
+    return false;
+  };
+  const IntersectionCurve& c = curves[self];
+  for (std::size_t k = 0; k < c.points.size(); ++k) {
+    if (!near_other(c.points[k])) return false;
+    if (k + 1 < c.points.size() && !near_other(0.5 * (c.points[k] + c.points[k + 1]))) return false;
+  }
+  return true;
+}
+
+std::vector<IntersectionCurve> drop_covered(std::vector<IntersectionCurve> curves, double eps) {
+  std::vector<double> lengths(curves.size());
+  for (std::size_t i = 0; i < curves.size(); ++i) lengths[i] = length_of(curves[i]);
+  // Shortest first, so of two duplicate pieces the longer one stays.
+  std::vector<std::size_t> order(curves.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return lengths[x] < lengths[y]; });
+  std::vector<Bounds> bounds;
+  bounds.reserve(curves.size());
+  for (const IntersectionCurve& c : curves) bounds.push_back(bounds_of(c, eps));
+  std::vector<bool> dropped(curves.size(), false);
+  for (const std::size_t i : order)
+    dropped[i] = curves[i].points.empty() || covered_by_others(curves, bounds, i, dropped, eps);
+  std::vector<IntersectionCurve> kept;
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    if (!dropped[i]) kept.push_back(std::move(curves[i]));
+  return kept;
+}
+
+/// One free end of an open curve: where it is and the direction the curve
+/// leaves it by (outward).
+struct FreeEnd {
+  Eigen::Vector3d point, outward;
+};
+
+FreeEnd end_of(const IntersectionCurve& c, bool at_start) {
+  return at_start ? FreeEnd{c.points.front(), -into_start(c)}
+                  : FreeEnd{c.points.back(), out_of_end(c)};
+}
+
+/// Joins one pair of open curves that continue each other; false when none does.
+bool join_one(std::vector<IntersectionCurve>& curves, double eps) {
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    if (is_closed(curves[i])) continue;
+    for (std::size_t j = i + 1; j < curves.size(); ++j) {
+      if (is_closed(curves[j])) continue;
+      // The four ways two open curves can meet: an end of i against an end of j.
+      for (int way = 0; way < 4; ++way) {
+        const bool i_start = (way & 1) != 0, j_end = (way & 2) != 0;
+        const FreeEnd e = end_of(curves[i], i_start), f = end_of(curves[j], !j_end);
+        // They continue each other when they meet and leave in opposite directions.
+        if (!((e.point - f.point).norm() <= eps) || e.outward.dot(f.outward) > 0.0) continue;
+        IntersectionCurve head = std::move(curves[i]), tail = std::move(curves[j]);
+        if (i_start) reverse(head);
+        if (j_end) reverse(tail);
+        append(head, tail);
+        curves[i] = std::move(head);
+        curves.erase(curves.begin() + static_cast<long>(j));
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps) {
+  curves = drop_covered(std::move(curves), eps);
+  while (join_one(curves, eps)) {
+  }
+  for (IntersectionCurve& c : curves) {
+    if (is_closed(c) || c.points.size() < 3 || !(length_of(c) > 2.0 * eps)) continue;
+    if (!continues(c, c, eps)) continue;
+    // Closed: the last point becomes the first one repeated.
+    if ((c.points.back() - c.points.front()).norm() > 0.0) {
+      c.points.push_back(c.points.front());
+      c.uv_a.push_back(c.uv_a.front());
+      c.uv_b.push_back(c.uv_b.front());
+    } else {
+      c.uv_a.back() = c.uv_a.front();
+      c.uv_b.back() = c.uv_b.front();
+    }
+  }
+  return curves;
+}
+
+}  // namespace argil::detail

@@ -1,0 +1,21 @@
+#pragma once
+// The last step of a surface-surface query: chained (and refined) curves made
+// whole. Leaves of different sizes meet at T-junctions where neighbouring
+// leaf segments do not share end points, and a curve through a leaf corner or
+// along a triangle diagonal leaves short duplicate pieces on the curve.
+
+#include <vector>
+
+#include "argil/core/collision/contact.hpp"
+
+namespace argil::detail {
+
+/// Drops every curve no longer than eps whose points all lie within eps of
+/// another curve kept (a duplicate piece: dropping it moves no intersection
+/// point more than eps from the reported set); then joins open curves whose
+/// free ends lie within eps of each other and run on in the same direction,
+/// and closes an open curve longer than 2 eps whose own ends meet that way (a
+/// closed curve repeats its first point). Isolated short curves are kept.
+std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps);
+
+}  // namespace argil::detail
