@@ -480,3 +480,58 @@ TEST_CASE("the first-crossing test agrees with the full query on crossing and on
   CHECK(crossing >= 40);
   CHECK(clear >= 40);
 }
+
+TEST_CASE("a query with b placed by a pose finds what the query on b moved by that pose finds") {
+  const BSplineSurface a = argil::test::asymmetric_surface(true);
+  std::mt19937_64 rng(9);
+  BSplineSurface b = argil::test::graph_surface(rng, 60.0, 3.0, 0.5, 3, 3);
+  b.control_points.col(0).array() -= 5.0;
+  b.control_points.col(1).array() -= 10.0;
+  // b in its own frame B, far from a; X_AB puts it back across a, turned.
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.35, Eigen::Vector3d(2, 1, -1).normalized()).toRotationMatrix();
+  const Eigen::Vector3d t(4.0, -3.0, 2.0);
+  argil::Pose X_AB;
+  X_AB.R = Eigen::Quaterniond(R);
+  X_AB.p = t;
+  const BSplineSurface moved_b = argil::test::moved(b, R, t);
+  auto ha = hierarchy_for(a);
+  auto hb = hierarchy_for(b);
+  auto hm = hierarchy_for(moved_b);
+  const bool refine = GENERATE(false, true);
+  const double eps = 1e-3;
+  const argil::CollisionRequest request{.tolerance = eps, .refine = refine, .compute_depth = true};
+  const CollisionResult placed = argil::collide(ha, hb, X_AB, request);
+  const CollisionResult moved = argil::collide(ha, hm, request);
+  REQUIRE(placed.status.ok());
+  REQUIRE(!moved.curves.empty());
+  CHECK(placed.curves.size() == moved.curves.size());
+  CHECK(placed.region_count == moved.region_count);
+  // Both are within eps/3 of both surfaces at their parameters (to rounding
+  // when refined), so each curve lies within 2 eps / 3 of the other's.
+  const double on_surface = refine ? 1e-9 : eps / 3.0 + 1e-9;
+  for (const auto& c : placed.curves) {
+    for (std::size_t k = 0; k < c.points.size(); ++k) {
+      CHECK((argil::evaluate(a, c.uv_a[k][0], c.uv_a[k][1]) - c.points[k]).norm() <= on_surface);
+      CHECK((argil::evaluate(moved_b, c.uv_b[k][0], c.uv_b[k][1]) - c.points[k]).norm() <=
+            on_surface);
+    }
+  }
+  CollisionResult moved_curves = moved;
+  moved_curves.contacts.clear();
+  CollisionResult placed_curves = placed;
+  placed_curves.contacts.clear();
+  for (const auto& c : placed.curves)
+    for (const auto& p : c.points)
+      CHECK(argil::test::distance_to_result(p, moved_curves) <= 2.0 * eps / 3.0 + 1e-9);
+  for (const auto& c : moved.curves)
+    for (const auto& p : c.points)
+      CHECK(argil::test::distance_to_result(p, placed_curves) <= 2.0 * eps / 3.0 + 1e-9);
+  // The deepest penetration of each region agrees (it is refined on the exact surfaces).
+  const auto deepest = [](const CollisionResult& r) {
+    double d = -1.0;
+    for (const auto& c : r.contacts) d = std::max(d, c.depth);
+    return d;
+  };
+  CHECK(std::abs(deepest(placed) - deepest(moved)) <= 1e-9);
+}

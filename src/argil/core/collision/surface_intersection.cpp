@@ -51,16 +51,59 @@ double gap_to_flat_patch(const View& node, const View& sphere) {
   return to_triangles - sphere.radius - node.flatness;
 }
 
+/// The two corner triangles of a flat node and their parameter corners.
+struct LeafTriangles {
+  std::array<Triangle, 2> triangles;
+  std::array<std::array<Eigen::Vector2d, 3>, 2> params;
+  ParamRect rect;
+  double radius;
+};
+
+LeafTriangles leaf_triangles(const HierarchyNode& n) {
+  const auto& c = n.bound.corners;  // S(0,0), S(1,0), S(0,1), S(1,1)
+  const Eigen::Vector2d p00 = n.rect.corner(0), p10 = n.rect.corner(1), p01 = n.rect.corner(2),
+                        p11 = n.rect.corner(3);
+  LeafTriangles t;
+  // The same split as PatchBound::flatness: (c00, c10, c11), (c00, c11, c01).
+  t.triangles = {Triangle{c[0], c[1], c[3]}, Triangle{c[0], c[3], c[2]}};
+  t.params = {std::array<Eigen::Vector2d, 3>{p00, p10, p11},
+              std::array<Eigen::Vector2d, 3>{p00, p11, p01}};
+  t.rect = n.rect;
+  t.radius = n.bound.radius;
+  return t;
+}
+
+/// A rigid motion x -> R x + p that places one side's hierarchy in the
+/// other's frame. Spheres, corner triangles and flatness move exactly; a box
+/// becomes the box around the moved box (conservative).
+struct Rigid {
+  Eigen::Matrix3d R;
+  Eigen::Vector3d p;
+
+  Eigen::Vector3d operator()(const Eigen::Vector3d& x) const { return R * x + p; }
+  void box(Eigen::Vector3d& lo, Eigen::Vector3d& hi) const {
+    const Eigen::Vector3d centre = (*this)(0.5 * (lo + hi));
+    const Eigen::Vector3d half = R.cwiseAbs() * (0.5 * (hi - lo));
+    lo = centre - half;
+    hi = centre + half;
+  }
+};
+
 /// Entries of one side: blocks as -(id + 1), hierarchy nodes as id >= 0.
 class Side {
  public:
-  Side(const SurfaceHierarchy& h, double flat_tolerance, int max_level, QueryCounters& counters)
-      : h_(h), flat_tolerance_(flat_tolerance), max_level_(max_level), counters_(counters) {}
+  Side(const SurfaceHierarchy& h, double flat_tolerance, int max_level, QueryCounters& counters,
+       std::optional<Rigid> placed = std::nullopt)
+      : h_(h),
+        flat_tolerance_(flat_tolerance),
+        max_level_(max_level),
+        counters_(counters),
+        placed_(std::move(placed)) {}
 
   View view(int entry) {
     if (entry < 0) {
       const PatchBound& b = h_.block(-entry - 1, &counters_).bound;
-      return {b.center, b.radius, b.box.min, b.box.max, false};
+      return placed({b.center, b.radius, b.box.min, b.box.max, false});
     }
     const HierarchyNode& n = h_.node(entry, &counters_);
     const PatchBound& b = n.bound;
@@ -68,7 +111,16 @@ class Side {
     // within 2 r of each other whatever the flatness bound says.
     const bool flat =
         b.flatness <= flat_tolerance_ || 2.0 * b.radius <= flat_tolerance_ || n.level >= max_level_;
-    return {b.center, b.radius, b.box.min, b.box.max, flat, b.flatness, b.corners};
+    return placed({b.center, b.radius, b.box.min, b.box.max, flat, b.flatness, b.corners});
+  }
+
+  /// A leaf's corner triangles, placed.
+  LeafTriangles leaf(int entry) const {
+    LeafTriangles t = leaf_triangles(h_.node(entry));
+    if (placed_)
+      for (Triangle& triangle : t.triangles)
+        for (Eigen::Vector3d& corner : triangle) corner = (*placed_)(corner);
+    return t;
   }
 
   /// Entry of the block's single element, or the block itself.
@@ -91,18 +143,19 @@ class Side {
   }
 
  private:
+  View placed(View v) const {
+    if (!placed_) return v;
+    v.center = (*placed_)(v.center);
+    placed_->box(v.lo, v.hi);
+    for (Eigen::Vector3d& c : v.corners) c = (*placed_)(c);
+    return v;
+  }
+
   const SurfaceHierarchy& h_;
   double flat_tolerance_;
   int max_level_;
   QueryCounters& counters_;
-};
-
-/// The two corner triangles of a flat node and their parameter corners.
-struct LeafTriangles {
-  std::array<Triangle, 2> triangles;
-  std::array<std::array<Eigen::Vector2d, 3>, 2> params;
-  ParamRect rect;
-  double radius;
+  std::optional<Rigid> placed_;
 };
 
 /// True when a cheap lower bound on the distance between the triangles
@@ -171,20 +224,6 @@ void add_penetration_contacts(const BSplineSurface& a, const BSplineSurface& b,
     }
     begin = end;
   }
-}
-
-LeafTriangles leaf_triangles(const HierarchyNode& n) {
-  const auto& c = n.bound.corners;  // S(0,0), S(1,0), S(0,1), S(1,1)
-  const Eigen::Vector2d p00 = n.rect.corner(0), p10 = n.rect.corner(1), p01 = n.rect.corner(2),
-                        p11 = n.rect.corner(3);
-  LeafTriangles t;
-  // The same split as PatchBound::flatness: (c00, c10, c11), (c00, c11, c01).
-  t.triangles = {Triangle{c[0], c[1], c[3]}, Triangle{c[0], c[3], c[2]}};
-  t.params = {std::array<Eigen::Vector2d, 3>{p00, p10, p11},
-              std::array<Eigen::Vector2d, 3>{p00, p11, p01}};
-  t.rect = n.rect;
-  t.radius = n.bound.radius;
-  return t;
 }
 
 Eigen::Vector2d param_of(const std::array<Eigen::Vector2d, 3>& p, const Eigen::Vector3d& w) {
@@ -426,13 +465,12 @@ std::optional<PendingContact> leaf_near_touch(const LeafTriangles& la, const Lea
 class PairDescent {
  public:
   PairDescent(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
-              const CollisionRequest& request, QueryCounters& counters)
-      : ha_(ha),
-        hb_(hb),
-        request_(request),
+              const std::optional<Rigid>& placed_b, const CollisionRequest& request,
+              QueryCounters& counters)
+      : request_(request),
         counters_(counters),
         sa_(ha, request.tolerance / 3.0, request.max_level, counters),
-        sb_(hb, request.tolerance / 3.0, request.max_level, counters) {}
+        sb_(hb, request.tolerance / 3.0, request.max_level, counters, placed_b) {}
 
   void run() {
     std::vector<std::pair<int, int>> stack{{sa_.entry_of_block(0), sb_.entry_of_block(0)}};
@@ -462,8 +500,8 @@ class PairDescent {
   /// True when the pair gave a contact.
   bool examine_leaf_pair(int ea, int eb) {
     ++counters_.leaf_pairs;
-    const LeafTriangles la = leaf_triangles(ha_.node(ea));
-    const LeafTriangles lb = leaf_triangles(hb_.node(eb));
+    const LeafTriangles la = sa_.leaf(ea);
+    const LeafTriangles lb = sb_.leaf(eb);
     const double eps = request_.tolerance;
     const double reach = 2.0 * (la.radius + lb.radius) + eps;
     LeafPairFindings found = leaf_crossings(la, lb, reach);
@@ -478,8 +516,6 @@ class PairDescent {
     return true;
   }
 
-  const SurfaceHierarchy& ha_;
-  const SurfaceHierarchy& hb_;
   const CollisionRequest& request_;
   QueryCounters& counters_;
   Side sa_;
@@ -488,16 +524,29 @@ class PairDescent {
 
 }  // namespace
 
-CollisionResult collide(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
-                        const CollisionRequest& request) {
+namespace {
+
+CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
+                               const std::optional<Rigid>& placed_b,
+                               const CollisionRequest& request) {
   CollisionResult result;
   // The tolerance must suit both surfaces.
   result.status = check_request(request, ha);
   if (result.status.ok()) result.status = check_request(request, hb);
   if (!result.status.ok()) return result;
-  PairDescent descent(ha, hb, request, result.counters);
+  PairDescent descent(ha, hb, placed_b, request, result.counters);
   descent.run();
-  const SurfacePair pair{ha.surface(), hb.surface(), scale_of(ha.surface(), hb.surface())};
+  // Refinement and penetration work on b's exact surface in a's frame.
+  const bool exact_b = request.refine || request.compute_depth;
+  BSplineSurface moved_b;
+  if (placed_b && exact_b) {
+    moved_b = hb.surface();
+    moved_b.control_points = ((hb.surface().control_points * placed_b->R.transpose()).rowwise() +
+                              placed_b->p.transpose())
+                                 .eval();
+  }
+  const SurfacePair pair{ha.surface(), placed_b && exact_b ? moved_b : hb.surface(),
+                         scale_of(ha.surface(), hb.surface())};
   detail::ChainedCurves chained = detail::chain_segments(descent.segments, request.tolerance);
   result.curves = std::move(chained.curves);
   if (request.refine) {
@@ -520,6 +569,18 @@ CollisionResult collide(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
   add_penetration_contacts(pair.a, pair.b, result.contacts);
   rank_regions(result.contacts, result.region_count, request.max_contacts);
   return result;
+}
+
+}  // namespace
+
+CollisionResult collide(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
+                        const CollisionRequest& request) {
+  return collide_placed(ha, hb, std::nullopt, request);
+}
+
+CollisionResult collide(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb, const Pose& X_AB,
+                        const CollisionRequest& request) {
+  return collide_placed(ha, hb, Rigid{X_AB.R.normalized().toRotationMatrix(), X_AB.p}, request);
 }
 
 }  // namespace argil

@@ -8,6 +8,7 @@
 
 #include "argil/core/collision/contact.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
+#include "argil/core/geometry/pose.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
 
 namespace argil {
@@ -47,6 +48,16 @@ namespace argil {
 /// depth = -gap (0 when the surfaces turn out to cross there). A point whose
 /// iteration does not converge near its leaf keeps its unrefined value.
 CollisionResult collide(const SurfaceHierarchy& a, const SurfaceHierarchy& b,
+                        const CollisionRequest& request = {});
+
+/// The same query with b placed rigidly in a's frame by X_AB (b's hierarchy
+/// stays in its own frame B): a rigid tool moved every tick keeps every bound
+/// it has built instead of re-bounding its control net at each pose. Spheres,
+/// corner triangles and flatness move exactly and boxes become the boxes
+/// around the moved boxes, so the guarantees above hold unchanged. Results are
+/// in a's frame (uv_b on b's own parameters). Equal to collide(a, b') for b'
+/// = b moved by X_AB up to rounding, and to the pruning the looser boxes allow.
+CollisionResult collide(const SurfaceHierarchy& a, const SurfaceHierarchy& b, const Pose& X_AB,
                         const CollisionRequest& request = {});
 
 }  // namespace argil

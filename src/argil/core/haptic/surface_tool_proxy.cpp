@@ -9,9 +9,10 @@
 
 namespace argil {
 
-SurfaceToolProxy::SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy posed, double eps)
-    : tool_points_(tool.control_points),
-      posed_(std::move(posed)),
+SurfaceToolProxy::SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy hierarchy,
+                                   double eps)
+    : hierarchy_(std::move(hierarchy)),
+      centre_T_(tool.control_points.colwise().mean().transpose()),
       eps_(eps),
       size_(control_point_box(tool).diagonal()) {}
 
@@ -29,24 +30,15 @@ Result<SurfaceToolProxy> SurfaceToolProxy::create(const BSplineSurface& tool, do
   return SurfaceToolProxy(tool, std::move(h).value(), eps);
 }
 
-void SurfaceToolProxy::place(const Pose& X_WT) {
-  const Eigen::Matrix3d R_WT = X_WT.R.normalized().toRotationMatrix();
-  ControlNet world(tool_points_.rows(), 3);
-  for (Eigen::Index k = 0; k < world.rows(); ++k)
-    world.row(k) = (R_WT * tool_points_.row(k).transpose() + X_WT.p).transpose();
-  posed_.set_control_points(world);
-}
-
 ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy*>& surfaces,
                                         const Pose& X_WT) {
-  place(X_WT);
-  const Eigen::Vector3d centre = posed_.surface().control_points.colwise().mean().transpose();
+  const Eigen::Vector3d centre = apply(X_WT, centre_T_);
   ToolContacts out;
   out.per_surface.resize(surfaces.size());
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
     if (!surfaces[b]) continue;  // out of reach
     CollisionResult r =
-        collide(*surfaces[b], posed_,
+        collide(*surfaces[b], hierarchy_, X_WT,
                 {.tolerance = eps_, .max_contacts = 64, .refine = false, .compute_depth = false});
     if (!r.status.ok()) {
       out.status = std::move(r.status);
@@ -66,7 +58,6 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
 
 SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
     const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT) {
-  place(X_WT);
   // A yes/no test: the descent stops at the first crossing leaf pair.
   const CollisionRequest request{.tolerance = eps_,
                                  .max_contacts = 1,
@@ -75,7 +66,7 @@ SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
                                  .first_crossing_only = true};
   for (const SurfaceHierarchy* surface : surfaces) {
     if (!surface) continue;
-    CollisionResult r = collide(*surface, posed_, request);
+    CollisionResult r = collide(*surface, hierarchy_, X_WT, request);
     // A failed query counts as crossing: the proxy must not move where it
     // cannot prove it is clear.
     if (!r.status.ok()) return {std::move(r.status), true};
@@ -120,6 +111,9 @@ SurfaceToolProxy::Advance SurfaceToolProxy::advance(
 ToolMove SurfaceToolProxy::push_out(const std::vector<const SurfaceHierarchy*>& surfaces,
                                     const Pose& from, const Pose& to) {
   Pose start = from;
+  // The yes/no test first: most moves start clear of every surface.
+  Crossing clear = crossing(surfaces, start);
+  if (!clear.status.ok() || !clear.crosses) return {std::move(clear.status), start};
   ToolContacts at_start = contacts(surfaces, start);
   // Pushed out along the contact normal by doubling distances when the start crosses.
   for (double push = eps_; at_start.status.ok() && at_start.crosses && push < 4.0 * size_;

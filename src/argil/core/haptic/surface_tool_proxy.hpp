@@ -1,6 +1,7 @@
 #pragma once
-// A god-object proxy for a rigid B-spline tool surface: posed per tick by
-// moving its control points, advanced towards the device only as far as it
+// A god-object proxy for a rigid B-spline tool surface: its hierarchy is
+// built once in the tool's frame T and placed by each query's pose X_WT
+// (bounds move rigidly, none is rebuilt), advanced towards the device only as far as it
 // does not cross any model surface (surface-surface collide), and sliding
 // along the surface after it stops.
 
@@ -55,8 +56,8 @@ class SurfaceToolProxy {
   /// Moves from X_WT_from towards X_WT_to (rotation interpolated by slerp).
   ToolMove move(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT_from,
                 const Pose& X_WT_to);
-  /// The tool's hierarchy at the last pose used.
-  const SurfaceHierarchy& hierarchy() const { return posed_; }
+  /// The tool's hierarchy, in its own frame T.
+  const SurfaceHierarchy& hierarchy() const { return hierarchy_; }
   /// Diagonal of the tool's control-point box [mm].
   double size() const { return size_; }
   static constexpr int kMaxBisections = 12;
@@ -73,8 +74,7 @@ class SurfaceToolProxy {
     Pose X_WT;
     bool blocked = false;
   };
-  SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy posed, double eps);
-  void place(const Pose& X_WT);
+  SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy hierarchy, double eps);
   Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
   /// From a pose that does not cross towards `to`: the last pose that does not.
   Advance advance(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from,
@@ -86,8 +86,8 @@ class SurfaceToolProxy {
   ToolMove push_out(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from,
                     const Pose& to);
 
-  ControlNet tool_points_;  // in T
-  SurfaceHierarchy posed_;
+  SurfaceHierarchy hierarchy_;  // in T
+  Eigen::Vector3d centre_T_;    // mean of the control points, in T
   double eps_;
   double size_;
 };

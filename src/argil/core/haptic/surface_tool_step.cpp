@@ -2,6 +2,8 @@
 // conservatively, sticks or slips, and its contacts with every body. The
 // advance tests crossings against the whole surfaces; contacts outside a
 // body's trims are dropped (material only), for friction and load alike.
+#include <optional>
+
 #include "argil/core/deform/contact_response.hpp"
 #include "argil/core/haptic/haptic_tick.hpp"
 
@@ -15,6 +17,9 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
   ProxyMove out;
   ToolMove moved = surface_tool_->move(surfs, previous.X_WT, device.X_WD);
   if (!moved.status.ok()) return {std::move(moved.status), {}, {}, {0, 0, 0}};
+  // The contacts at the stick point, kept when the proxy sticks there (the
+  // surfaces do not move within the proxy's part of the tick).
+  std::optional<ToolContacts> at_stick;
   if (previous.in_contact) {
     // Friction: the stick point keeps the last position with the new rotation.
     const Pose stick{device.X_WD.R, previous.X_WT.p};
@@ -31,6 +36,7 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
         out.next.stuck = fr.stick;
         if (fr.stick) {
           moved.X_WT = stick;
+          at_stick = std::move(at);
         } else {
           Pose slid = stick;
           slid.p += fr.slide;
@@ -42,9 +48,9 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
   }
   // The proxy keeps the device's rotation; its position is where the move stopped.
   out.next.X_WT = {device.X_WD.R, moved.X_WT.p};
-  ToolContacts at = surface_tool_->contacts(surfs, moved.X_WT);
+  ToolContacts at = at_stick ? std::move(*at_stick) : surface_tool_->contacts(surfs, moved.X_WT);
   if (!at.status.ok()) return {std::move(at.status), {}, {}, {0, 0, 0}};
-  drop_contacts_outside_trims(at.per_surface);
+  if (!at_stick) drop_contacts_outside_trims(at.per_surface);
   out.body_contacts = std::move(at.per_surface);
   out.outward_normal = at.outward_normal;
   return out;
