@@ -101,9 +101,21 @@ class Side {
         placed_(std::move(placed)) {}
 
   View view(int entry) {
+    if (!placed_) return own_view(entry);
+    // A placed entry is moved once per query: the descent views each node
+    // of one side against many of the other's.
+    std::vector<std::optional<View>>& cache = entry < 0 ? placed_blocks_ : placed_nodes_;
+    const auto slot = static_cast<std::size_t>(entry < 0 ? -entry - 1 : entry);
+    if (slot >= cache.size()) cache.resize(std::max(slot + 1, 2 * cache.size()));
+    if (!cache[slot]) cache[slot] = placed(own_view(entry));
+    return *cache[slot];
+  }
+
+  /// The entry's bounds in its own frame.
+  View own_view(int entry) {
     if (entry < 0) {
       const PatchBound& b = h_.block(-entry - 1, &counters_).bound;
-      return placed({b.center, b.radius, b.box.min, b.box.max, false});
+      return {b.center, b.radius, b.box.min, b.box.max, false};
     }
     const HierarchyNode& n = h_.node(entry, &counters_);
     const PatchBound& b = n.bound;
@@ -111,7 +123,7 @@ class Side {
     // within 2 r of each other whatever the flatness bound says.
     const bool flat =
         b.flatness <= flat_tolerance_ || 2.0 * b.radius <= flat_tolerance_ || n.level >= max_level_;
-    return placed({b.center, b.radius, b.box.min, b.box.max, flat, b.flatness, b.corners});
+    return {b.center, b.radius, b.box.min, b.box.max, flat, b.flatness, b.corners};
   }
 
   /// A leaf's corner triangles, placed.
@@ -144,7 +156,6 @@ class Side {
 
  private:
   View placed(View v) const {
-    if (!placed_) return v;
     v.center = (*placed_)(v.center);
     placed_->box(v.lo, v.hi);
     for (Eigen::Vector3d& c : v.corners) c = (*placed_)(c);
@@ -156,6 +167,7 @@ class Side {
   int max_level_;
   QueryCounters& counters_;
   std::optional<Rigid> placed_;
+  std::vector<std::optional<View>> placed_nodes_, placed_blocks_;
 };
 
 /// True when a cheap lower bound on the distance between the triangles
