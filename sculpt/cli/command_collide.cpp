@@ -178,7 +178,10 @@ void print_json(const Options& o, double eps, const CollisionResult& r) {
                      {"nodes_refreshed", r.counters.nodes_refreshed},
                      {"leaf_pairs", r.counters.leaf_pairs},
                      {"triangle_tests", r.counters.triangle_tests}};
-  std::fputs((out.dump() + "\n").c_str(), stdout);
+  // A path that is not UTF-8 is written with replacement characters, not thrown on.
+  std::fputs(
+      (out.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n").c_str(),
+      stdout);
 }
 
 }  // namespace

@@ -104,11 +104,14 @@ class Side {
     if (!placed_) return own_view(entry);
     // A placed entry is moved once per query: the descent views each node
     // of one side against many of the other's.
-    std::vector<std::optional<View>>& cache = entry < 0 ? placed_blocks_ : placed_nodes_;
-    const auto slot = static_cast<std::size_t>(entry < 0 ? -entry - 1 : entry);
-    if (slot >= cache.size()) cache.resize(std::max(slot + 1, 2 * cache.size()));
-    if (!cache[slot]) cache[slot] = placed(own_view(entry));
-    return *cache[slot];
+    std::vector<int>& slots = entry < 0 ? block_slots_ : node_slots_;
+    const auto id = static_cast<std::size_t>(entry < 0 ? -entry - 1 : entry);
+    if (id >= slots.size()) slots.resize(std::max(id + 1, 2 * slots.size()), -1);
+    if (slots[id] < 0) {
+      slots[id] = static_cast<int>(placed_views_.size());
+      placed_views_.push_back(placed(own_view(entry)));
+    }
+    return placed_views_[static_cast<std::size_t>(slots[id])];
   }
 
   /// The entry's bounds in its own frame.
@@ -167,7 +170,10 @@ class Side {
   int max_level_;
   QueryCounters& counters_;
   std::optional<Rigid> placed_;
-  std::vector<std::optional<View>> placed_nodes_, placed_blocks_;
+  // Placed views of the entries seen so far: ids index slots (-1: not yet
+  // placed), slots index views, so a query pays 4 bytes per id, not a view.
+  std::vector<int> node_slots_, block_slots_;
+  std::vector<View> placed_views_;
 };
 
 /// True when a cheap lower bound on the distance between the triangles
@@ -566,7 +572,9 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
       result.curves[ci] =
           refine_curve(pair, std::move(result.curves[ci]), chained.reaches[ci], request.tolerance);
   }
-  result.curves = detail::tidy_curves(std::move(result.curves), request.tolerance);
+  // A yes/no test needs only whether there is a curve.
+  if (!request.first_crossing_only)
+    result.curves = detail::tidy_curves(std::move(result.curves), request.tolerance);
   std::vector<LeafContact> leaves;
   leaves.reserve(descent.pending.size());
   for (const PendingContact& p : descent.pending)

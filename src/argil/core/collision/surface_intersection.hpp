@@ -55,8 +55,10 @@ CollisionResult collide(const SurfaceHierarchy& a, const SurfaceHierarchy& b,
 /// it has built instead of re-bounding its control net at each pose. Spheres,
 /// corner triangles and flatness move exactly and boxes become the boxes
 /// around the moved boxes, so the guarantees above hold unchanged. Results are
-/// in a's frame (uv_b on b's own parameters). Equal to collide(a, b') for b'
-/// = b moved by X_AB up to rounding, and to the pruning the looser boxes allow.
+/// in a's frame (uv_b on b's own parameters). It finds what collide(a, b')
+/// finds for b' = b moved by X_AB, up to rounding and the extra leaf pairs
+/// the looser boxes let through (which add nothing); the tolerance is checked
+/// against b's bounds in its own frame.
 CollisionResult collide(const SurfaceHierarchy& a, const SurfaceHierarchy& b, const Pose& X_AB,
                         const CollisionRequest& request = {});
 

@@ -131,6 +131,8 @@ ToolMove SurfaceToolProxy::push_out(const std::vector<const SurfaceHierarchy*>& 
 
 ToolMove SurfaceToolProxy::move(const std::vector<const SurfaceHierarchy*>& surfaces,
                                 const Pose& X_WT_from, const Pose& X_WT_to) {
+  // The tool is never re-posed, so its nodes only grow: bound them here.
+  hierarchy_.keep_within_node_budget();
   ToolMove start = push_out(surfaces, X_WT_from, X_WT_to);
   if (!start.status.ok()) return start;
   Advance stop = advance(surfaces, start.X_WT, X_WT_to);

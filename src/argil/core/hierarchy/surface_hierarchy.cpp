@@ -126,7 +126,7 @@ void SurfaceHierarchy::set_control_points(const ControlNet& points,
     element_version_.assign(element_version_.size(), version_);
     stale_elements_ = static_cast<int>(element_version_.size());
     for (ElementBlock& b : blocks_) b.fresh = false;
-    if (nodes_.size() > roots_.size() + node_budget_) release_nodes();
+    keep_within_node_budget();
     return;
   }
   set_control_points_in(points, 0, surface_.count(Direction::u), 0, surface_.count(Direction::v));
@@ -190,6 +190,10 @@ void SurfaceHierarchy::set_control_points_in(const ControlNet& points, int i0, i
     return element_version_[static_cast<std::size_t>(eu) * sv.size() +
                             static_cast<std::size_t>(ev)] == version_;
   });
+  keep_within_node_budget();
+}
+
+void SurfaceHierarchy::keep_within_node_budget() {
   if (nodes_.size() > roots_.size() + node_budget_) release_nodes();
 }
 

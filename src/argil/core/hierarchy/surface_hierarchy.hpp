@@ -106,6 +106,10 @@ class SurfaceHierarchy {
   std::size_t node_budget() const { return node_budget_; }
   /// Drops every node below the roots now.
   void release_nodes();
+  /// Drops every node below the roots when there are more than the budget
+  /// (set_control_points does this; a hierarchy that is never re-posed, such
+  /// as a rigid tool placed per query, calls it itself).
+  void keep_within_node_budget();
   /// Deepest level a query may split to; below it a node is treated as a leaf
   /// whatever its flatness (guards against endless refinement at degeneracies).
   static constexpr int kMaxLevel = 24;

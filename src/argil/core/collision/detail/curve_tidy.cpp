@@ -9,6 +9,11 @@ namespace argil::detail {
 
 namespace {
 
+/// The largest turn at a join, as its cosine: a right angle. Pieces of one
+/// branch meet nearly straight; a small closed loop chained from a few leaf
+/// segments turns by up to a right angle at each point.
+constexpr double kJoinTurnCosine = 0.0;
+
 double length_of(const IntersectionCurve& c) {
   double l = 0.0;
   for (std::size_t k = 0; k + 1 < c.points.size(); ++k) l += (c.points[k + 1] - c.points[k]).norm();
@@ -70,7 +75,9 @@ Eigen::Vector3d into_start(const IntersectionCurve& c) {
 /// either way).
 bool continues(const IntersectionCurve& head, const IntersectionCurve& tail, double eps) {
   if (!((head.points.back() - tail.points.front()).norm() <= eps)) return false;
-  return out_of_end(head).dot(into_start(tail)) >= 0.0;
+  const Eigen::Vector3d out = out_of_end(head), in = into_start(tail);
+  const double lengths = out.norm() * in.norm();
+  return !(lengths > 0.0) || out.dot(in) >= kJoinTurnCosine * lengths;
 }
 
 /// A curve's bounding box grown by eps.
@@ -96,27 +103,29 @@ Bounds bounds_of(const IntersectionCurve& c, double eps) {
   return b;
 }
 
-/// True when every point of curve `self`, and every midpoint between its
-/// points, lies within eps of some curve other than `self` that is not dropped.
-bool covered_by_others(const std::vector<IntersectionCurve>& curves,
-                       const std::vector<Bounds>& bounds, std::size_t self,
-                       const std::vector<bool>& dropped, double eps) {
+/// The curves (other than `self` and not dropped) that hold every point of
+/// curve `self` within `within`; empty when some point has none near.
+std::vector<std::size_t> covering(const std::vector<IntersectionCurve>& curves,
+                                  const std::vector<Bounds>& bounds, std::size_t self,
+                                  const std::vector<bool>& dropped, double within) {
   std::vector<std::size_t> near;  // the curves whose boxes meet this one's
   for (std::size_t j = 0; j < curves.size(); ++j)
     if (j != self && !dropped[j] && !curves[j].points.empty() && bounds[j].meets(bounds[self]))
       near.push_back(j);
-  if (near.empty()) return false;
-  const auto near_other = [&](const Eigen::Vector3d& p) {
-    for (const std::size_t j : near)
-      if (bounds[j].holds(p) && distance_to_curve(p, curves[j]) <= eps) return true;
-    return false;
-  };
-  const IntersectionCurve& c = curves[self];
-  for (std::size_t k = 0; k < c.points.size(); ++k) {
-    if (!near_other(c.points[k])) return false;
-    if (k + 1 < c.points.size() && !near_other(0.5 * (c.points[k] + c.points[k + 1]))) return false;
+  std::vector<bool> used(curves.size(), false);
+  for (const Eigen::Vector3d& p : curves[self].points) {
+    bool found = false;
+    for (const std::size_t j : near) {
+      if (!bounds[j].holds(p) || !(distance_to_curve(p, curves[j]) <= within)) continue;
+      used[j] = found = true;
+      break;
+    }
+    if (!found) return {};
   }
-  return true;
+  std::vector<std::size_t> out;
+  for (std::size_t j = 0; j < curves.size(); ++j)
+    if (used[j]) out.push_back(j);
+  return out;
 }
 
 std::vector<IntersectionCurve> drop_covered(std::vector<IntersectionCurve> curves, double eps) {
@@ -131,8 +140,22 @@ std::vector<IntersectionCurve> drop_covered(std::vector<IntersectionCurve> curve
   bounds.reserve(curves.size());
   for (const IntersectionCurve& c : curves) bounds.push_back(bounds_of(c, eps));
   std::vector<bool> dropped(curves.size(), false);
-  for (const std::size_t i : order)
-    dropped[i] = curves[i].points.empty() || covered_by_others(curves, bounds, i, dropped, eps);
+  // A curve that covers a dropped one is kept, so no point of a dropped
+  // curve ends up near only another dropped curve.
+  std::vector<bool> anchored(curves.size(), false);
+  for (const std::size_t i : order) {
+    if (curves[i].points.empty()) {
+      dropped[i] = true;
+      continue;
+    }
+    if (anchored[i] || !(lengths[i] <= eps)) continue;
+    // Its points within eps/2 of kept curves and its length at most eps: every
+    // point of it lies within eps of them.
+    const std::vector<std::size_t> by = covering(curves, bounds, i, dropped, 0.5 * eps);
+    if (by.empty()) continue;
+    dropped[i] = true;
+    for (const std::size_t j : by) anchored[j] = true;
+  }
   std::vector<IntersectionCurve> kept;
   for (std::size_t i = 0; i < curves.size(); ++i)
     if (!dropped[i]) kept.push_back(std::move(curves[i]));
@@ -150,6 +173,13 @@ FreeEnd end_of(const IntersectionCurve& c, bool at_start) {
                   : FreeEnd{c.points.back(), out_of_end(c)};
 }
 
+/// Two ends continue each other when they leave in opposite directions, within
+/// a right angle (an end with no extent leaves every way).
+bool opposite(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const double lengths = a.norm() * b.norm();
+  return !(lengths > 0.0) || -a.dot(b) >= kJoinTurnCosine * lengths;
+}
+
 /// Joins one pair of open curves that continue each other; false when none does.
 bool join_one(std::vector<IntersectionCurve>& curves, double eps) {
   for (std::size_t i = 0; i < curves.size(); ++i) {
@@ -160,8 +190,7 @@ bool join_one(std::vector<IntersectionCurve>& curves, double eps) {
       for (int way = 0; way < 4; ++way) {
         const bool i_start = (way & 1) != 0, j_end = (way & 2) != 0;
         const FreeEnd e = end_of(curves[i], i_start), f = end_of(curves[j], !j_end);
-        // They continue each other when they meet and leave in opposite directions.
-        if (!((e.point - f.point).norm() <= eps) || e.outward.dot(f.outward) > 0.0) continue;
+        if (!((e.point - f.point).norm() <= eps) || !opposite(e.outward, f.outward)) continue;
         IntersectionCurve head = std::move(curves[i]), tail = std::move(curves[j]);
         if (i_start) reverse(head);
         if (j_end) reverse(tail);

@@ -10,11 +10,11 @@
 
 namespace argil::detail {
 
-/// Drops every curve no longer than eps whose points all lie within eps of
-/// another curve kept (a duplicate piece: dropping it moves no intersection
-/// point more than eps from the reported set); then joins open curves whose
-/// free ends lie within eps of each other and run on in the same direction,
-/// and closes an open curve longer than 2 eps whose own ends meet that way (a
+/// Drops every curve no longer than eps whose points all lie within eps/2 of
+/// other curves, and keeps those (a duplicate piece: every point of it stays
+/// within eps of the reported set); then joins open curves whose free ends lie
+/// within eps of each other and run on with a turn of at most a right angle, and
+/// closes an open curve longer than 2 eps whose own ends meet that way (a
 /// closed curve repeats its first point). Isolated short curves are kept.
 std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps);
 
