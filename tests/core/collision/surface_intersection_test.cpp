@@ -386,7 +386,7 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("a rigid motion of both surfaces moves the intersection curves with them") {
+TEST_CASE("a rigid motion of both surfaces moves the intersection curves with them", "[slow]") {
   const BSplineSurface a = argil::test::asymmetric_surface(true);
   std::mt19937_64 rng(4);
   BSplineSurface b = argil::test::graph_surface(rng, 60.0, 3.0, 0.5, 3, 3);

@@ -116,18 +116,22 @@ TEST_CASE("curve tidying drops covered short pieces, keeps isolated ones, joins 
     CHECK(out[0].points.size() == 3);
     CHECK(out[1].points.front() == Eigen::Vector3d(5, 5, 5));
   }
-  SECTION("a piece longer than eps stays even on another curve; covering pieces stay") {
-    // b (longer than eps) lies on a: kept. d (zero length) and e lie within
-    // eps/2 of c: dropped, and c, which covers them, stays.
+  SECTION("pieces covered along their whole length are dropped, whatever their length") {
+    // b lies on a: dropped. d (zero length) and e lie within eps/2 of c:
+    // dropped, and c, which covers them, stays. f's ends lie on g but its
+    // chord passes 0.01 from g's peak: both stay.
     const auto out = argil::detail::tidy_curves(
-        {curve({{0, 0, 0}, {1, 0, 0}}), curve({{0.2, 0, 0}, {0.2011, 0, 0}}),
+        {curve({{0, 0, 0}, {1, 0, 0}}), curve({{0.2, 0, 0}, {0.9, 0, 0}}),
          curve({{5, 0, 0}, {5, 0.0008, 0}}), curve({{5, 0.0004, 0}, {5, 0.0004, 0}}),
-         curve({{5, 0.00045, 0}, {5, 0.0012, 0}})},
+         curve({{5, 0.00045, 0}, {5, 0.0012, 0}}), curve({{8, 0, 0}, {9, 0, 0}}),
+         curve({{8, 0, 0}, {8.5, 0.01, 0}, {9, 0, 0}})},
         eps);
-    REQUIRE(out.size() == 3);
-    CHECK(out[1].points.front() == Eigen::Vector3d(0.2, 0, 0));
-    CHECK(out[2].points.front() == Eigen::Vector3d(5, 0, 0));
-    CHECK(out[2].points.back() == Eigen::Vector3d(5, 0.0008, 0));
+    REQUIRE(out.size() == 4);
+    CHECK(out[0].points.front() == Eigen::Vector3d(0, 0, 0));
+    CHECK(out[1].points.front() == Eigen::Vector3d(5, 0, 0));
+    CHECK(out[1].points.back() == Eigen::Vector3d(5, 0.0008, 0));
+    CHECK(out[2].points.size() == 2);
+    CHECK(out[3].points.size() == 3);
   }
   SECTION("pieces whose ends meet within eps and run on are joined, in any orientation") {
     const auto out = argil::detail::tidy_curves(

@@ -31,7 +31,7 @@ Eigen::Vector2d left_normal(const BSplineCurve& c, double t) {
 
 }  // namespace
 
-TEST_CASE("contains agrees with a dense polygon away from the curves", "[trim]") {
+TEST_CASE("contains agrees with a dense polygon away from the curves", "[trim][slow]") {
   const std::vector<TrimLoop> loops = test::asymmetric_trims(kDomain);
   const Result<TrimRegion> region = TrimRegion::create(loops);
   INFO(region.status().message);

@@ -99,7 +99,7 @@ TEST_CASE("named plates: a 1 mm sphere pressed 0.3 mm into 1 x 1 mm plates of hi
 // target and fails (asking for the tag to go) once it meets it. See
 // docs/deformation.md, Limits.
 TEST_CASE("named plates at 20 x 20 mm: the press stays local",
-          "[deformation][regression][!shouldfail]") {
+          "[deformation][regression][!shouldfail][slow]") {
   // The same knot structure in 1 mm pieces: degree 1 spans across, pieces of
   // the named degree along v.
   for (const NamedPlate& plate : named_plates()) {

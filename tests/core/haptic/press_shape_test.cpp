@@ -197,7 +197,7 @@ TEST_CASE("a crease keeps its angle under a press on and near it",
 TEST_CASE(
     "resolution independence: a flat panel that resolves the press, and its 2x, 4x "
     "refinements",
-    "[deformation][resolution]") {
+    "[deformation][resolution][slow]") {
   check_resolution(argil::test::flat_bicubic_panel(20.0, 20), {0.43, 0.56}, 2.0, 0.5);
 }
 

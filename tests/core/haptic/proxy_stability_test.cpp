@@ -160,7 +160,7 @@ TEST_CASE("a steady press does not buzz", "[haptic][proxy]") {
   }
 }
 
-TEST_CASE("a drag at constant depth over a flat plate has no washboard", "[haptic][proxy]") {
+TEST_CASE("a drag at constant depth over a flat plate has no washboard", "[haptic][proxy][slow]") {
   // Elastic presets: the force depends on where the tool is only through the
   // material, not through where the control points are.
   for (const char* preset : {"foam", "wax", "abs"}) {
@@ -186,7 +186,7 @@ TEST_CASE("a drag at constant depth over a flat plate has no washboard", "[hapti
 }
 
 TEST_CASE("a clay drag at constant depth over a plate that resolves it has no washboard",
-          "[haptic][proxy]") {
+          "[haptic][proxy][slow]") {
   // Plastic flow measured on the surface follows the tool, not the control
   // points (on the control-point stretch the force rose and fell at the pole
   // spacing, by 106% of its mean on the plate above). A 24 x 24 mm bicubic

@@ -459,7 +459,7 @@ StrokeOutcome compare_stroke(Worlds& w, const Stroke& s, int after_contact) {
 TEST_CASE(
     "sleep: strokes at the top speed onto sleeping bodies first touch on the never-sleeping "
     "world's tick, to the bit",
-    "[haptic][sleep]") {
+    "[haptic][sleep][slow]") {
   // 60 seeded strokes from out of every body's reach towards random points of
   // six sleeping bodies (4 to 60 mm, turned, curved, rational, rigid) and
   // beside their edges, at the proxy's top speed (256 substeps a tick: 256 mm

@@ -108,7 +108,7 @@ void check_export(const Model& model, const std::filesystem::path& path) {
 }  // namespace
 
 TEST_CASE("real faces deformed by 5 % of their size export BRepCheck-valid with their surfaces",
-          "[io][occt][export]") {
+          "[io][occt][export][slow]") {
   test::TempDir dir;
   for (const char* name :
        {"screw.step", "bearing.iges", "11752.stp", "as1-oc-214.stp", "surf114.igs"}) {

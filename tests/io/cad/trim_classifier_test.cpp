@@ -127,7 +127,7 @@ Agreement classify_faces(const std::filesystem::path& path) {
 }  // namespace
 
 TEST_CASE("trim regions classify (u, v) as OpenCASCADE's face classifier does on real files",
-          "[io][occt][trim]") {
+          "[io][occt][trim][slow]") {
   for (const char* name :
        {"screw.step", "bearing.iges", "as1-oc-214.stp", "surf114.igs", "11752.stp"}) {
     SECTION(name) {

@@ -424,15 +424,34 @@ struct LeafPairFindings {
   long triangle_tests = 0;
 };
 
+/// How far from a triangle's plane a corner still counts as on it: the
+/// rounding of surface evaluation (a few ulps of the coordinates), and never
+/// more than a millionth of eps. Without it a face boundary lying in its
+/// neighbour's plane falls on either side by rounding, and the curve along
+/// the shared edge breaks wherever it falls outside.
+double on_plane_distance(const LeafTriangles& la, const LeafTriangles& lb, double eps) {
+  double magnitude = 0.0;
+  for (const LeafTriangles* leaf : {&la, &lb}) {
+    for (const Triangle& t : leaf->triangles) {
+      for (const Eigen::Vector3d& p : t) magnitude = std::max(magnitude, p.cwiseAbs().maxCoeff());
+    }
+  }
+  constexpr double kRoundingUlps = 64.0;
+  return std::min(1e-6 * eps, kRoundingUlps * std::numeric_limits<double>::epsilon() * magnitude);
+}
+
 /// Intersects the leaves' four triangle pairs; the contact sits on the
 /// longest crossing segment's midpoint (depth 0).
-LeafPairFindings leaf_crossings(const LeafTriangles& la, const LeafTriangles& lb, double reach) {
+LeafPairFindings leaf_crossings(const LeafTriangles& la, const LeafTriangles& lb, double reach,
+                                double eps) {
   LeafPairFindings out;
   double longest = -1.0;
+  const double on_plane = on_plane_distance(la, lb, eps);
   for (std::size_t i = 0; i < 2; ++i) {
     for (std::size_t j = 0; j < 2; ++j) {
       ++out.triangle_tests;
-      const TriangleIntersection x = intersect_triangles(la.triangles[i], lb.triangles[j]);
+      const TriangleIntersection x =
+          intersect_triangles(la.triangles[i], lb.triangles[j], on_plane);
       if (x.kind == TriangleIntersection::Kind::none) continue;
       detail::Segment s{x.points, {}, {}, la.rect.min_side(), lb.rect.min_side(), reach};
       for (std::size_t k = 0; k < 2; ++k) {
@@ -522,7 +541,7 @@ class PairDescent {
     const LeafTriangles lb = sb_.leaf(eb);
     const double eps = request_.tolerance;
     const double reach = 2.0 * (la.radius + lb.radius) + eps;
-    LeafPairFindings found = leaf_crossings(la, lb, reach);
+    LeafPairFindings found = leaf_crossings(la, lb, reach, eps);
     counters_.triangle_tests += found.triangle_tests;
     segments.insert(segments.end(), found.segments.begin(), found.segments.end());
     if (!found.contact && !request_.first_crossing_only)

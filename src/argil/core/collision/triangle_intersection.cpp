@@ -211,9 +211,24 @@ TriangleIntersection overlap_of_cuts(const Triangle& a, const Triangle& b, const
 
 }  // namespace
 
-TriangleIntersection intersect_triangles(const Triangle& a, const Triangle& b) {
+namespace {
+
+/// Corners within `on_plane` of the plane count as on it; the determinant is
+/// the corner's distance times the plane triangle's doubled area.
+void snap_to_plane(const Triangle& plane, double on_plane, std::array<Orientation, 3>& side) {
+  if (!(on_plane > 0.0)) return;
+  const double scale = (plane[1] - plane[0]).cross(plane[2] - plane[0]).norm();
+  for (Orientation& o : side) {
+    if (std::abs(o.value) <= on_plane * scale) o = {};
+  }
+}
+
+}  // namespace
+
+TriangleIntersection intersect_triangles(const Triangle& a, const Triangle& b, double on_plane) {
   std::array<Orientation, 3> side_a, side_b;  // corners of a against plane b, and back
   for (std::size_t k = 0; k < 3; ++k) side_a[k] = orient3d(b[0], b[1], b[2], a[k]);
+  snap_to_plane(b, on_plane, side_a);
   const auto all_same = [](const std::array<Orientation, 3>& s) {
     return (s[0].sign > 0 && s[1].sign > 0 && s[2].sign > 0) ||
            (s[0].sign < 0 && s[1].sign < 0 && s[2].sign < 0);
@@ -223,6 +238,7 @@ TriangleIntersection intersect_triangles(const Triangle& a, const Triangle& b) {
   };
   if (all_same(side_a)) return {};
   for (std::size_t k = 0; k < 3; ++k) side_b[k] = orient3d(a[0], a[1], a[2], b[k]);
+  snap_to_plane(a, on_plane, side_b);
   if (all_same(side_b)) return {};
   if (all_zero(side_a) || all_zero(side_b)) return coplanar_overlap(a, b);
   const PlaneCut cut_a = cut_by_plane(a, side_a);

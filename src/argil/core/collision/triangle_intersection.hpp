@@ -49,7 +49,14 @@ struct TriangleIntersection {
 /// (a corner or edge on the other triangle) counts as intersecting when the
 /// predicates certify it; degenerate (zero-area) triangles give `none` unless
 /// another triangle crosses them through the segment path.
-TriangleIntersection intersect_triangles(const Triangle& a, const Triangle& b);
+///
+/// A corner within `on_plane` [mm] of the other triangle's plane counts as on
+/// it. Corners evaluated on a surface carry its rounding: a face's boundary
+/// that lies in a neighbour's plane (a shared CAD edge) falls on either side
+/// of it by a few ulps, and would give a touch on one side and nothing on the
+/// other instead of the segment along the edge.
+TriangleIntersection intersect_triangles(const Triangle& a, const Triangle& b,
+                                         double on_plane = 0.0);
 
 /// Closest points of two triangles (15 feature pairs: 6 corner-face, 9
 /// edge-edge; Ericson, Real-Time Collision Detection 5.1.5 and 5.1.9).

@@ -1,6 +1,7 @@
 #include "argil/core/collision/detail/curve_tidy.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <numeric>
@@ -104,7 +105,8 @@ Bounds bounds_of(const IntersectionCurve& c, double eps) {
 }
 
 /// The curves (other than `self` and not dropped) that hold every point of
-/// curve `self` within `within`; empty when some point has none near.
+/// curve `self` within `within`, checked at its points and along its chords
+/// every `within` / 2; empty when some point has none near.
 std::vector<std::size_t> covering(const std::vector<IntersectionCurve>& curves,
                                   const std::vector<Bounds>& bounds, std::size_t self,
                                   const std::vector<bool>& dropped, double within) {
@@ -113,14 +115,22 @@ std::vector<std::size_t> covering(const std::vector<IntersectionCurve>& curves,
     if (j != self && !dropped[j] && !curves[j].points.empty() && bounds[j].meets(bounds[self]))
       near.push_back(j);
   std::vector<bool> used(curves.size(), false);
-  for (const Eigen::Vector3d& p : curves[self].points) {
-    bool found = false;
+  const auto covered = [&](const Eigen::Vector3d& p) {
     for (const std::size_t j : near) {
       if (!bounds[j].holds(p) || !(distance_to_curve(p, curves[j]) <= within)) continue;
-      used[j] = found = true;
-      break;
+      used[j] = true;
+      return true;
     }
-    if (!found) return {};
+    return false;
+  };
+  const std::vector<Eigen::Vector3d>& points = curves[self].points;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (!covered(points[k])) return {};
+    if (k + 1 == points.size()) break;
+    const Eigen::Vector3d d = points[k + 1] - points[k];
+    const double steps = std::ceil(d.norm() / (0.5 * within));
+    for (double t = 1.0; t < steps; t += 1.0)
+      if (!covered(points[k] + (t / steps) * d)) return {};
   }
   std::vector<std::size_t> out;
   for (std::size_t j = 0; j < curves.size(); ++j)
@@ -148,9 +158,9 @@ std::vector<IntersectionCurve> drop_covered(std::vector<IntersectionCurve> curve
       dropped[i] = true;
       continue;
     }
-    if (anchored[i] || !(lengths[i] <= eps)) continue;
-    // Its points within eps/2 of kept curves and its length at most eps: every
-    // point of it lies within eps of them.
+    if (anchored[i]) continue;
+    // Its points, and its chords every eps/4, within eps/2 of kept curves:
+    // every point of it lies within eps of them.
     const std::vector<std::size_t> by = covering(curves, bounds, i, dropped, 0.5 * eps);
     if (by.empty()) continue;
     dropped[i] = true;
@@ -180,6 +190,27 @@ bool opposite(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return !(lengths > 0.0) || -a.dot(b) >= kJoinTurnCosine * lengths;
 }
 
+/// Leaves out points within `tiny` of the point kept before them; the last
+/// point stays (a closed curve's repeat of its first).
+void drop_repeated_points(IntersectionCurve& c, double tiny) {
+  if (c.points.size() < 2) return;
+  std::size_t kept = 0;
+  const std::size_t last = c.points.size() - 1;
+  for (std::size_t k = 1; k <= last; ++k) {
+    if ((c.points[k] - c.points[kept]).norm() <= tiny) {
+      if (k != last) continue;
+      if (kept > 0) --kept;  // the last point replaces the one it repeats
+    }
+    ++kept;
+    c.points[kept] = c.points[k];
+    c.uv_a[kept] = c.uv_a[k];
+    c.uv_b[kept] = c.uv_b[k];
+  }
+  c.points.resize(kept + 1);
+  c.uv_a.resize(kept + 1);
+  c.uv_b.resize(kept + 1);
+}
+
 /// Joins one pair of open curves that continue each other; false when none does.
 bool join_one(std::vector<IntersectionCurve>& curves, double eps) {
   for (std::size_t i = 0; i < curves.size(); ++i) {
@@ -207,18 +238,22 @@ bool join_one(std::vector<IntersectionCurve>& curves, double eps) {
 }  // namespace
 
 std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps) {
+  for (IntersectionCurve& c : curves) drop_repeated_points(c, 1e-6 * eps);
   curves = drop_covered(std::move(curves), eps);
   while (join_one(curves, eps)) {
   }
   for (IntersectionCurve& c : curves) {
     if (is_closed(c) || c.points.size() < 3 || !(length_of(c) > 2.0 * eps)) continue;
     if (!continues(c, c, eps)) continue;
-    // Closed: the last point becomes the first one repeated.
-    if ((c.points.back() - c.points.front()).norm() > 0.0) {
+    // Closed: the last point becomes the first one repeated (replaced when it
+    // repeats it already, as across a periodic face's seam, where only the
+    // parameters differ).
+    if ((c.points.back() - c.points.front()).norm() > 1e-6 * eps) {
       c.points.push_back(c.points.front());
       c.uv_a.push_back(c.uv_a.front());
       c.uv_b.push_back(c.uv_b.front());
     } else {
+      c.points.back() = c.points.front();
       c.uv_a.back() = c.uv_a.front();
       c.uv_b.back() = c.uv_b.front();
     }
