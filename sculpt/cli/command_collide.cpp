@@ -77,16 +77,6 @@ std::vector<RegionSummary> summarize_regions(const CollisionResult& r) {
   return regions;
 }
 
-double curve_length(const IntersectionCurve& c) {
-  double l = 0.0;
-  for (std::size_t k = 0; k + 1 < c.points.size(); ++k) l += (c.points[k + 1] - c.points[k]).norm();
-  return l;
-}
-
-bool closed(const IntersectionCurve& c) {
-  return c.points.size() > 2 && c.points.front() == c.points.back();
-}
-
 // ---- text output ---------------------------------------------------------
 
 void print_text(const Options& o, double eps, const CollisionResult& r) {
@@ -108,8 +98,8 @@ void print_text(const Options& o, double eps, const CollisionResult& r) {
   std::printf("\nintersection curves: %zu\n", r.curves.size());
   for (std::size_t k = 0; k < r.curves.size(); ++k) {
     const IntersectionCurve& c = r.curves[k];
-    std::printf("  curve %zu: %zu points, length %.9g mm%s\n", k, c.points.size(), curve_length(c),
-                closed(c) ? ", closed" : "");
+    std::printf("  curve %zu: %zu points, length %.9g mm%s\n", k, c.points.size(), c.length(),
+                c.closed() ? ", closed" : "");
     for (std::size_t e = 0; e < 2 && !c.points.empty(); ++e) {
       const std::size_t i = e == 0 ? 0 : c.points.size() - 1;
       std::printf("    %s (%.9g, %.9g, %.9g)  uv_a (%.9g, %.9g)  uv_b (%.9g, %.9g)\n",
@@ -147,7 +137,7 @@ nlohmann::ordered_json json_curve(const IntersectionCurve& c) {
     points.push_back({{"point", json_vector(c.points[i])},
                       {"uv_a", json_vector(c.uv_a[i])},
                       {"uv_b", json_vector(c.uv_b[i])}});
-  return {{"closed", closed(c)}, {"length", curve_length(c)}, {"points", std::move(points)}};
+  return {{"closed", c.closed()}, {"length", c.length()}, {"points", std::move(points)}};
 }
 
 /// nlohmann writes doubles in their shortest round-trip form.

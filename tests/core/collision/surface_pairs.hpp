@@ -85,8 +85,8 @@ inline BSplineSurface moved(const BSplineSurface& s, const Eigen::Matrix3d& R,
   return m;
 }
 
-/// Distance from p to the reported set: curve polylines and contact points.
-inline double distance_to_result(const Eigen::Vector3d& p, const CollisionResult& r) {
+/// Distance from p to the reported curves (their polylines).
+inline double distance_to_curves(const Eigen::Vector3d& p, const CollisionResult& r) {
   double best = std::numeric_limits<double>::infinity();
   for (const IntersectionCurve& c : r.curves) {
     for (std::size_t k = 0; k < c.points.size(); ++k) {
@@ -101,6 +101,12 @@ inline double distance_to_result(const Eigen::Vector3d& p, const CollisionResult
       }
     }
   }
+  return best;
+}
+
+/// Distance from p to the reported set: curve polylines and contact points.
+inline double distance_to_result(const Eigen::Vector3d& p, const CollisionResult& r) {
+  double best = distance_to_curves(p, r);
   for (const Contact& c : r.contacts) best = std::min(best, (c.point - p).norm());
   return best;
 }

@@ -28,6 +28,11 @@ struct CollisionRequest {
   /// contact, with depth 0, and its segments); near-touches are not looked for.
   /// An empty result means no crossing.
   bool first_crossing_only = false;
+  /// Surface-surface queries: chain the crossing segments into curves (then
+  /// refined and tidied). False for callers that use only the contacts, like
+  /// the haptic tick: curves stay empty, and a crossing still shows as a
+  /// contact of depth 0 (the deepest region's deepest contact is always kept).
+  bool curves = true;
 };
 
 /// A polyline along the intersection of two surfaces: points [mm] and their
@@ -36,6 +41,16 @@ struct CollisionRequest {
 struct IntersectionCurve {
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> uv_a, uv_b;
+
+  /// Length of the polyline [mm].
+  double length() const {
+    double l = 0.0;
+    for (std::size_t k = 0; k + 1 < points.size(); ++k) l += (points[k + 1] - points[k]).norm();
+    return l;
+  }
+  /// True when the last point repeats the first (the parameters may differ
+  /// across a periodic face's seam).
+  bool closed() const { return points.size() > 2 && points.front() == points.back(); }
 };
 
 /// One contact between a surface (side a) and a tool or second surface (side b).

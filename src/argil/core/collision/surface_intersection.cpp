@@ -584,16 +584,18 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   }
   const SurfacePair pair{ha.surface(), placed_b && exact_b ? moved_b : hb.surface(),
                          scale_of(ha.surface(), hb.surface())};
-  detail::ChainedCurves chained = detail::chain_segments(descent.segments, request.tolerance);
-  result.curves = std::move(chained.curves);
-  if (request.refine) {
-    for (std::size_t ci = 0; ci < result.curves.size(); ++ci)
-      result.curves[ci] =
-          refine_curve(pair, std::move(result.curves[ci]), chained.reaches[ci], request.tolerance);
+  if (request.curves) {
+    detail::ChainedCurves chained = detail::chain_segments(descent.segments, request.tolerance);
+    result.curves = std::move(chained.curves);
+    if (request.refine) {
+      for (std::size_t ci = 0; ci < result.curves.size(); ++ci)
+        result.curves[ci] = refine_curve(pair, std::move(result.curves[ci]), chained.reaches[ci],
+                                         request.tolerance);
+    }
+    // A yes/no test needs only whether there is a curve.
+    if (!request.first_crossing_only)
+      result.curves = detail::tidy_curves(std::move(result.curves), request.tolerance);
   }
-  // A yes/no test needs only whether there is a curve.
-  if (!request.first_crossing_only)
-    result.curves = detail::tidy_curves(std::move(result.curves), request.tolerance);
   std::vector<LeafContact> leaves;
   leaves.reserve(descent.pending.size());
   for (const PendingContact& p : descent.pending)

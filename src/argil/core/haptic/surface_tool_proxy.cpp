@@ -37,14 +37,17 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
   out.per_surface.resize(surfaces.size());
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
     if (!surfaces[b]) continue;  // out of reach
-    CollisionResult r =
-        collide(*surfaces[b], hierarchy_, X_WT,
-                {.tolerance = eps_, .max_contacts = 64, .refine = false, .compute_depth = false});
+    // Only contacts: a crossing is a contact of depth 0 (no curves chained).
+    CollisionResult r = collide(*surfaces[b], hierarchy_, X_WT,
+                                {.tolerance = eps_,
+                                 .max_contacts = 64,
+                                 .refine = false,
+                                 .compute_depth = false,
+                                 .curves = false});
     if (!r.status.ok()) {
       out.status = std::move(r.status);
       break;
     }
-    out.crosses = out.crosses || !r.curves.empty();
     for (const Contact& c : r.contacts) {
       out.crosses = out.crosses || c.depth >= 0.0;
       const double sign = c.normal.dot(centre - c.point) < 0.0 ? -1.0 : 1.0;
@@ -63,14 +66,15 @@ SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
                                  .max_contacts = 1,
                                  .refine = false,
                                  .compute_depth = false,
-                                 .first_crossing_only = true};
+                                 .first_crossing_only = true,
+                                 .curves = false};
   for (const SurfaceHierarchy* surface : surfaces) {
     if (!surface) continue;
     CollisionResult r = collide(*surface, hierarchy_, X_WT, request);
     // A failed query counts as crossing: the proxy must not move where it
     // cannot prove it is clear.
     if (!r.status.ok()) return {std::move(r.status), true};
-    if (!r.contacts.empty() || !r.curves.empty()) return {Status::success(), true};
+    if (!r.contacts.empty()) return {Status::success(), true};
   }
   return {Status::success(), false};
 }

@@ -15,17 +15,6 @@ namespace {
 /// segments turns by up to a right angle at each point.
 constexpr double kJoinTurnCosine = 0.0;
 
-double length_of(const IntersectionCurve& c) {
-  double l = 0.0;
-  for (std::size_t k = 0; k + 1 < c.points.size(); ++k) l += (c.points[k + 1] - c.points[k]).norm();
-  return l;
-}
-
-bool is_closed(const IntersectionCurve& c) {
-  return c.points.size() > 2 && c.points.front() == c.points.back() &&
-         c.uv_a.front() == c.uv_a.back();
-}
-
 double distance_to_curve(const Eigen::Vector3d& p, const IntersectionCurve& c) {
   double best = std::numeric_limits<double>::infinity();
   if (c.points.size() == 1) return (c.points[0] - p).norm();
@@ -140,7 +129,7 @@ std::vector<std::size_t> covering(const std::vector<IntersectionCurve>& curves,
 
 std::vector<IntersectionCurve> drop_covered(std::vector<IntersectionCurve> curves, double eps) {
   std::vector<double> lengths(curves.size());
-  for (std::size_t i = 0; i < curves.size(); ++i) lengths[i] = length_of(curves[i]);
+  for (std::size_t i = 0; i < curves.size(); ++i) lengths[i] = curves[i].length();
   // Shortest first, so of two duplicate pieces the longer one stays.
   std::vector<std::size_t> order(curves.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
@@ -214,9 +203,9 @@ void drop_repeated_points(IntersectionCurve& c, double tiny) {
 /// Joins one pair of open curves that continue each other; false when none does.
 bool join_one(std::vector<IntersectionCurve>& curves, double eps) {
   for (std::size_t i = 0; i < curves.size(); ++i) {
-    if (is_closed(curves[i])) continue;
+    if (curves[i].closed()) continue;
     for (std::size_t j = i + 1; j < curves.size(); ++j) {
-      if (is_closed(curves[j])) continue;
+      if (curves[j].closed()) continue;
       // The four ways two open curves can meet: an end of i against an end of j.
       for (int way = 0; way < 4; ++way) {
         const bool i_start = (way & 1) != 0, j_end = (way & 2) != 0;
@@ -243,7 +232,7 @@ std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves
   while (join_one(curves, eps)) {
   }
   for (IntersectionCurve& c : curves) {
-    if (is_closed(c) || c.points.size() < 3 || !(length_of(c) > 2.0 * eps)) continue;
+    if (c.closed() || c.points.size() < 3 || !(c.length() > 2.0 * eps)) continue;
     if (!continues(c, c, eps)) continue;
     // Closed: the last point becomes the first one repeated (replaced when it
     // repeats it already, as across a periodic face's seam, where only the
