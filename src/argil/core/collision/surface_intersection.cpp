@@ -424,17 +424,21 @@ struct LeafPairFindings {
   long triangle_tests = 0;
 };
 
-/// How far from a triangle's plane a corner still counts as on it: the
-/// rounding of surface evaluation (a few ulps of the coordinates), and never
-/// more than a millionth of eps. Without it a face boundary lying in its
-/// neighbour's plane falls on either side by rounding, and the curve along
-/// the shared edge breaks wherever it falls outside.
-double on_plane_distance(const LeafTriangles& la, const LeafTriangles& lb, double eps) {
-  double magnitude = 0.0;
-  for (const LeafTriangles* leaf : {&la, &lb}) {
-    for (const Triangle& t : leaf->triangles) {
-      for (const Eigen::Vector3d& p : t) magnitude = std::max(magnitude, p.cwiseAbs().maxCoeff());
-    }
+/// How far from a triangle's plane a corner still counts as on it, for a whole
+/// query (so a corner two leaves share is decided alike in both): the
+/// rounding of surface evaluation (64 ulps of the largest coordinate either
+/// surface reaches, b placed), and never more than a millionth of eps. Without
+/// it a face boundary lying in its neighbour's plane falls on either side by
+/// rounding, and the curve along the shared edge breaks wherever it falls outside.
+double on_plane_distance(const BSplineSurface& a, const BSplineSurface& b,
+                         const std::optional<Rigid>& placed_b, double eps) {
+  double magnitude = a.control_points.cwiseAbs().maxCoeff();
+  if (placed_b) {
+    // |R x + p| <= |x| + |p| for a rotation R.
+    magnitude =
+        std::max(magnitude, b.control_points.rowwise().norm().maxCoeff() + placed_b->p.norm());
+  } else {
+    magnitude = std::max(magnitude, b.control_points.cwiseAbs().maxCoeff());
   }
   constexpr double kRoundingUlps = 64.0;
   return std::min(1e-6 * eps, kRoundingUlps * std::numeric_limits<double>::epsilon() * magnitude);
@@ -443,10 +447,9 @@ double on_plane_distance(const LeafTriangles& la, const LeafTriangles& lb, doubl
 /// Intersects the leaves' four triangle pairs; the contact sits on the
 /// longest crossing segment's midpoint (depth 0).
 LeafPairFindings leaf_crossings(const LeafTriangles& la, const LeafTriangles& lb, double reach,
-                                double eps) {
+                                double on_plane) {
   LeafPairFindings out;
   double longest = -1.0;
-  const double on_plane = on_plane_distance(la, lb, eps);
   for (std::size_t i = 0; i < 2; ++i) {
     for (std::size_t j = 0; j < 2; ++j) {
       ++out.triangle_tests;
@@ -507,7 +510,8 @@ class PairDescent {
       : request_(request),
         counters_(counters),
         sa_(ha, request.tolerance / 3.0, request.max_level, counters),
-        sb_(hb, request.tolerance / 3.0, request.max_level, counters, placed_b) {}
+        sb_(hb, request.tolerance / 3.0, request.max_level, counters, placed_b),
+        on_plane_(on_plane_distance(ha.surface(), hb.surface(), placed_b, request.tolerance)) {}
 
   void run() {
     std::vector<std::pair<int, int>> stack{{sa_.entry_of_block(0), sb_.entry_of_block(0)}};
@@ -541,7 +545,7 @@ class PairDescent {
     const LeafTriangles lb = sb_.leaf(eb);
     const double eps = request_.tolerance;
     const double reach = 2.0 * (la.radius + lb.radius) + eps;
-    LeafPairFindings found = leaf_crossings(la, lb, reach, eps);
+    LeafPairFindings found = leaf_crossings(la, lb, reach, on_plane_);
     counters_.triangle_tests += found.triangle_tests;
     segments.insert(segments.end(), found.segments.begin(), found.segments.end());
     if (!found.contact && !request_.first_crossing_only)
@@ -557,6 +561,7 @@ class PairDescent {
   QueryCounters& counters_;
   Side sa_;
   Side sb_;
+  double on_plane_;  // see on_plane_distance
 };
 
 }  // namespace

@@ -147,7 +147,9 @@ std::vector<IntersectionCurve> drop_covered(std::vector<IntersectionCurve> curve
       dropped[i] = true;
       continue;
     }
-    if (anchored[i]) continue;
+    // Only short pieces: a longer stretch of a branch that runs within eps/2
+    // of another (a crossing at a small angle) must stay, or the branch splits.
+    if (anchored[i] || !(lengths[i] <= eps)) continue;
     // Its points, and its chords every eps/4, within eps/2 of kept curves:
     // every point of it lies within eps of them.
     const std::vector<std::size_t> by = covering(curves, bounds, i, dropped, 0.5 * eps);
@@ -235,8 +237,7 @@ std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves
     if (c.closed() || c.points.size() < 3 || !(c.length() > 2.0 * eps)) continue;
     if (!continues(c, c, eps)) continue;
     // Closed: the last point becomes the first one repeated (replaced when it
-    // repeats it already, as across a periodic face's seam, where only the
-    // parameters differ).
+    // lies within 1e-6 eps of it, as across a periodic face's seam).
     if ((c.points.back() - c.points.front()).norm() > 1e-6 * eps) {
       c.points.push_back(c.points.front());
       c.uv_a.push_back(c.uv_a.front());
