@@ -2,15 +2,21 @@
 
 #include <poll.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
 namespace argil::bench {
 namespace {
+
+// Wall-clock backstop, as a multiple of the CPU limit: for a child that
+// blocks instead of computing.
+constexpr double kWallFactor = 10.0;
 
 bool write_all(int fd, const char* data, std::size_t size) {
   while (size > 0) {
@@ -41,6 +47,11 @@ GuardedResult run_guarded(const std::function<std::vector<double>()>& work, doub
   }
   if (child == 0) {
     close(fds[0]);
+    // The limit is CPU time (SIGXCPU), so a loaded machine does not turn a
+    // slow peer into a hang; the parent's wall-clock deadline is the backstop.
+    const auto seconds = static_cast<rlim_t>(std::ceil(limit_s));
+    const rlimit cpu{seconds, seconds + 1};
+    setrlimit(RLIMIT_CPU, &cpu);
     const std::vector<double> payload = work();
     const bool ok = write_all(fds[1], reinterpret_cast<const char*>(payload.data()),
                               payload.size() * sizeof(double));
@@ -70,10 +81,12 @@ GuardedResult run_guarded(const std::function<std::vector<double>()>& work, doub
   if (timed_out) kill(child, SIGKILL);
   int status = 0;
   waitpid(child, &status, 0);
-  if (timed_out) {
+  const bool out_of_cpu = WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU;
+  if (timed_out || out_of_cpu) {
     result.outcome = GuardedResult::Outcome::timed_out;
     char text[64];
-    std::snprintf(text, sizeof text, "no return within %.0f s", limit_s);
+    std::snprintf(text, sizeof text, out_of_cpu ? "no return in %.0f s CPU" : "no return in %.0f s",
+                  out_of_cpu ? std::ceil(limit_s) : kWallFactor * limit_s);
     result.detail = text;
   } else if (WIFSIGNALED(status)) {
     result.detail = "signal " + std::to_string(WTERMSIG(status));

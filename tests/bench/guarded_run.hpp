@@ -12,11 +12,12 @@ struct GuardedResult {
   enum class Outcome { returned, timed_out, crashed };
   Outcome outcome = Outcome::crashed;
   std::vector<double> payload;  // what the child sent back (when it returned)
-  std::string detail;           // "signal 11", "no return within 30 s"
+  std::string detail;           // "signal 11", "no return in 30 s CPU"
 };
 
 /// Runs `work` in a forked child and returns the numbers it produced, or why
-/// it did not: killed after `limit_s` seconds of wall time, or died.
+/// it did not: stopped after `limit_s` seconds of CPU time (or ten times that
+/// in wall time), or died.
 GuardedResult run_guarded(const std::function<std::vector<double>()>& work, double limit_s);
 
 }  // namespace argil::bench

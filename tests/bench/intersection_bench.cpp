@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
       "Surface-surface intersection: CPU time (median of up to 7 runs) and achieved error,\n"
       "relative to the pair's size: on-surf = largest distance of the peer's points to either\n"
       "surface; coverage = largest distance from the oracle's curve samples to the peer's\n"
-      "curves. Each peer runs in a child process, killed after %.0f s.\n",
+      "curves. Each peer runs in a child process, stopped after %.0f s of CPU time.\n",
       limit_s);
   std::map<std::string, std::map<std::string, double>> at_1e6;  // pair -> peer -> ms
   for (const Pair& pair : all_pairs()) {
