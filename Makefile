@@ -25,6 +25,7 @@ FUZZ_TARGETS := fuzz_json_surfaces fuzz_step_import fuzz_iges_import fuzz_scene 
 # Installs only the Debian packages that are missing; never touches apt otherwise.
 deps:
 	@./tools/install-packages $(PACKAGES)
+	@./tools/install-web
 
 bench-deps:
 	@./tools/install-packages $(PACKAGES) $(BENCH_PACKAGES)

@@ -181,6 +181,12 @@ TEST_CASE("trimmed faces keep only triangles inside the outer loop and outside h
   CHECK(std::abs(area - ring) < 0.05 * ring);
 }
 
+/// glb holds metres with +Y up: back to millimetres with +Z up.
+Eigen::Vector3d from_file(const aiVector3D& p, bool glb, double scale) {
+  return glb ? Eigen::Vector3d(scale * p.x, -scale * p.z, scale * p.y)
+             : Eigen::Vector3d(p.x, p.y, p.z);
+}
+
 TEST_CASE("STL, OBJ, PLY and glb read back with the same triangles on the surface", "[io][mesh]") {
   const Model model = panel_and_trimmed_face();
   const double size = model_box(model).diagonal();
@@ -198,8 +204,10 @@ TEST_CASE("STL, OBJ, PLY and glb read back with the same triangles on the surfac
       // No post-processing: vertices are neither joined nor reordered.
       const aiScene* scene = importer.ReadFile((dir / name).string(), 0);
       REQUIRE(scene != nullptr);
+      const bool glb = std::string(name) == "mesh.glb";
       std::size_t triangles = 0;
       for (unsigned k = 0; k < scene->mNumMeshes; ++k) triangles += scene->mMeshes[k]->mNumFaces;
+      // This model has no triangle that float32 storage flattens.
       REQUIRE(triangles == static_cast<std::size_t>(m.triangles.rows()));
       const bool has_normals = std::string(name) != "mesh.stl";  // STL: facet normals only
       double max_distance = 0.0, max_normal_error = 0.0;
@@ -210,10 +218,9 @@ TEST_CASE("STL, OBJ, PLY and glb read back with the same triangles on the surfac
           REQUIRE(in->mFaces[f].mNumIndices == 3);
           for (int c = 0; c < 3; ++c) {
             const unsigned index = in->mFaces[f].mIndices[c];
-            const aiVector3D& p = in->mVertices[index];
+            const Eigen::Vector3d position = from_file(in->mVertices[index], glb, 1e3);
             const int ours = m.triangles(t, c);
-            const Eigen::Vector3d position(p.x, p.y, p.z);
-            // Same vertex, up to float32 storage.
+            // Same vertex, up to float32 storage (and the glb's mm -> m).
             REQUIRE((position - m.positions.row(ours).transpose()).norm() <=
                     4e-7 * coordinate_scale);
             const FaceRecord& face =
@@ -223,11 +230,10 @@ TEST_CASE("STL, OBJ, PLY and glb read back with the same triangles on the surfac
             max_distance =
                 std::max(max_distance, test::project(face.surface, position, uv).distance_mm);
             if (has_normals && in->mNormals != nullptr) {
-              const aiVector3D& n = in->mNormals[index];
+              const Eigen::Vector3d n = from_file(in->mNormals[index], glb, 1.0);
               Eigen::Vector3d expected = finite_difference_normal(face.surface, uv);
               if (face.reversed) expected = -expected;
-              max_normal_error =
-                  std::max(max_normal_error, (Eigen::Vector3d(n.x, n.y, n.z) - expected).norm());
+              max_normal_error = std::max(max_normal_error, (n - expected).norm());
             }
           }
         }
@@ -239,6 +245,143 @@ TEST_CASE("STL, OBJ, PLY and glb read back with the same triangles on the surfac
         // Central differences (step 1e-6 of the domain) and float32 storage: ~1e-7.
         CHECK(max_normal_error <= 1e-5);
       }
+    }
+  }
+}
+
+TEST_CASE("glb holds one mesh per face in a node named after it, in metres with Y up",
+          "[io][mesh]") {
+  const Result<Model> screw = read_model(test::shared_data("screw.step"));
+  REQUIRE(screw.ok());
+  const Model& model = screw.value();
+  test::TempDir dir;
+  WriteOptions options;
+  options.tessellation.chord_tolerance_mm = 1e-3 * model_box(model).diagonal();
+  REQUIRE(write_model(model, dir / "screw.glb", options).message == "");
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile((dir / "screw.glb").string(), 0);
+  REQUIRE(scene != nullptr);
+  REQUIRE(scene->mNumMeshes == model.faces.size());
+  REQUIRE(scene->mRootNode->mNumChildren == model.faces.size());
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+  for (unsigned k = 0; k < scene->mNumMeshes; ++k) {
+    const std::string expected = "face " + std::to_string(k) + " " + model.faces[k].source_id;
+    CHECK(std::string(scene->mMeshes[k]->mName.C_Str()).rfind(expected, 0) == 0);
+    const aiNode* node = scene->mRootNode->mChildren[k];
+    CHECK(std::string(node->mName.C_Str()) == scene->mMeshes[k]->mName.C_Str());
+    REQUIRE(node->mNumMeshes == 1);
+    CHECK(node->mMeshes[0] == k);
+    for (unsigned v = 0; v < scene->mMeshes[k]->mNumVertices; ++v) {
+      const aiVector3D& p = scene->mMeshes[k]->mVertices[v];
+      lo = lo.cwiseMin(Eigen::Vector3d(p.x, p.y, p.z));
+      hi = hi.cwiseMax(Eigen::Vector3d(p.x, p.y, p.z));
+    }
+  }
+  // The screw's axis is z in the STEP file: its length is the glb's height (y), in metres.
+  const Result<TriangleMesh> mesh = tessellate(model, options.tessellation);
+  REQUIRE(mesh.ok());
+  const Eigen::Vector3d mm_lo = mesh.value().positions.colwise().minCoeff();
+  const Eigen::Vector3d mm_hi = mesh.value().positions.colwise().maxCoeff();
+  // float32 storage of metres: each coordinate within 6e-8 of the largest, a
+  // difference of two within a few times that.
+  CHECK(std::abs((hi.y() - lo.y()) - 1e-3 * (mm_hi.z() - mm_lo.z())) <= 3e-7 * hi.norm());
+  CHECK(std::abs(hi.z() + 1e-3 * mm_lo.y()) <= 3e-7 * hi.norm());
+  CHECK(std::abs(hi.x() - 1e-3 * mm_hi.x()) <= 3e-7 * hi.norm());
+  CHECK(hi.y() - lo.y() < 1.0);  // a 62 mm screw is not 62 m tall
+}
+
+TEST_CASE("mesh files hold no zero-area triangles, and lose no others", "[io][mesh]") {
+  // bearing.iges: 0.16 mm across, with faces that collapse to a point: float32
+  // storage flattens some triangles.
+  const Result<Model> bearing = read_model(test::shared_data("bearing.iges"));
+  REQUIRE(bearing.ok());
+  WriteOptions options;
+  options.tessellation.chord_tolerance_mm = 1e-3 * model_box(bearing.value()).diagonal();
+  const Result<TriangleMesh> mesh = tessellate(bearing.value(), options.tessellation);
+  REQUIRE(mesh.ok());
+  const TriangleMesh& m = mesh.value();
+  test::TempDir dir;
+  for (const char* name : {"bearing.stl", "bearing.glb"}) {
+    const bool glb = std::string(name) == "bearing.glb";
+    // The triangles float32 storage flattens, counted here on their own, and
+    // the vertices the others use.
+    std::size_t flat = 0;
+    std::vector<bool> used(static_cast<std::size_t>(m.positions.rows()), false);
+    for (Eigen::Index t = 0; t < m.triangles.rows(); ++t) {
+      Eigen::Vector3f corner[3];
+      for (int c = 0; c < 3; ++c) {
+        const Eigen::Vector3d p = m.positions.row(m.triangles(t, c));
+        corner[c] = glb ? Eigen::Vector3d(1e-3 * p.x(), 1e-3 * p.z(), -1e-3 * p.y()).cast<float>()
+                        : p.cast<float>();
+      }
+      if ((corner[1] - corner[0]).cross(corner[2] - corner[0]).squaredNorm() == 0.0f) {
+        ++flat;
+      } else {
+        for (int c = 0; c < 3; ++c) used[static_cast<std::size_t>(m.triangles(t, c))] = true;
+      }
+    }
+    REQUIRE(write_model(bearing.value(), dir / name, options).message == "");
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile((dir / name).string(), 0);
+    REQUIRE(scene != nullptr);
+    std::size_t triangles = 0, zero_area = 0, vertices = 0;
+    for (unsigned k = 0; k < scene->mNumMeshes; ++k) {
+      const aiMesh* in = scene->mMeshes[k];
+      vertices += in->mNumVertices;
+      for (unsigned f = 0; f < in->mNumFaces; ++f) {
+        ++triangles;
+        const aiVector3D& a = in->mVertices[in->mFaces[f].mIndices[0]];
+        const aiVector3D& b = in->mVertices[in->mFaces[f].mIndices[1]];
+        const aiVector3D& c = in->mVertices[in->mFaces[f].mIndices[2]];
+        const aiVector3D n = (b - a) ^ (c - a);
+        if (n.x == 0 && n.y == 0 && n.z == 0) ++zero_area;
+      }
+    }
+    INFO(name << ": " << flat << " of " << m.triangles.rows() << " flattened by float32");
+    CHECK(flat > 0);  // the case this test is about occurs
+    CHECK(zero_area == 0);
+    CHECK(triangles + flat == static_cast<std::size_t>(m.triangles.rows()));
+    // No vertex joined to another (assimp's glTF export joins vertices closer
+    // than 1e-4 of a mesh's size unless their (u, v) differ): the glb keeps
+    // every vertex where the surface put it. STL stores corners per triangle.
+    if (glb)
+      CHECK(vertices == static_cast<std::size_t>(std::count(used.begin(), used.end(), true)));
+  }
+}
+
+TEST_CASE("a tessellation past its triangle limit fails, and the estimate predicts the count",
+          "[io][mesh]") {
+  const Model panel = panel_and_trimmed_face();
+  TessellationOptions options;
+  options.chord_tolerance_mm = 1e-3 * model_box(panel).diagonal();
+  const Result<TriangleMesh> full = tessellate(panel, options);
+  REQUIRE(full.ok());
+  options.max_triangles = static_cast<std::size_t>(full.value().triangles.rows()) / 2;
+  const Result<TriangleMesh> limited = tessellate(panel, options);
+  REQUIRE_FALSE(limited.ok());
+  CHECK_THAT(limited.status().message,
+             Catch::Contains("limit of " + std::to_string(options.max_triangles) + " triangles"));
+  options.max_triangles = 0;
+
+  const Result<Model> bearing = read_model(test::shared_data("bearing.iges"));
+  const Result<Model> screw = read_model(test::shared_data("screw.step"));
+  REQUIRE(bearing.ok());
+  REQUIRE(screw.ok());
+  for (const Model* model : {&panel, &bearing.value(), &screw.value()}) {
+    for (double relative : {1e-2, 1e-3, 1e-4}) {
+      options.chord_tolerance_mm = relative * model_box(*model).diagonal();
+      const Result<std::size_t> estimate = estimate_triangle_count(*model, options);
+      const Result<TriangleMesh> mesh = tessellate(*model, options);
+      REQUIRE(estimate.ok());
+      REQUIRE(mesh.ok());
+      const auto count = static_cast<double>(mesh.value().triangles.rows());
+      const auto guess = static_cast<double>(estimate.value());
+      INFO(model->faces.size() << " faces at " << relative << " of the size: " << count
+                               << " triangles, estimated " << guess);
+      // Two coarse samples of a power law: right within a factor of two is
+      // what the refusal of huge meshes needs.
+      CHECK(guess >= 0.5 * count);
+      CHECK(guess <= 2.0 * count);
     }
   }
 }

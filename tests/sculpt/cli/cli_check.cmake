@@ -3,9 +3,10 @@
 #               (degrees, pole counts, rational, trimmed); stdout carries no
 #               OpenCASCADE chatter.
 #   fails:      ARGS must exit non-zero with EXPECT in stderr (and, when
-#               NOT_EXPECT is given, no match of it).
+#               NOT_EXPECT is given, no match of it); when ABSENT names a
+#               file, it must not exist afterwards (removed first).
 #   warns:      ARGS must exit 0 with EXPECT in stderr (a warning that does not stop it).
-# Variables: ARGIL, MODE, IN, OUT, ARGS (;-list), EXPECT, NOT_EXPECT.
+# Variables: ARGIL, MODE, IN, OUT, ARGS (;-list), EXPECT, NOT_EXPECT, ABSENT.
 cmake_minimum_required(VERSION 3.20)
 
 function(run_argil out_var err_var rc_var)
@@ -45,7 +46,13 @@ if(MODE STREQUAL "same_faces")
   endif()
   message(STATUS "same faces: ${table_in}")
 elseif(MODE STREQUAL "fails")
+  if(DEFINED ABSENT)
+    file(REMOVE "${ABSENT}")
+  endif()
   run_argil(out err rc ${ARGS})
+  if(DEFINED ABSENT AND EXISTS "${ABSENT}")
+    message(FATAL_ERROR "the failed command wrote ${ABSENT}")
+  endif()
   if(rc EQUAL 0)
     message(FATAL_ERROR "expected a failure, got exit 0:\n${out}")
   endif()

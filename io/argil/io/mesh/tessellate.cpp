@@ -285,7 +285,11 @@ TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& 
   return compact_mesh(face, cache, trimmed_fans(face, cells, cache), face_index);
 }
 
-Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& options) {
+namespace {
+
+/// The chord tolerance's range: positive, finite, and not below what float32
+/// mesh files can store for this model.
+Status check_chord_tolerance(const Model& model, const TessellationOptions& options) {
   if (!(options.chord_tolerance_mm > 0.0) || !std::isfinite(options.chord_tolerance_mm)) {
     return Status::error(StatusCode::invalid_argument, "chord tolerance " +
                                                            number_text(options.chord_tolerance_mm) +
@@ -304,6 +308,13 @@ Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& o
                              approx_text(size) +
                              " mm size): finer than float32 mesh files can store");
   }
+  return Status::success();
+}
+
+}  // namespace
+
+Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& options) {
+  if (const Status range = check_chord_tolerance(model, options); !range.ok()) return range;
   TriangleMesh all;
   std::vector<TriangleMesh> parts;
   Eigen::Index vertices = 0, triangles = 0;
@@ -316,6 +327,21 @@ Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& o
     parts.push_back(tessellate_face(model.faces[f], options, static_cast<int>(f)));
     vertices += parts.back().positions.rows();
     triangles += parts.back().triangles.rows();
+    if (options.max_triangles > 0 && static_cast<std::size_t>(triangles) > options.max_triangles) {
+      return Status::error(
+          StatusCode::invalid_argument,
+          "chord tolerance " + number_text(options.chord_tolerance_mm) +
+              " mm gives more than the limit of " + std::to_string(options.max_triangles) +
+              " triangles: " + std::to_string(triangles) + " after " + std::to_string(f + 1) +
+              " of " + std::to_string(model.faces.size()) + " faces");
+    }
+  }
+  for (std::size_t f = 0; f < model.faces.size(); ++f) {
+    const FaceRecord& face = model.faces[f];
+    std::string name = "face " + std::to_string(f);
+    if (!face.source_id.empty()) name += " " + face.source_id;
+    if (!face.name.empty()) name += " " + face.name;
+    all.face_names.push_back(std::move(name));
   }
   all.positions.resize(vertices, 3);
   all.normals.resize(vertices, 3);
@@ -333,6 +359,29 @@ Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& o
     t0 += nt;
   }
   return all;
+}
+
+Result<std::size_t> estimate_triangle_count(const Model& model,
+                                            const TessellationOptions& options) {
+  if (const Status range = check_chord_tolerance(model, options); !range.ok()) return range;
+  const double size = model_box(model).diagonal();
+  const double t1 = std::max(options.chord_tolerance_mm, 1e-2 * size);
+  const double t2 = std::max(options.chord_tolerance_mm, 0.25 * t1);
+  TessellationOptions coarse = options;
+  coarse.max_triangles = 0;
+  coarse.chord_tolerance_mm = t1;
+  const Result<TriangleMesh> m1 = tessellate(model, coarse);
+  if (!m1.ok()) return m1.status();
+  const auto n1 = static_cast<double>(m1.value().triangles.rows());
+  if (t2 == t1) return static_cast<std::size_t>(n1);
+  coarse.chord_tolerance_mm = t2;
+  const Result<TriangleMesh> m2 = tessellate(model, coarse);
+  if (!m2.ok()) return m2.status();
+  const auto n2 = static_cast<double>(m2.value().triangles.rows());
+  if (t2 == options.chord_tolerance_mm) return static_cast<std::size_t>(n2);
+  const double b = std::max(0.0, (n2 - n1) / (1.0 / t2 - 1.0 / t1));
+  const double a = std::max(0.0, n2 - b / t2);
+  return static_cast<std::size_t>(std::ceil(a + b / options.chord_tolerance_mm));
 }
 
 }  // namespace argil::io

@@ -3,6 +3,7 @@
 // mesh export and viewers. No third-party types: meshes are written elsewhere.
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "argil/core/base/status.hpp"
@@ -18,6 +19,10 @@ struct TessellationOptions {
   /// Subdivision depth limit below each knot-span patch (a cell is at least
   /// 2^-max_depth of its span wide); reached only at singular points.
   int max_depth = 16;
+  /// tessellate() fails once the faces done so far hold more triangles than
+  /// this (0: no limit): a tolerance far too fine for the model stops early
+  /// instead of filling memory and disk.
+  std::size_t max_triangles = 0;
 };
 
 /// Triangles over all faces of a model. Every vertex keeps the face and (u, v)
@@ -27,6 +32,9 @@ struct TriangleMesh {
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> normals;    // unit, face side
   Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> uv;         // surface parameters
   std::vector<int> vertex_face;                                         // face of each vertex
+  /// A label per face of the model (tessellate() only): "face 3 #120 Fillet",
+  /// the face's index, then its source entity and name when it has them.
+  std::vector<std::string> face_names;
   /// Vertex indices, counter-clockwise seen from the side the normals point to.
   Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> triangles;
 };
@@ -49,10 +57,21 @@ struct TriangleMesh {
 TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& options = {},
                              int face_index = 0);
 
-/// Tessellates every face and concatenates the meshes. Fails when a face or
-/// its trim loops do not validate (the message names the face, loop and
-/// curve) or the tolerance is not positive or below 1e-7 of the model's
-/// control-point diagonal (mesh files hold float32 coordinates).
+/// Tessellates every face and concatenates the meshes, face after face.
+/// Fails when a face or its trim loops do not validate (the message names the
+/// face, loop and curve), the tolerance is not positive or below 1e-7 of the
+/// model's control-point diagonal (mesh files hold float32 coordinates), or
+/// the triangles pass options.max_triangles (invalid_argument; the message
+/// gives the count reached and after how many faces).
 Result<TriangleMesh> tessellate(const Model& model, const TessellationOptions& options = {});
+
+/// About how many triangles tessellate(model, options) makes, at a small
+/// fraction of its cost: two coarse tessellations (at 1e-2 and 2.5e-3 of the
+/// model's size, or options' tolerance when coarser) fit N(t) = a + b / t,
+/// the count of flat faces (a) plus that of curved ones, whose cells shrink
+/// as sqrt(t) (b / t), and the fit is read at options.chord_tolerance_mm.
+/// Fails as tessellate() does on faces that do not validate.
+Result<std::size_t> estimate_triangle_count(const Model& model,
+                                            const TessellationOptions& options = {});
 
 }  // namespace argil::io
