@@ -17,7 +17,7 @@ struct GuardedResult {
 
 /// Runs `work` in a forked child and returns the numbers it produced, or why
 /// it did not: stopped after `limit_s` seconds of CPU time (or ten times that
-/// in wall time), or died.
+/// in wall time), or died. The child's stderr is discarded.
 GuardedResult run_guarded(const std::function<std::vector<double>()>& work, double limit_s);
 
 }  // namespace argil::bench

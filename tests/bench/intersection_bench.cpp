@@ -87,38 +87,6 @@ std::vector<Pair> all_pairs() {
   return pairs;
 }
 
-/// Largest distance of a peer's points (at most 2000, evenly spread) to either surface.
-struct SurfaceDistance {
-  GeomAPI_ProjectPointOnSurf pa, pb;
-  SurfaceDistance(const BSplineSurface& a, const BSplineSurface& b) {
-    const auto init = [](GeomAPI_ProjectPointOnSurf& p, const BSplineSurface& s) {
-      const Handle(Geom_BSplineSurface) o = to_occt(s);
-      double u0, u1, v0, v1;
-      o->Bounds(u0, u1, v0, v1);
-      p.Init(o, u0, u1, v0, v1, Precision::Confusion());
-    };
-    init(pa, a);
-    init(pb, b);
-  }
-  double worst(const std::vector<Polyline>& lines) {
-    std::size_t total = 0;
-    for (const Polyline& l : lines) total += l.size();
-    const std::size_t stride = std::max<std::size_t>(1, total / 2000);
-    double worst = 0.0;
-    std::size_t k = 0;
-    for (const Polyline& l : lines)
-      for (const Eigen::Vector3d& q : l) {
-        if (k++ % stride != 0) continue;
-        const gp_Pnt g(q.x(), q.y(), q.z());
-        pa.Perform(g);
-        pb.Perform(g);
-        worst = std::max({worst, pa.NbPoints() > 0 ? pa.LowerDistance() : HUGE_VAL,
-                          pb.NbPoints() > 0 ? pb.LowerDistance() : HUGE_VAL});
-      }
-    return worst;
-  }
-};
-
 struct Cell {
   std::string outcome = "returned";
   PeerOutput output;
@@ -166,7 +134,7 @@ int main(int argc, char** argv) {
         oracle.components, oracle.samples.size(), oracle.residual / pair.size);
     std::printf("%-6s  %-10s  %-22s  %10s  %4s  %6s  %8s  %8s\n", "eps", "peer", "outcome",
                 "CPU [ms]", "runs", "curves", "on-surf", "coverage");
-    SurfaceDistance to_surfaces(pair.a, pair.b);
+    SurfaceDistance to_surfaces(pair.a, pair.b, pair.graph);
     for (int e : exponents) {
       const double eps = std::pow(10.0, -e) * pair.size;
       for (Peer peer : kPeers) {

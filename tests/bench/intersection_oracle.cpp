@@ -13,57 +13,69 @@
 #include "bench_surfaces.hpp"
 
 namespace argil::bench {
-namespace {
 
-/// A surface whose x depends on u alone and y on v alone, inverted per axis.
-struct GraphSurface {
-  Handle(Geom_BSplineSurface) s;
-  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+GraphSurface::GraphSurface(const BSplineSurface& surface) : s(to_occt(surface)) {
+  s->Bounds(u0, u1, v0, v1);
+}
 
-  explicit GraphSurface(const BSplineSurface& surface) : s(to_occt(surface)) {
-    s->Bounds(u0, u1, v0, v1);
+double GraphSurface::invert(int axis, double value) const {
+  double lo = axis == 0 ? u0 : v0, hi = axis == 0 ? u1 : v1;
+  const auto coordinate = [&](double t) {
+    const gp_Pnt p = axis == 0 ? s->Value(t, v0) : s->Value(u0, t);
+    return axis == 0 ? p.X() : p.Y();
+  };
+  const bool rising = coordinate(hi) > coordinate(lo);
+  for (int k = 0; k < 64 && hi - lo > 0.0; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    if ((coordinate(mid) < value) == rising)
+      lo = mid;
+    else
+      hi = mid;
   }
-  /// The parameter along `axis` (0: u, whose x is sought; 1: v, y) where the
-  /// coordinate reaches `value`: bisection, as x(u) is monotone.
-  double invert(int axis, double value) const {
-    double lo = axis == 0 ? u0 : v0, hi = axis == 0 ? u1 : v1;
-    const auto coordinate = [&](double t) {
-      const gp_Pnt p = axis == 0 ? s->Value(t, v0) : s->Value(u0, t);
-      return axis == 0 ? p.X() : p.Y();
-    };
-    const bool rising = coordinate(hi) > coordinate(lo);
-    for (int k = 0; k < 64 && hi - lo > 0.0; ++k) {
-      const double mid = 0.5 * (lo + hi);
-      if ((coordinate(mid) < value) == rising)
-        lo = mid;
-      else
-        hi = mid;
+  return 0.5 * (lo + hi);
+}
+
+SurfaceDistance::SurfaceDistance(const BSplineSurface& a, const BSplineSurface& b, bool graphs) {
+  const BSplineSurface* sides[2] = {&a, &b};
+  for (int k = 0; k < 2; ++k) {
+    const Handle(Geom_BSplineSurface) o = to_occt(*sides[k]);
+    double u0, u1, v0, v1;
+    o->Bounds(u0, u1, v0, v1);
+    project_[k].Init(o, u0, u1, v0, v1, Precision::Confusion());
+    if (graphs) graphs_.emplace_back(*sides[k]);
+  }
+}
+
+double SurfaceDistance::to(int side, const Eigen::Vector3d& p) {
+  GeomAPI_ProjectPointOnSurf& projection = project_[side];
+  projection.Perform(gp_Pnt(p.x(), p.y(), p.z()));
+  double d = projection.NbPoints() > 0 ? projection.LowerDistance() : HUGE_VAL;
+  if (!graphs_.empty()) {
+    const GraphSurface& g = graphs_[static_cast<std::size_t>(side)];
+    const gp_Pnt lo = g.s->Value(g.u0, g.v0), hi = g.s->Value(g.u1, g.v1);
+    const bool inside = p.x() >= std::min(lo.X(), hi.X()) && p.x() <= std::max(lo.X(), hi.X()) &&
+                        p.y() >= std::min(lo.Y(), hi.Y()) && p.y() <= std::max(lo.Y(), hi.Y());
+    if (inside) {
+      const gp_Pnt q = g.s->Value(g.invert(0, p.x()), g.invert(1, p.y()));
+      d = std::min(d, std::abs(p.z() - q.Z()));
     }
-    return 0.5 * (lo + hi);
   }
-};
+  return d;
+}
 
-double residual_of(const std::vector<Eigen::Vector3d>& points, const BSplineSurface& a,
-                   const BSplineSurface& b) {
-  GeomAPI_ProjectPointOnSurf pa, pb;
-  const Handle(Geom_BSplineSurface) oa = to_occt(a), ob = to_occt(b);
-  double ua0, ua1, va0, va1, ub0, ub1, vb0, vb1;
-  oa->Bounds(ua0, ua1, va0, va1);
-  ob->Bounds(ub0, ub1, vb0, vb1);
-  pa.Init(oa, ua0, ua1, va0, va1, Precision::Confusion());
-  pb.Init(ob, ub0, ub1, vb0, vb1, Precision::Confusion());
+double SurfaceDistance::worst(const std::vector<Polyline>& lines) {
+  std::size_t total = 0;
+  for (const Polyline& l : lines) total += l.size();
+  const std::size_t stride = std::max<std::size_t>(1, total / 2000);
   double worst = 0.0;
-  const std::size_t stride = std::max<std::size_t>(1, points.size() / 2000);
-  for (std::size_t k = 0; k < points.size(); k += stride) {
-    const gp_Pnt q(points[k].x(), points[k].y(), points[k].z());
-    pa.Perform(q);
-    pb.Perform(q);
-    const double da = pa.NbPoints() > 0 ? pa.LowerDistance() : HUGE_VAL;
-    const double db = pb.NbPoints() > 0 ? pb.LowerDistance() : HUGE_VAL;
-    worst = std::max({worst, da, db});
-  }
+  std::size_t k = 0;
+  for (const Polyline& l : lines)
+    for (const Eigen::Vector3d& q : l)
+      if (k++ % stride == 0) worst = std::max({worst, to(0, q), to(1, q)});
   return worst;
 }
+
+namespace {
 
 struct UnionFind {
   std::vector<int> parent;
@@ -173,7 +185,7 @@ OracleCurves graph_oracle(const BSplineSurface& a, const BSplineSurface& b, int 
     if (crossed[static_cast<std::size_t>(c)]) roots.push_back(components.find(c));
   std::sort(roots.begin(), roots.end());
   out.components = static_cast<int>(std::unique(roots.begin(), roots.end()) - roots.begin());
-  out.residual = residual_of(out.samples, a, b);
+  out.residual = SurfaceDistance(a, b, true).worst({out.samples});
   return out;
 }
 
@@ -207,7 +219,7 @@ OracleCurves occt_oracle(const BSplineSurface& a, const BSplineSurface& b, doubl
     roots.push_back(components.find(static_cast<int>(i)));
   std::sort(roots.begin(), roots.end());
   out.components = static_cast<int>(std::unique(roots.begin(), roots.end()) - roots.begin());
-  out.residual = residual_of(out.samples, a, b);
+  out.residual = SurfaceDistance(a, b, false).worst({out.samples});
   return out;
 }
 

@@ -10,6 +10,9 @@
 // - Other pairs: OpenCASCADE GeomInt_IntSS at 1e-10 of the size, its lines
 //   sampled densely and joined where their ends meet.
 
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Geom_BSplineSurface.hxx>
+
 #include <string>
 #include <vector>
 
@@ -23,6 +26,34 @@ struct OracleCurves {
   int components = 0;                    // the true number of curves
   double residual = 0.0;  // the samples' largest distance to either surface [mm] (OCCT)
   std::string method;
+};
+
+/// A graph surface: x a function of u alone, y of v alone, inverted per axis
+/// by bisection (x(u) and y(v) are monotone).
+struct GraphSurface {
+  Handle(Geom_BSplineSurface) s;
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  explicit GraphSurface(const BSplineSurface& surface);
+  /// The parameter along `axis` (0: u, for x; 1: v, for y) where the
+  /// coordinate reaches `value`.
+  double invert(int axis, double value) const;
+};
+
+/// The largest distance of points to either of two surfaces, each distance
+/// by OpenCASCADE projection and, for graph surfaces, also bounded by the
+/// vertical gap |z - z_s(x, y)| (the smaller of the two bounds is kept):
+/// OpenCASCADE's projection can stop at a local minimum on a surface with C0
+/// creases (degree 1, full-multiplicity knots). At most 2000 points, evenly
+/// spread, are measured.
+class SurfaceDistance {
+ public:
+  SurfaceDistance(const BSplineSurface& a, const BSplineSurface& b, bool graphs);
+  double worst(const std::vector<Polyline>& lines);
+
+ private:
+  double to(int side, const Eigen::Vector3d& p);
+  GeomAPI_ProjectPointOnSurf project_[2];
+  std::vector<GraphSurface> graphs_;
 };
 
 /// Brute force over a grid x grid sampling of the common (x, y) square.
