@@ -120,7 +120,9 @@ int main(int argc, char** argv) {
       "surface; coverage = largest distance from the oracle's curve samples to the peer's\n"
       "curves. Each peer runs in a child process, stopped after %.0f s of CPU time.\n",
       limit_s);
-  std::map<std::string, std::map<std::string, double>> at_1e6;  // pair -> peer -> ms
+  // (pair, eps exponent) -> peer -> ms, for the peers that returned a result
+  // that is not wrong: a missed curve or a failure has no time to compare.
+  std::map<std::pair<std::string, int>, std::map<std::string, double>> times;
   for (const Pair& pair : all_pairs()) {
     if (!only.empty() && std::find(only.begin(), only.end(), pair.name) == only.end()) continue;
     const OracleCurves oracle =
@@ -166,20 +168,25 @@ int main(int argc, char** argv) {
                     returned ? cell.output.cpu_ms : -1.0, returned ? cell.output.curves : -1,
                     oracle.components, cell.on_surface, cell.coverage);
         std::fflush(stdout);
-        if (e == 6 && returned) at_1e6[pair.name][peer_name(peer)] = cell.output.cpu_ms;
+        if (returned && cell.output.curves == oracle.components && std::isfinite(cell.coverage))
+          times[{pair.name, e}][peer_name(peer)] = cell.output.cpu_ms;
       }
     }
   }
-  std::printf("\nRatios at eps 1e-6 (same run; > 1: argil slower):\n");
-  for (const auto& [pair, times] : at_1e6) {
-    const auto t = [&](const char* peer) {
-      const auto it = times.find(peer);
-      return it == times.end() ? NAN : it->second;
+  std::printf(
+      "\nCPU time ratios, same run (> 1: argil slower; '-' where the peer failed, missed a\n"
+      "curve or found too many):\n%-12s %6s  %10s  %10s\n",
+      "pair", "eps", "argil/occt", "argil/sisl");
+  for (const auto& [key, peers] : times) {
+    const auto ratio = [&](const char* peer) {
+      const auto it = peers.find(peer), ours = peers.find("argil");
+      if (it == peers.end() || ours == peers.end()) return std::string("-");
+      char text[32];
+      std::snprintf(text, sizeof text, "%.3g", ours->second / it->second);
+      return std::string(text);
     };
-    std::printf(
-        "%-12s argil/occt %.3g  argil/sisl %.3g  argil-warm/occt %.3g  argil-warm/sisl %.3g\n",
-        pair.c_str(), t("argil") / t("occt"), t("argil") / t("sisl"), t("argil-warm") / t("occt"),
-        t("argil-warm") / t("sisl"));
+    std::printf("%-12s 1e-%-3d  %10s  %10s\n", key.first.c_str(), key.second, ratio("occt").c_str(),
+                ratio("sisl").c_str());
   }
   return 0;
 }
