@@ -56,9 +56,10 @@ bool degenerate(const aiVector3D& a, const aiVector3D& b, const aiVector3D& c) {
 }
 
 /// One assimp mesh: the triangles of one face, its vertices renumbered.
+/// `local` (one slot per vertex of `mesh`, all -1) is scratch space shared by
+/// the faces, left all -1 again.
 aiMesh* face_mesh(const TriangleMesh& mesh, const std::vector<Eigen::Index>& triangles,
-                  const std::string& name, const Frame& frame) {
-  std::vector<int> local(static_cast<std::size_t>(mesh.positions.rows()), -1);
+                  const std::string& name, const Frame& frame, std::vector<int>& local) {
   std::vector<Eigen::Index> vertices;
   std::vector<Eigen::Index> kept;
   for (Eigen::Index t : triangles) {
@@ -75,7 +76,7 @@ aiMesh* face_mesh(const TriangleMesh& mesh, const std::vector<Eigen::Index>& tri
       }
     }
   }
-  if (kept.empty()) return nullptr;
+  if (kept.empty()) return nullptr;  // nothing was numbered
   auto* out = new aiMesh();
   out->mName = aiString(name);
   out->mMaterialIndex = 0;
@@ -105,11 +106,12 @@ aiMesh* face_mesh(const TriangleMesh& mesh, const std::vector<Eigen::Index>& tri
       face.mIndices[c] =
           static_cast<unsigned>(local[static_cast<std::size_t>(mesh.triangles(kept[f], c))]);
   }
+  for (Eigen::Index v : vertices) local[static_cast<std::size_t>(v)] = -1;
   return out;
 }
 
-// An aiScene owns its arrays and frees them in its destructor: every array is
-// handed to it as soon as it is made.
+// An aiScene owns its arrays and frees them in its destructor. The face
+// meshes are handed to it once all are made.
 void fill_scene(const TriangleMesh& mesh, MeshFormat format, aiScene& scene) {
   auto* material = new aiMaterial();
   const aiString material_name("argil surface");
@@ -128,11 +130,12 @@ void fill_scene(const TriangleMesh& mesh, MeshFormat format, aiScene& scene) {
     by_face[face].push_back(t);
   }
   const Frame frame = frame_for(format);
+  std::vector<int> local(static_cast<std::size_t>(mesh.positions.rows()), -1);
   std::vector<aiMesh*> meshes;
   for (std::size_t f = 0; f < by_face.size(); ++f) {
     const std::string name =
         f < mesh.face_names.size() ? mesh.face_names[f] : "face " + std::to_string(f);
-    if (aiMesh* m = face_mesh(mesh, by_face[f], name, frame)) meshes.push_back(m);
+    if (aiMesh* m = face_mesh(mesh, by_face[f], name, frame, local)) meshes.push_back(m);
   }
   scene.mRootNode = new aiNode("argil");
   if (meshes.empty()) return;
