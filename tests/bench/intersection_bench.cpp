@@ -11,7 +11,8 @@
 // oracle's dense curve samples to its curves (coverage; a missed curve shows
 // here). SISL is AGPL: linked into this benchmark only.
 //
-// Usage: bench_intersection [pair,pair,...] [--limit SECONDS]
+// Usage: bench_intersection [pair,pair,...] [--limit SECONDS] [--peers NAME,NAME]
+//                           [--exponents 3,4,...]
 // Lines starting "ssi-csv," feed plot_intersection.py.
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Precision.hxx>
@@ -104,16 +105,28 @@ std::string relative_text(double v) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> only;
+  std::vector<std::string> peers_only;
+  std::vector<int> exponents{3, 4, 5, 6, 7, 8};
   double limit_s = 30.0;
+  const auto split = [](const char* text) {
+    std::vector<std::string> out;
+    std::stringstream items(text);
+    for (std::string item; std::getline(items, item, ',');) out.push_back(item);
+    return out;
+  };
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--limit") == 0 && i + 1 < argc) {
       limit_s = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--peers") == 0 && i + 1 < argc) {
+      peers_only = split(argv[++i]);
+    } else if (std::strcmp(argv[i], "--exponents") == 0 && i + 1 < argc) {
+      exponents.clear();
+      for (const std::string& e : split(argv[++i])) exponents.push_back(std::stoi(e));
     } else {
       std::stringstream names(argv[i]);
       for (std::string name; std::getline(names, name, ',');) only.push_back(name);
     }
   }
-  const std::vector<int> exponents{3, 4, 5, 6, 7, 8};
   std::printf(
       "Surface-surface intersection: CPU time (median of up to 7 runs) and achieved error,\n"
       "relative to the pair's size: on-surf = largest distance of the peer's points to either\n"
@@ -140,6 +153,9 @@ int main(int argc, char** argv) {
     for (int e : exponents) {
       const double eps = std::pow(10.0, -e) * pair.size;
       for (Peer peer : kPeers) {
+        if (!peers_only.empty() && std::find(peers_only.begin(), peers_only.end(),
+                                             peer_name(peer)) == peers_only.end())
+          continue;
         Cell cell;
         const GuardedResult run =
             run_guarded([&] { return run_peer(peer, pair.a, pair.b, eps).to_payload(); }, limit_s);

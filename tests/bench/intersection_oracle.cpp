@@ -91,7 +91,8 @@ struct UnionFind {
 
 }  // namespace
 
-OracleCurves graph_oracle(const BSplineSurface& a, const BSplineSurface& b, int grid) {
+OracleCurves graph_oracle(const BSplineSurface& a, const BSplineSurface& b, int grid,
+                          bool samples) {
   const GraphSurface ga(a), gb(b);
   // The common square: where both graphs are defined.
   const double x0 = std::max(ga.s->Value(ga.u0, ga.v0).X(), gb.s->Value(gb.u0, gb.v0).X());
@@ -130,10 +131,9 @@ OracleCurves graph_oracle(const BSplineSurface& a, const BSplineSurface& b, int 
   std::vector<bool> crossed(static_cast<std::size_t>(cells), false);
   const auto cell = [grid](int i, int j) { return i * grid + j; };
   const auto positive = [](double v) { return v >= 0.0; };
-  // Edge (i, j) -> (i + di, j + dj): solve the crossing along it (regula
-  // falsi, Illinois), then join the cells on both sides.
-  const auto edge = [&](int i, int j, int di, int dj) {
-    if (positive(f[node(i, j)]) == positive(f[node(i + di, j + dj)])) return;
+  // Edge (i, j) -> (i + di, j + dj) crosses: solve where (regula falsi,
+  // Illinois) and keep the point as a sample.
+  const auto solve = [&](int i, int j, int di, int dj) {
     const bool along_x = di == 1;
     const double fixed = along_x ? at(y0, y1, j, n) : at(x0, x1, i, n);
     double lo = along_x ? at(x0, x1, i, n) : at(y0, y1, j, n);
@@ -163,6 +163,13 @@ OracleCurves graph_oracle(const BSplineSurface& a, const BSplineSurface& b, int 
     const double x = along_x ? t : fixed, y = along_x ? fixed : t;
     const gp_Pnt p = ga.s->Value(ga.invert(0, x), ga.invert(1, y));
     out.samples.emplace_back(p.X(), p.Y(), p.Z());
+  };
+  // Edge (i, j) -> (i + di, j + dj): where it crosses, join the cells on
+  // both sides.
+  const auto edge = [&](int i, int j, int di, int dj) {
+    if (positive(f[node(i, j)]) == positive(f[node(i + di, j + dj)])) return;
+    const bool along_x = di == 1;
+    if (samples) solve(i, j, di, dj);
     // The cells on either side of the edge (one at the square's border).
     std::vector<int> sides;
     if (along_x) {
@@ -185,7 +192,7 @@ OracleCurves graph_oracle(const BSplineSurface& a, const BSplineSurface& b, int 
     if (crossed[static_cast<std::size_t>(c)]) roots.push_back(components.find(c));
   std::sort(roots.begin(), roots.end());
   out.components = static_cast<int>(std::unique(roots.begin(), roots.end()) - roots.begin());
-  out.residual = SurfaceDistance(a, b, true).worst({out.samples});
+  if (samples) out.residual = SurfaceDistance(a, b, true).worst({out.samples});
   return out;
 }
 

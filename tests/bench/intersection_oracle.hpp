@@ -56,8 +56,10 @@ class SurfaceDistance {
   std::vector<GraphSurface> graphs_;
 };
 
-/// Brute force over a grid x grid sampling of the common (x, y) square.
-OracleCurves graph_oracle(const BSplineSurface& a, const BSplineSurface& b, int grid);
+/// Brute force over a grid x grid sampling of the common (x, y) square. With
+/// `samples` false only the curve count: no crossing is solved.
+OracleCurves graph_oracle(const BSplineSurface& a, const BSplineSurface& b, int grid,
+                          bool samples = true);
 
 /// OpenCASCADE's own intersection at a tight tolerance.
 OracleCurves occt_oracle(const BSplineSurface& a, const BSplineSurface& b, double size);

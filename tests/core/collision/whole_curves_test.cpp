@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "argil/core.hpp"
@@ -247,6 +248,73 @@ TEST_CASE("curve tidying drops covered short pieces, keeps isolated ones, joins 
     const auto out = argil::detail::tidy_curves(
         {curve({{0, 0, 0}, {1, 0, 0}}), curve({{1.0005, 0, 0}, {0, 1, 0}})}, eps);
     CHECK(out.size() == 2);
+  }
+  SECTION("pieces a few eps apart or overlapping are joined through the bridge") {
+    // A bridge that returns the midpoint of the gap, as one straight branch would.
+    int asked = 0;
+    const argil::detail::GapBridge straight = [&asked](const argil::detail::CurvePoint& from,
+                                                       const argil::detail::CurvePoint& to) {
+      ++asked;
+      IntersectionCurve mid;
+      mid.points.push_back(0.5 * (from.point + to.point));
+      mid.uv_a.push_back(0.5 * (from.uv_a + to.uv_a));
+      mid.uv_b.push_back(0.5 * (from.uv_b + to.uv_b));
+      return std::optional<IntersectionCurve>(mid);
+    };
+    const argil::detail::GapBridge none = [&asked](const argil::detail::CurvePoint&,
+                                                   const argil::detail::CurvePoint&) {
+      ++asked;
+      return std::optional<IntersectionCurve>();
+    };
+    const std::vector<IntersectionCurve> gap{curve({{0, 0, 0}, {1, 0, 0}}),
+                                             curve({{1.003, 0, 0}, {2, 0, 0}})};
+    CHECK(argil::detail::tidy_curves(gap, eps).size() == 2);
+    CHECK(argil::detail::tidy_curves(gap, eps, none).size() == 2);
+    const auto bridged = argil::detail::tidy_curves(gap, eps, straight);
+    REQUIRE(bridged.size() == 1);
+    CHECK(bridged[0].points.size() == 5);
+    CHECK(bridged[0].points[2].isApprox(Eigen::Vector3d(1.0015, 0, 0)));
+    // Overlapping by 3 eps, each past the other's end: the overlapped points
+    // of one go, and the curve runs on without turning back.
+    const auto overlapped = argil::detail::tidy_curves(
+        {curve({{0, 0, 0}, {0.5, 0, 0}, {1, 0, 0}}),
+         curve({{0.997, 0, 0}, {0.9985, 0, 0}, {1.5, 0, 0}, {2, 0, 0}})},
+        eps, straight);
+    REQUIRE(overlapped.size() == 1);
+    const std::vector<Eigen::Vector3d>& p = overlapped[0].points;
+    for (std::size_t k = 0; k + 1 < p.size(); ++k) CHECK(p[k + 1].x() > p[k].x());
+    CHECK(p.back().x() == 2.0);
+    // Side by side (the gap across the curves) or farther than the reach:
+    // the bridge is not even asked.
+    asked = 0;
+    CHECK(argil::detail::tidy_curves({curve({{0, 0, 0}, {1, 0, 0}}),
+                                      curve({{1, 0.003, 0}, {2, 0.003, 0}})},
+                                     eps, straight)
+              .size() == 2);
+    CHECK(argil::detail::tidy_curves({curve({{0, 0, 0}, {1, 0, 0}}),
+                                      curve({{1.0 + 1.01 * argil::detail::kBridgeReach * eps, 0,
+                                              0},
+                                             {2, 0, 0}})},
+                                     eps, straight)
+              .size() == 2);
+    CHECK(asked == 0);
+  }
+  SECTION("a loop whose ends lie a few eps apart is closed through the bridge") {
+    const argil::detail::GapBridge straight = [](const argil::detail::CurvePoint& from,
+                                                 const argil::detail::CurvePoint& to) {
+      IntersectionCurve mid;
+      mid.points.push_back(0.5 * (from.point + to.point));
+      mid.uv_a.push_back(0.5 * (from.uv_a + to.uv_a));
+      mid.uv_b.push_back(0.5 * (from.uv_b + to.uv_b));
+      return std::optional<IntersectionCurve>(mid);
+    };
+    const auto out = argil::detail::tidy_curves(
+        {curve({{0.5, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 0}, {0.497, 0, 0}})}, eps,
+        straight);
+    REQUIRE(out.size() == 1);
+    CHECK(out[0].closed());
+    CHECK(out[0].points.size() == 8);
+    CHECK(out[0].points[6].isApprox(Eigen::Vector3d(0.4985, 0, 0)));
   }
   SECTION("an open loop whose ends meet is closed; its first point repeated") {
     const auto out = argil::detail::tidy_curves(

@@ -318,6 +318,15 @@ class Densifier {
     return std::move(out_);
   }
 
+  /// The refined points strictly between two refined points of one branch;
+  /// nullopt when a midpoint does not refine onto the curve near its chord,
+  /// or the chords do not come within `tolerance` of the curve.
+  std::optional<IntersectionCurve> between(const PairPoint& lo, const PairPoint& hi) {
+    out_ = {};
+    if (!fill(lo, hi, 0)) return std::nullopt;
+    return std::move(out_);
+  }
+
  private:
   static constexpr int kMaxDepth = 10;  // at most 2^10 pieces per leaf segment
 
@@ -327,19 +336,20 @@ class Densifier {
     out_.uv_b.push_back(p.uv_b);
   }
 
-  /// Fills the open interval between two refined points.
-  void fill(const PairPoint& lo, const PairPoint& hi, int depth) {
-    if (depth >= kMaxDepth) return;
+  /// Fills the open interval between two refined points; false when it
+  /// stopped short (a failed refinement or the depth limit).
+  bool fill(const PairPoint& lo, const PairPoint& hi, int depth) {
+    if (depth >= kMaxDepth) return false;
     const PairPoint chord{0.5 * (lo.point + hi.point), 0.5 * (lo.uv_a + hi.uv_a),
                           0.5 * (lo.uv_b + hi.uv_b)};
     const std::optional<RefinedPair> r =
         refine_near(pair_, chord, true, (hi.point - lo.point).norm() + tolerance_);
-    if (!r) return;
-    if ((r->point - chord.point).norm() <= tolerance_) return;
+    if (!r) return false;
+    if ((r->point - chord.point).norm() <= tolerance_) return true;
     const PairPoint mid{r->point, r->uv_a, r->uv_b};
-    fill(lo, mid, depth + 1);
+    const bool first = fill(lo, mid, depth + 1);
     push(mid);
-    fill(mid, hi, depth + 1);
+    return fill(mid, hi, depth + 1) && first;
   }
 
   const SurfacePair& pair_;
@@ -364,6 +374,16 @@ IntersectionCurve refine_curve(const SurfacePair& pair, IntersectionCurve c,
     refined[n - 1] = refined[0];
   }
   return Densifier(pair, eps / 3.0).run(c, refined);
+}
+
+/// Refined pieces of one curve can end up to about 1.6 eps apart (where
+/// leaves of different sizes meet): the bridge fills such a gap with refined
+/// points when one branch runs across it.
+detail::GapBridge bridge_for(const SurfacePair& pair, double eps) {
+  return [&pair, eps](const detail::CurvePoint& from, const detail::CurvePoint& to) {
+    return Densifier(pair, eps / 3.0)
+        .between({from.point, from.uv_a, from.uv_b}, {to.point, to.uv_a, to.uv_b});
+  };
 }
 
 /// Moves a near-touch contact to a local closest pair when that is no farther
@@ -599,7 +619,9 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
     }
     // A yes/no test needs only whether there is a curve.
     if (!request.first_crossing_only)
-      result.curves = detail::tidy_curves(std::move(result.curves), request.tolerance);
+      result.curves = detail::tidy_curves(std::move(result.curves), request.tolerance,
+                                          request.refine ? bridge_for(pair, request.tolerance)
+                                                         : detail::GapBridge{});
   }
   std::vector<LeafContact> leaves;
   leaves.reserve(descent.pending.size());

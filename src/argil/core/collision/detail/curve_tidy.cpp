@@ -35,6 +35,7 @@ void reverse(IntersectionCurve& c) {
 
 /// Appends `tail` to `head`, the meeting points kept once when they coincide.
 void append(IntersectionCurve& head, const IntersectionCurve& tail) {
+  if (tail.points.empty()) return;
   const std::size_t skip = head.points.back() == tail.points.front() ? 1 : 0;
   head.points.insert(head.points.end(), tail.points.begin() + static_cast<long>(skip),
                      tail.points.end());
@@ -202,8 +203,85 @@ void drop_repeated_points(IntersectionCurve& c, double tiny) {
   c.uv_b.resize(kept + 1);
 }
 
-/// Joins one pair of open curves that continue each other; false when none does.
-bool join_one(std::vector<IntersectionCurve>& curves, double eps) {
+/// How squarely a free end must face the end it is bridged to: the gap within
+/// 60 degrees of the direction each end leaves by. Pieces of one curve leave a
+/// gap along the curve; two branches side by side leave one across it.
+constexpr double kFacingCosine = 0.5;
+
+bool face_each_other(const FreeEnd& e, const FreeEnd& f) {
+  const Eigen::Vector3d gap = f.point - e.point;
+  const double le = e.outward.norm() * gap.norm(), lf = f.outward.norm() * gap.norm();
+  return le > 0.0 && lf > 0.0 && e.outward.dot(gap) >= kFacingCosine * le &&
+         -f.outward.dot(gap) >= kFacingCosine * lf;
+}
+
+CurvePoint end_point(const IntersectionCurve& c, bool at_start) {
+  const std::size_t k = at_start ? 0 : c.points.size() - 1;
+  return {c.points[k], c.uv_a[k], c.uv_b[k]};
+}
+
+/// Asks the bridge across a gap once: a failed gap stays failed as curves are
+/// joined around it.
+class BridgeAsker {
+ public:
+  explicit BridgeAsker(const GapBridge& bridge) : bridge_(bridge) {}
+
+  std::optional<IntersectionCurve> operator()(const CurvePoint& from, const CurvePoint& to) {
+    for (const auto& [p, q] : failed_)
+      if ((p == from.point && q == to.point) || (p == to.point && q == from.point))
+        return std::nullopt;
+    std::optional<IntersectionCurve> between = bridge_(from, to);
+    if (!between) failed_.emplace_back(from.point, to.point);
+    return between;
+  }
+
+ private:
+  const GapBridge& bridge_;
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> failed_;
+};
+
+/// Leaves out the first points of `tail` that lie behind the free end `e`
+/// (against the direction it leaves by) and within `reach` of it: where two
+/// pieces of one curve overlap, each past the other's end. Returns the length
+/// of the chord that led from the last point left out to the new start (0 when
+/// none was).
+double trim_behind(IntersectionCurve& tail, const FreeEnd& e, double reach) {
+  std::size_t behind = 0;
+  while (behind < tail.points.size()) {
+    const Eigen::Vector3d d = tail.points[behind] - e.point;
+    if (!(d.norm() <= reach) || d.dot(e.outward) > 0.0) break;
+    ++behind;
+  }
+  if (behind == 0 || behind == tail.points.size()) return 0.0;
+  const double chord = (tail.points[behind] - tail.points[behind - 1]).norm();
+  const auto cut = static_cast<long>(behind);
+  tail.points.erase(tail.points.begin(), tail.points.begin() + cut);
+  tail.uv_a.erase(tail.uv_a.begin(), tail.uv_a.begin() + cut);
+  tail.uv_b.erase(tail.uv_b.begin(), tail.uv_b.begin() + cut);
+  return chord;
+}
+
+/// The points that take `head`'s end on to `tail`'s start across a gap of up
+/// to kBridgeReach eps (after trimming where `tail` overlaps `head`, plus the
+/// chord that crossed the end): when the two ends face each other and the
+/// bridge runs one branch between them. `tail` comes back trimmed.
+std::optional<IntersectionCurve> bridge_gap(const IntersectionCurve& head, IntersectionCurve& tail,
+                                            double eps, BridgeAsker& asker) {
+  const FreeEnd e = end_of(head, false);
+  const double crossing_chord = trim_behind(tail, e, kBridgeReach * eps);
+  if (tail.points.size() < 2) return std::nullopt;
+  const FreeEnd f = end_of(tail, true);
+  const double gap = (e.point - f.point).norm();
+  if (!(gap <= kBridgeReach * eps + crossing_chord) || !opposite(e.outward, f.outward))
+    return std::nullopt;
+  if (gap > 1e-6 * eps && !face_each_other(e, f)) return std::nullopt;
+  return asker(end_point(head, false), end_point(tail, true));
+}
+
+/// Joins one pair of open curves that continue each other: ends within eps,
+/// or with `asker`, ends up to kBridgeReach eps apart (or overlapping by as
+/// much) through the bridge's points. False when none does.
+bool join_one(std::vector<IntersectionCurve>& curves, double eps, BridgeAsker* asker) {
   for (std::size_t i = 0; i < curves.size(); ++i) {
     if (curves[i].closed()) continue;
     for (std::size_t j = i + 1; j < curves.size(); ++j) {
@@ -212,12 +290,25 @@ bool join_one(std::vector<IntersectionCurve>& curves, double eps) {
       for (int way = 0; way < 4; ++way) {
         const bool i_start = (way & 1) != 0, j_end = (way & 2) != 0;
         const FreeEnd e = end_of(curves[i], i_start), f = end_of(curves[j], !j_end);
-        if (!((e.point - f.point).norm() <= eps) || !opposite(e.outward, f.outward)) continue;
-        IntersectionCurve head = std::move(curves[i]), tail = std::move(curves[j]);
-        if (i_start) reverse(head);
-        if (j_end) reverse(tail);
-        append(head, tail);
-        curves[i] = std::move(head);
+        const double gap = (e.point - f.point).norm();
+        if (asker == nullptr) {
+          if (!(gap <= eps) || !opposite(e.outward, f.outward)) continue;
+          IntersectionCurve head = std::move(curves[i]), tail = std::move(curves[j]);
+          if (i_start) reverse(head);
+          if (j_end) reverse(tail);
+          append(head, tail);
+          curves[i] = std::move(head);
+        } else {
+          if (!(gap <= kBridgeReach * eps)) continue;
+          IntersectionCurve head = curves[i], tail = curves[j];
+          if (i_start) reverse(head);
+          if (j_end) reverse(tail);
+          const std::optional<IntersectionCurve> between = bridge_gap(head, tail, eps, *asker);
+          if (!between) continue;
+          append(head, *between);
+          append(head, tail);
+          curves[i] = std::move(head);
+        }
         curves.erase(curves.begin() + static_cast<long>(j));
         return true;
       }
@@ -226,28 +317,50 @@ bool join_one(std::vector<IntersectionCurve>& curves, double eps) {
   return false;
 }
 
+/// Closes an open curve longer than 2 eps whose own ends meet within eps and
+/// run on, or with `asker`, whose ends are bridged (as in join_one()) on a
+/// curve longer than 2 kBridgeReach eps. A closed curve repeats its first
+/// point (replacing a last point within 1e-6 eps of it, as across a periodic
+/// face's seam).
+void close_if_loop(IntersectionCurve& c, double eps, BridgeAsker* asker) {
+  if (c.closed() || c.points.size() < 3 || !(c.length() > 2.0 * eps)) return;
+  if (asker == nullptr) {
+    if (!continues(c, c, eps)) return;
+  } else {
+    if (!(c.length() > 2.0 * kBridgeReach * eps)) return;
+    if (!((c.points.back() - c.points.front()).norm() <= kBridgeReach * eps)) return;
+    IntersectionCurve trimmed = c;
+    const std::optional<IntersectionCurve> between = bridge_gap(c, trimmed, eps, *asker);
+    if (!between) return;
+    // The loop now starts after the overlap; the bridge leads back to it.
+    c = std::move(trimmed);
+    append(c, *between);
+  }
+  if ((c.points.back() - c.points.front()).norm() > 1e-6 * eps) {
+    c.points.push_back(c.points.front());
+    c.uv_a.push_back(c.uv_a.front());
+    c.uv_b.push_back(c.uv_b.front());
+  } else {
+    c.points.back() = c.points.front();
+    c.uv_a.back() = c.uv_a.front();
+    c.uv_b.back() = c.uv_b.front();
+  }
+}
+
 }  // namespace
 
-std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps) {
+std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps,
+                                           const GapBridge& bridge) {
   for (IntersectionCurve& c : curves) drop_repeated_points(c, 1e-6 * eps);
   curves = drop_covered(std::move(curves), eps);
-  while (join_one(curves, eps)) {
+  while (join_one(curves, eps, nullptr)) {
   }
-  for (IntersectionCurve& c : curves) {
-    if (c.closed() || c.points.size() < 3 || !(c.length() > 2.0 * eps)) continue;
-    if (!continues(c, c, eps)) continue;
-    // Closed: the last point becomes the first one repeated (replaced when it
-    // lies within 1e-6 eps of it, as across a periodic face's seam).
-    if ((c.points.back() - c.points.front()).norm() > 1e-6 * eps) {
-      c.points.push_back(c.points.front());
-      c.uv_a.push_back(c.uv_a.front());
-      c.uv_b.push_back(c.uv_b.front());
-    } else {
-      c.points.back() = c.points.front();
-      c.uv_a.back() = c.uv_a.front();
-      c.uv_b.back() = c.uv_b.front();
-    }
+  for (IntersectionCurve& c : curves) close_if_loop(c, eps, nullptr);
+  if (!bridge) return curves;
+  BridgeAsker asker(bridge);
+  while (join_one(curves, eps, &asker)) {
   }
+  for (IntersectionCurve& c : curves) close_if_loop(c, eps, &asker);
   return curves;
 }
 

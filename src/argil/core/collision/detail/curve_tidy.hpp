@@ -4,11 +4,32 @@
 // leaf segments do not share end points, and a curve through a leaf corner or
 // along a triangle diagonal leaves short duplicate pieces on the curve.
 
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "argil/core/collision/contact.hpp"
 
 namespace argil::detail {
+
+/// One point of an intersection curve with its parameters on both surfaces.
+struct CurvePoint {
+  Eigen::Vector3d point;
+  Eigen::Vector2d uv_a, uv_b;
+};
+
+/// The points strictly between two free curve ends that lie more than eps
+/// apart, in order from `from` to `to`, on both surfaces with every chord
+/// within eps/3 of the curve; nullopt when no single branch of the curve runs
+/// from one end to the other.
+using GapBridge = std::function<std::optional<IntersectionCurve>(const CurvePoint& from,
+                                                                 const CurvePoint& to)>;
+
+/// How far apart two free ends may lie for tidy_curves() to ask the bridge,
+/// in eps: pieces of one curve meet up to about 1.6 eps apart where leaves of
+/// different sizes meet, as each piece's end is refined where its own flat
+/// leaf crossed the boundary.
+inline constexpr double kBridgeReach = 16.0;
 
 /// First leaves out points that repeat their predecessor within a millionth of
 /// eps (where chained segments of no length met): they would give a curve's
@@ -20,6 +41,11 @@ namespace argil::detail {
 /// most a right angle, and closes an open curve longer than 2 eps whose own
 /// ends meet that way (a closed curve repeats its first point). Isolated short
 /// curves are kept.
-std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps);
+/// With a `bridge`, last joins (and closes) ends up to kBridgeReach eps apart
+/// that face each other, through the bridge's points; where two pieces
+/// overlap by up to as much, each past the other's end (their refined ends
+/// slid along the curve), the overlapping points of one go first.
+std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps,
+                                           const GapBridge& bridge = {});
 
 }  // namespace argil::detail
