@@ -42,6 +42,10 @@ Status write_model(const Model& model, const std::filesystem::path& path,
     if (!mesh.ok()) {
       return Status::error(mesh.status().code, path.string() + ": " + mesh.status().message);
     }
+    if (options.cad.warnings != nullptr) {
+      for (const std::string& w : mesh.value().warnings)
+        options.cad.warnings->push_back(path.string() + ": " + w);
+    }
     return write_mesh(mesh.value(), path, *mesh_format);
   }
   return unknown_extension(path, "write");

@@ -18,7 +18,8 @@ Result<Model> read_model(const std::filesystem::path& path);
 struct WriteOptions {
   /// Used for mesh formats only.
   TessellationOptions tessellation;
-  /// Used for STEP and IGES only.
+  /// Used for STEP and IGES only, but for `cad.warnings`, which also receives
+  /// a mesh's (TriangleMesh::warnings).
   CadWriteOptions cad;
 };
 

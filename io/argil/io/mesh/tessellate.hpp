@@ -37,23 +37,32 @@ struct TriangleMesh {
   std::vector<std::string> face_names;
   /// Vertex indices, counter-clockwise seen from the side the normals point to.
   Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> triangles;
+  /// One line per face whose trims could only be approximated ("face 12: trims
+  /// approximated by whole triangles (...)").
+  std::vector<std::string> warnings;
 };
 
 /// Tessellates one face (preconditions: validate_face(face).ok() and
 /// validate_trim_loops(face.loops).ok()). `face_index`
 /// fills TriangleMesh::vertex_face.
 ///
-/// Method: each non-empty knot-span patch is split into four recursively until
-/// the fan of triangles from a cell's centre to its boundary vertices is within
-/// the chord tolerance at its edge midpoints and centroids (measured as
-/// |S(u, v) - linear interpolation| at the interpolated (u, v), an upper bound of
-/// the distance to the surface). Cells take their neighbours' vertices on shared
-/// edges into their fan, so the mesh has no cracks. Trimming keeps a triangle
-/// when its (u, v) centroid lies inside the trims (TrimRegion::contains, on the
-/// exact trim curves): the trimmed boundary is therefore approximated to within
-/// one triangle (not a conforming trim).
-/// Normals are S_u x S_v / |S_u x S_v| from the surface derivatives, flipped on
-/// reversed faces.
+/// Untrimmed faces: each non-empty knot-span patch is split into four
+/// recursively until the fan of triangles from a cell's centre to its boundary
+/// vertices is within the chord tolerance at its edge midpoints and centroids
+/// (measured as |S(u, v) - linear interpolation| at the interpolated (u, v), an
+/// upper bound of the distance to the surface). Cells take their neighbours'
+/// vertices on shared edges into their fan, so the mesh has no cracks.
+///
+/// Trimmed faces are meshed conforming to their trim curves (the border
+/// vertices lie on them) by OpenCASCADE's BRepMesh at a deflection of the
+/// chord tolerance, lowered (up to twice, by a factor of 2 to 4) until every
+/// triangle passes the same chord bound. Where that fails, the face falls back
+/// to the cells above, keeping the triangles whose (u, v) centroid lies inside
+/// the trims (TrimRegion::contains), and TriangleMesh::warnings says so.
+///
+/// Every vertex is evaluated on argil's surface at its (u, v). Normals are
+/// S_u x S_v / |S_u x S_v| from the surface derivatives, flipped on reversed
+/// faces.
 TriangleMesh tessellate_face(const FaceRecord& face, const TessellationOptions& options = {},
                              int face_index = 0);
 

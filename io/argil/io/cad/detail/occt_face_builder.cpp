@@ -286,4 +286,25 @@ Result<BuiltFace> build_occt_face(const FaceRecord& record, double tolerance_mm)
   return built;
 }
 
+Result<TopoDS_Face> build_occt_mesh_face(const FaceRecord& record, double tolerance_mm) {
+  const Handle(Geom_BSplineSurface) surface = to_occt(record.surface);
+  std::vector<EdgeOrigin> origins;
+  std::vector<TopoDS_Wire> wires;
+  for (std::size_t l = 0; l < record.loops.size(); ++l) {
+    Result<TopoDS_Wire> wire = make_wire(record.loops[l], l, surface, tolerance_mm, origins);
+    if (!wire.ok()) return wire.status();
+    wires.push_back(wire.value());
+  }
+  if (wires.empty()) return Status::error(StatusCode::invalid_argument, "the face has no trim loop");
+  BRepBuilderAPI_MakeFace make(surface, wires.front(), true);
+  for (std::size_t w = 1; w < wires.size() && make.IsDone(); ++w) make.Add(wires[w]);
+  if (!make.IsDone()) {
+    return Status::error(StatusCode::invalid_surface,
+                         "the trim loops give no face (" + face_error_name(make.Error()) + ")");
+  }
+  TopoDS_Face face = make.Face();
+  BRepLib::BuildCurves3d(face, tolerance_mm);
+  return face;
+}
+
 }  // namespace argil::io::detail
