@@ -10,7 +10,8 @@
 #include "argil/sculpt/scene/scene.hpp"              // IWYU pragma: export
 #include "argil/sculpt/scene/version1_material.hpp"  // IWYU pragma: export
 // script
-#include "argil/sculpt/script/script.hpp"  // IWYU pragma: export
+#include "argil/sculpt/script/script.hpp"         // IWYU pragma: export
+#include "argil/sculpt/script/stroke_script.hpp"  // IWYU pragma: export
 // session
 #include "argil/sculpt/session/face_refinement.hpp"  // IWYU pragma: export
 #include "argil/sculpt/session/journal.hpp"          // IWYU pragma: export

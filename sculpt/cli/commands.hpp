@@ -26,6 +26,10 @@ int run_collide(const std::vector<std::string>& args);
 const CommandDeclaration& sculpt_command();
 int run_sculpt(const std::vector<std::string>& args);
 
+/// argil script SCENE OUT --face N --uv "U,V ..." [--model M] [--tool T] [--depth D] ...
+const CommandDeclaration& script_command();
+int run_script(const std::vector<std::string>& args);
+
 /// argil materials
 const CommandDeclaration& materials_command();
 int run_materials(const std::vector<std::string>& args);
