@@ -3,11 +3,13 @@
 // force plot carries its curves. PNGs are decoded back with cairo.
 #include <cairo.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstring>
 
 #include "argil/io/mesh/tessellate.hpp"
 #include "argil/sculpt/output/pictures.hpp"
+#include "argil/sculpt/output/session_pictures.hpp"
 
 namespace argil::sculpt {
 namespace {
@@ -163,4 +165,79 @@ TEST_CASE("axis ticks are round numbers covering the range", "[pictures]") {
 }
 
 }  // namespace
+}  // namespace argil::sculpt
+
+namespace argil::sculpt {
+
+TEST_CASE("the after picture colours the signed displacement, and says when nothing moved",
+          "[pictures]") {
+  const io::Model flat = sheet(0.0);
+  // Pushed in: pole (3, 4) lowered 5 mm moves points along -z, against the
+  // sheet's normal (+z, S_u x S_v), and nowhere out.
+  const io::TriangleMesh pushed = mesh_of(sheet(-5.0));
+  const SurfacePictureOptions in = after_picture_options(flat, pushed, 1e-3, "sheet");
+  REQUIRE(in.vertex_displacement.size() == static_cast<std::size_t>(pushed.positions.rows()));
+  CHECK(in.note.empty());
+  const auto [lo, hi] =
+      std::minmax_element(in.vertex_displacement.begin(), in.vertex_displacement.end());
+  CHECK(*lo < -1.0);
+  CHECK(*hi <= 1e-12);
+  CHECK(in.displacement_scale == -*lo);
+  // Raised: the same magnitudes, out.
+  const SurfacePictureOptions out =
+      after_picture_options(flat, mesh_of(sheet(5.0)), 1e-3, "sheet");
+  CHECK(*std::max_element(out.vertex_displacement.begin(), out.vertex_displacement.end()) ==
+        Approx(-*lo).epsilon(1e-12));
+  // Not moved, or by less than eps: no colour, and a note that says so.
+  for (const double bump : {0.0, 1e-9}) {
+    const SurfacePictureOptions still =
+        after_picture_options(flat, mesh_of(sheet(bump)), 1e-3, "sheet");
+    CHECK(still.vertex_displacement.empty());
+    CHECK_THAT(still.note, Catch::StartsWith("no change: no point moved more than"));
+    // The picture draws it: clay shading and the note, no colour bar.
+    const Box3 box{Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(100, 100, 1)};
+    CHECK(render_surface_png(mesh_of(sheet(bump)), {}, fit_camera(box, 400, 300), still).ok());
+  }
+}
+
+}  // namespace argil::sculpt
+
+namespace argil::sculpt {
+
+TEST_CASE("the tool is drawn where given, and a zoom inset shows the region again",
+          "[pictures]") {
+  const io::TriangleMesh mesh = mesh_of(sheet(-5.0));
+  const Box3 box{Eigen::Vector3d(0, 0, -6), Eigen::Vector3d(100, 100, 1)};
+  const Camera camera = fit_camera(box, 400, 300);
+  const Image plain = decode(render_surface_png(mesh, {}, camera).value());
+  SurfacePictureOptions options;
+  options.tool_position = Eigen::Vector3d(60, 60, 10);
+  options.tool_radius_mm = 8.0;
+  const Image with_tool = decode(render_surface_png(mesh, {}, camera, options).value());
+  // Pixels change on the tool's outline (radius 8 mm around its projection) and
+  // nowhere far from it.
+  const Eigen::Vector2d at = camera.project(*options.tool_position);
+  const double r = 8.0 * camera.pixels_per_mm;
+  int on_outline = 0, far = 0;
+  for (int y = 0; y < plain.height; ++y)
+    for (int x = 0; x < plain.width; ++x) {
+      if (plain.at(x, y) == with_tool.at(x, y)) continue;
+      const double d = (Eigen::Vector2d(x, y) - at).norm();
+      on_outline += d > r - 3 && d < r + 3;
+      far += d > r + 3;
+    }
+  CHECK(on_outline > 20);
+  CHECK(far == 0);
+  // The inset (top right, 3/8 of each side) holds the zoomed surface.
+  options.tool_position.reset();
+  options.zoom = Box3{Eigen::Vector3d(30, 40, -6), Eigen::Vector3d(50, 60, 1)};
+  const Image zoomed = decode(render_surface_png(mesh, {}, camera, options).value());
+  const int w = 400 * 3 / 8, h = 300 * 3 / 8, x0 = 400 - w - 10, y0 = 10;
+  int surface = 0;
+  for (int y = y0 + 2; y < y0 + h - 20; ++y)
+    for (int x = x0 + 2; x < x0 + w - 2; ++x) surface += zoomed.at(x, y) != 0xffffffu;
+  // The zoomed box lies inside the sheet: the inset is nearly all surface.
+  CHECK(surface > (w - 4) * (h - 22) * 9 / 10);
+}
+
 }  // namespace argil::sculpt

@@ -56,17 +56,6 @@ Result<std::pair<SurfacePtr, ContextPtr>> canvas(int width, int height) {
   return std::make_pair(std::move(surface), std::move(context));
 }
 
-/// Blue (0) through green and yellow to red (1): a perceptually ordered ramp.
-Eigen::Vector3d ramp(double t) {
-  t = std::clamp(t, 0.0, 1.0);
-  const Eigen::Vector3d stops[] = {
-      {0.23, 0.30, 0.75}, {0.25, 0.70, 0.60}, {0.95, 0.85, 0.25}, {0.85, 0.20, 0.15}};
-  const double x = t * 3.0;
-  const int k = std::min(2, static_cast<int>(x));
-  const double a = x - k;
-  return (1.0 - a) * stops[k] + a * stops[k + 1];
-}
-
 void draw_text(cairo_t* cr, double x, double y, const std::string& text, double size,
                bool centred = false, bool right_aligned = false) {
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
@@ -152,43 +141,59 @@ std::vector<Eigen::Index> far_to_near(const io::TriangleMesh& mesh, const Camera
   return order;
 }
 
+/// Neutral (0) to blue (-1, pushed in) or red (+1, pushed out).
+Eigen::Vector3d diverging(double t) {
+  t = std::clamp(t, -1.0, 1.0);
+  const Eigen::Vector3d neutral(0.86, 0.84, 0.80), in(0.12, 0.32, 0.85), out(0.86, 0.18, 0.12);
+  return t < 0.0 ? ((1.0 + t) * neutral - t * in).eval() : ((1.0 - t) * neutral + t * out).eval();
+}
+
 /// Triangles shaded by a light over the viewer's left shoulder, clay or
-/// coloured by the mean displacement of their vertices.
+/// coloured by the signed displacement, both per vertex and interpolated per
+/// pixel (Gouraud) by one cairo mesh pattern whose patches paint in order.
 void draw_triangles(cairo_t* cr, const io::TriangleMesh& mesh, const Camera& camera,
                     const SurfacePictureOptions& options) {
   const bool coloured = !options.vertex_displacement.empty();
   const Eigen::Vector3d light =
       (camera.eye_direction + 0.5 * camera.up - 0.3 * camera.right).normalized();
   const Eigen::Vector3d clay(0.82, 0.64, 0.47);
-  cairo_set_line_width(cr, 0.6);
-  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  const auto vertex_colour = [&](int v, const Eigen::Vector3d& flat_normal) {
+    Eigen::Vector3d n = mesh.normals.row(v).transpose();
+    if (!(n.squaredNorm() > 0.5)) n = flat_normal;
+    const double lambert = std::abs(n.dot(light));
+    const Eigen::Vector3d base =
+        coloured ? diverging(options.vertex_displacement[static_cast<std::size_t>(v)] /
+                             options.displacement_scale)
+                 : clay;
+    return Eigen::Vector3d(base * (0.3 + 0.7 * lambert));
+  };
+  cairo_pattern_t* pattern = cairo_pattern_create_mesh();
   for (const Eigen::Index t : far_to_near(mesh, camera)) {
-    const Eigen::Vector3d a = mesh.positions.row(mesh.triangles(t, 0)).transpose();
-    const Eigen::Vector3d b = mesh.positions.row(mesh.triangles(t, 1)).transpose();
-    const Eigen::Vector3d c = mesh.positions.row(mesh.triangles(t, 2)).transpose();
+    const int v[3] = {mesh.triangles(t, 0), mesh.triangles(t, 1), mesh.triangles(t, 2)};
+    const Eigen::Vector3d a = mesh.positions.row(v[0]).transpose();
+    const Eigen::Vector3d b = mesh.positions.row(v[1]).transpose();
+    const Eigen::Vector3d c = mesh.positions.row(v[2]).transpose();
     Eigen::Vector3d n = (b - a).cross(c - a);
     if (n.norm() == 0.0) continue;
     n.normalize();
-    const double lambert = std::abs(n.dot(light));
-    Eigen::Vector3d base = clay;
-    if (coloured) {
-      double d = 0.0;
-      for (int k = 0; k < 3; ++k) {
-        d += options.vertex_displacement[static_cast<std::size_t>(mesh.triangles(t, k))];
-      }
-      base = ramp(d / 3.0 / options.displacement_scale);
+    cairo_mesh_pattern_begin_patch(pattern);
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d p = camera.project(mesh.positions.row(v[k]).transpose());
+      if (k == 0)
+        cairo_mesh_pattern_move_to(pattern, p.x(), p.y());
+      else
+        cairo_mesh_pattern_line_to(pattern, p.x(), p.y());
     }
-    const Eigen::Vector3d colour = base * (0.3 + 0.7 * lambert);
-    const Eigen::Vector2d pa = camera.project(a), pb = camera.project(b), pc = camera.project(c);
-    cairo_move_to(cr, pa.x(), pa.y());
-    cairo_line_to(cr, pb.x(), pb.y());
-    cairo_line_to(cr, pc.x(), pc.y());
-    cairo_close_path(cr);
-    cairo_set_source_rgb(cr, colour.x(), colour.y(), colour.z());
-    // Stroking with the fill colour closes the hairline seams antialiasing leaves.
-    cairo_fill_preserve(cr);
-    cairo_stroke(cr);
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d colour = vertex_colour(v[k], n);
+      cairo_mesh_pattern_set_corner_color_rgb(pattern, static_cast<unsigned>(k), colour.x(),
+                                              colour.y(), colour.z());
+    }
+    cairo_mesh_pattern_end_patch(pattern);
   }
+  cairo_set_source(cr, pattern);
+  cairo_paint(cr);
+  cairo_pattern_destroy(pattern);
 }
 
 /// The tool path: red where engaged, grey where moving freely.
@@ -209,24 +214,65 @@ void draw_tool_path(cairo_t* cr, const ToolPath& path, const Camera& camera) {
   }
 }
 
-/// Colour bar: displacement 0 .. scale, bottom right.
+/// The tool where it pressed hardest: a translucent disc with its outline for
+/// a sphere (its silhouette in an orthographic view), a cross for a point.
+void draw_tool(cairo_t* cr, const Camera& camera, const SurfacePictureOptions& options) {
+  if (!options.tool_position) return;
+  const Eigen::Vector2d at = camera.project(*options.tool_position);
+  const double r = options.tool_radius_mm * camera.pixels_per_mm;
+  cairo_set_line_width(cr, 1.5);
+  if (r >= 1.0) {
+    cairo_new_path(cr);
+    cairo_arc(cr, at.x(), at.y(), r, 0.0, 2.0 * M_PI);
+    cairo_set_source_rgba(cr, 0.3, 0.3, 0.35, 0.25);
+    cairo_fill_preserve(cr);
+    cairo_set_source_rgba(cr, 0.15, 0.15, 0.2, 0.9);
+    cairo_stroke(cr);
+  } else {
+    cairo_set_source_rgba(cr, 0.15, 0.15, 0.2, 0.9);
+    cairo_move_to(cr, at.x() - 6, at.y() - 6);
+    cairo_line_to(cr, at.x() + 6, at.y() + 6);
+    cairo_move_to(cr, at.x() - 6, at.y() + 6);
+    cairo_line_to(cr, at.x() + 6, at.y() - 6);
+    cairo_stroke(cr);
+  }
+}
+
+/// The box's outline as the camera sees it: the projection's bounding rectangle.
+std::pair<Eigen::Vector2d, Eigen::Vector2d> projected_rectangle(const Camera& camera,
+                                                                const Box3& box) {
+  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d p((corner & 1) ? box.max.x() : box.min.x(),
+                            (corner & 2) ? box.max.y() : box.min.y(),
+                            (corner & 4) ? box.max.z() : box.min.z());
+    lo = lo.cwiseMin(camera.project(p));
+    hi = hi.cwiseMax(camera.project(p));
+  }
+  return {lo, hi};
+}
+
+/// Colour bar: displacement -scale .. +scale along the normal, bottom right.
 void draw_colour_bar(cairo_t* cr, const Camera& camera, double displacement_scale) {
-  const double x0 = camera.width - 240.0, y0 = camera.height - 30.0, w = 200.0, h = 12.0;
+  const double x0 = camera.width - 260.0, y0 = camera.height - 30.0, w = 220.0, h = 12.0;
   for (int k = 0; k < 100; ++k) {
-    const Eigen::Vector3d col = ramp(k / 99.0);
+    const Eigen::Vector3d col = diverging(-1.0 + 2.0 * k / 99.0);
     cairo_set_source_rgb(cr, col.x(), col.y(), col.z());
     cairo_rectangle(cr, x0 + w * k / 100.0, y0, w / 100.0 + 0.5, h);
     cairo_fill(cr);
   }
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-  char label[64];
-  std::snprintf(label, sizeof label, "%.3g mm", displacement_scale);
-  draw_text(cr, x0, y0 - 4, "0", 12);
-  draw_text(cr, x0 + w, y0 - 4, label, 12, false, true);
-  draw_text(cr, x0 + w / 2, y0 + h + 13, "displacement", 12, true);
+  char low[64], high[64];
+  std::snprintf(low, sizeof low, "-%.3g mm", displacement_scale);
+  std::snprintf(high, sizeof high, "+%.3g mm", displacement_scale);
+  draw_text(cr, x0, y0 - 4, low, 12);
+  draw_text(cr, x0 + w / 2, y0 - 4, "0", 12, true);
+  draw_text(cr, x0 + w, y0 - 4, high, 12, false, true);
+  draw_text(cr, x0 + w / 2, y0 + h + 13, "in  <  displacement along the normal  >  out", 11,
+            true);
 }
 
-/// Title, the path legend and, when coloured, the colour bar.
+/// Title, the path legend and the colour bar (or the note in its place).
 void draw_surface_labels(cairo_t* cr, const Camera& camera, const SurfacePictureOptions& options) {
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
   draw_text(cr, 14, 26, options.title, 18);
@@ -236,6 +282,9 @@ void draw_surface_labels(cairo_t* cr, const Camera& camera, const SurfacePicture
   draw_text(cr, 160, camera.height - 14.0, "free move", 13);
   if (!options.vertex_displacement.empty()) {
     draw_colour_bar(cr, camera, options.displacement_scale);
+  } else if (!options.note.empty()) {
+    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    draw_text(cr, camera.width - 14.0, camera.height - 14.0, options.note, 13, false, true);
   }
 }
 
@@ -254,6 +303,32 @@ Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolP
   }
   draw_triangles(cr, mesh, camera, options);
   draw_tool_path(cr, path, camera);  // on top
+  draw_tool(cr, camera, options);
+  if (options.zoom) {
+    // The region marked on the whole view, then drawn again in the inset.
+    const auto [lo, hi] = projected_rectangle(camera, *options.zoom);
+    cairo_set_source_rgba(cr, 0.1, 0.1, 0.1, 0.8);
+    cairo_set_line_width(cr, 1.0);
+    cairo_rectangle(cr, lo.x(), lo.y(), hi.x() - lo.x(), hi.y() - lo.y());
+    cairo_stroke(cr);
+    const int w = camera.width * 3 / 8, h = camera.height * 3 / 8;
+    const double x0 = camera.width - w - 10.0, y0 = 10.0;
+    const Camera inset = fit_camera(*options.zoom, w, h, camera.eye_direction);
+    cairo_save(cr);
+    cairo_rectangle(cr, x0, y0, w, h);
+    cairo_clip(cr);
+    cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
+    cairo_paint(cr);
+    cairo_translate(cr, x0, y0);
+    draw_triangles(cr, mesh, inset, options);
+    draw_tool_path(cr, path, inset);
+    draw_tool(cr, inset, options);
+    cairo_restore(cr);
+    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    cairo_rectangle(cr, x0, y0, w, h);
+    cairo_stroke(cr);
+    draw_text(cr, x0 + 6, y0 + h - 8, "zoom: where the surface moved", 12);
+  }
   draw_surface_labels(cr, camera, options);
   return encode_png(made.value().first.get());
 }

@@ -4,6 +4,7 @@
 // device force over time. cairo rasterises; this module projects, sorts and shades.
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,14 +47,28 @@ struct ToolPath {
 /// What a surface picture shows beyond the shaded mesh.
 struct SurfacePictureOptions {
   std::string title;
-  /// Per-vertex displacement magnitude [mm] to colour by (empty: plain clay colour).
+  /// Per-vertex signed displacement along the surface's outward normal [mm]
+  /// (negative: pushed in) to colour by, interpolated across each triangle
+  /// (empty: plain clay colour).
   std::vector<double> vertex_displacement;
-  /// Displacement mapped to the full colour ramp [mm] (> 0 when colouring).
+  /// The ends of the colour scale, -scale (blue, in) .. +scale (red, out) [mm]
+  /// (> 0 when colouring); 0 is neutral.
   double displacement_scale = 0.0;
+  /// Shown where the scale would be, when there is nothing to colour (a
+  /// model that did not move says so); empty: nothing.
+  std::string note;
+  /// The tool drawn where it pressed hardest: a sphere's outline (radius > 0)
+  /// or a point's cross (radius 0); none when unset.
+  std::optional<Eigen::Vector3d> tool_position;
+  double tool_radius_mm = 0.0;
+  /// A region drawn again, zoomed, in an inset at the top right (its frame
+  /// marked on the whole view); none when unset.
+  std::optional<Box3> zoom;
 };
 
-/// The mesh shaded (Lambert, two-sided, painter's order back to front) with the
-/// tool path on top (engaged segments red, free moves grey), as PNG bytes.
+/// The mesh shaded smoothly (Lambert at each vertex from its normal, two-sided,
+/// interpolated per pixel; painter's order back to front) with the tool path on
+/// top (engaged segments red, free moves grey), as PNG bytes.
 Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolPath& path,
                                        const Camera& camera,
                                        const SurfacePictureOptions& options = {});

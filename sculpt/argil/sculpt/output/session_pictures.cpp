@@ -2,6 +2,9 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cstdio>
+#include <optional>
+#include <vector>
 
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/io/base/atomic_write.hpp"
@@ -44,30 +47,88 @@ Eigen::Vector3d eye_direction_for(const io::TriangleMesh& mesh) {
   return (mean_normal + 0.8 * three_quarter).normalized();
 }
 
-/// The "after" picture coloured by how far each point of the sculpted surface
-/// moved: the same (face, u, v) on both models. Plain when nothing moved.
-SurfacePictureOptions after_options_for(const io::Model& before, const io::TriangleMesh& mesh,
-                                        const std::string& title) {
-  SurfacePictureOptions options;
-  options.title = title + ": after";
-  options.vertex_displacement.resize(static_cast<std::size_t>(mesh.positions.rows()));
+/// Where the tool pressed hardest: the engaged sample of the largest force.
+std::optional<Eigen::Vector3d> hardest_press(const SessionPicturesRequest& request) {
+  std::optional<Eigen::Vector3d> at;
+  double largest = -1.0;
+  const std::size_t n = std::min(request.path.positions.size(), request.forces.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k >= request.path.engaged.size() || !request.path.engaged[k]) continue;
+    const double f = request.forces[k].norm();
+    if (f > largest) {
+      largest = f;
+      at = request.path.positions[k];
+    }
+  }
+  return at;
+}
+
+/// The box of the vertices that moved by more than a tenth of the largest
+/// movement (and eps): the visible change. Grown by half its size and to at
+/// least three tool radii; none when nothing moved by more than eps or when
+/// it spans more than a third of the model (the whole view shows it).
+std::optional<Box3> moved_region(const io::Model& before, const io::TriangleMesh& after_mesh,
+                                 double tolerance_mm, double tool_radius_mm,
+                                 const Box3& models) {
+  std::vector<double> moved(static_cast<std::size_t>(after_mesh.positions.rows()));
   double largest = 0.0;
-  for (Eigen::Index k = 0; k < mesh.positions.rows(); ++k) {
-    const auto face = static_cast<std::size_t>(mesh.vertex_face[static_cast<std::size_t>(k)]);
-    const Eigen::Vector3d was = evaluate(before.faces[face].surface, mesh.uv(k, 0), mesh.uv(k, 1));
-    const double moved = (mesh.positions.row(k).transpose() - was).norm();
-    options.vertex_displacement[static_cast<std::size_t>(k)] = moved;
-    largest = std::max(largest, moved);
+  for (Eigen::Index k = 0; k < after_mesh.positions.rows(); ++k) {
+    const auto face =
+        static_cast<std::size_t>(after_mesh.vertex_face[static_cast<std::size_t>(k)]);
+    const Eigen::Vector3d was =
+        evaluate(before.faces[face].surface, after_mesh.uv(k, 0), after_mesh.uv(k, 1));
+    moved[static_cast<std::size_t>(k)] = (after_mesh.positions.row(k).transpose() - was).norm();
+    largest = std::max(largest, moved[static_cast<std::size_t>(k)]);
   }
-  if (largest > 0.0) {
-    options.displacement_scale = largest;
-  } else {
-    options.vertex_displacement.clear();
+  if (!(largest > tolerance_mm)) return std::nullopt;
+  const double visible = std::max(tolerance_mm, 0.1 * largest);
+  Box3 box{Eigen::Vector3d::Constant(1e300), Eigen::Vector3d::Constant(-1e300)};
+  for (Eigen::Index k = 0; k < after_mesh.positions.rows(); ++k) {
+    if (!(moved[static_cast<std::size_t>(k)] > visible)) continue;
+    box.min = box.min.cwiseMin(after_mesh.positions.row(k).transpose());
+    box.max = box.max.cwiseMax(after_mesh.positions.row(k).transpose());
   }
-  return options;
+  if (box.diagonal() > models.diagonal() / 3.0) return std::nullopt;
+  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
+  const Eigen::Vector3d half =
+      (0.75 * (box.max - box.min)).cwiseMax(Eigen::Vector3d::Constant(1.5 * tool_radius_mm));
+  return Box3{centre - half, centre + half};
 }
 
 }  // namespace
+
+SurfacePictureOptions after_picture_options(const io::Model& before,
+                                            const io::TriangleMesh& after_mesh,
+                                            double tolerance_mm, const std::string& title) {
+  SurfacePictureOptions options;
+  options.title = title + ": after";
+  options.vertex_displacement.resize(static_cast<std::size_t>(after_mesh.positions.rows()));
+  double largest_signed = 0.0, largest_moved = 0.0;
+  for (Eigen::Index k = 0; k < after_mesh.positions.rows(); ++k) {
+    const auto face =
+        static_cast<std::size_t>(after_mesh.vertex_face[static_cast<std::size_t>(k)]);
+    const io::FaceRecord& was_face = before.faces[face];
+    const double u = after_mesh.uv(k, 0), v = after_mesh.uv(k, 1);
+    const Eigen::Vector3d moved = after_mesh.positions.row(k).transpose() -
+                                  evaluate(was_face.surface, u, v);
+    const Eigen::Vector3d normal =
+        (was_face.reversed ? -1.0 : 1.0) * unit_normal(was_face.surface, u, v);
+    const double along = moved.dot(normal);
+    options.vertex_displacement[static_cast<std::size_t>(k)] = along;
+    largest_signed = std::max(largest_signed, std::abs(along));
+    largest_moved = std::max(largest_moved, moved.norm());
+  }
+  if (largest_moved > tolerance_mm && largest_signed > 0.0) {
+    options.displacement_scale = largest_signed;
+  } else {
+    options.vertex_displacement.clear();
+    char note[160];
+    std::snprintf(note, sizeof note, "no change: no point moved more than %.3g mm (eps %.3g mm)",
+                  largest_moved, tolerance_mm);
+    options.note = note;
+  }
+  return options;
+}
 
 Status write_session_pictures(const SessionPicturesRequest& request,
                               const std::filesystem::path& folder) {
@@ -86,13 +147,20 @@ Status write_session_pictures(const SessionPicturesRequest& request,
       fit_camera(with_engaged_path(models, path), 960, 720, eye_direction_for(before_mesh.value()));
   SurfacePictureOptions before_options;
   before_options.title = title + ": before";
+  before_options.tool_position = hardest_press(request);
+  before_options.tool_radius_mm = request.tool_radius_mm;
+  SurfacePictureOptions after_options =
+      after_picture_options(before, after_mesh.value(), request.tolerance_mm, title);
+  after_options.tool_position = before_options.tool_position;
+  after_options.tool_radius_mm = request.tool_radius_mm;
+  after_options.zoom = moved_region(before, after_mesh.value(), request.tolerance_mm,
+                                    request.tool_radius_mm, models);
   const struct {
     const char* name;
     Result<std::string> png;
   } pictures[] = {
       {kBeforePicture, render_surface_png(before_mesh.value(), path, camera, before_options)},
-      {kAfterPicture, render_surface_png(after_mesh.value(), path, camera,
-                                         after_options_for(before, after_mesh.value(), title))},
+      {kAfterPicture, render_surface_png(after_mesh.value(), path, camera, after_options)},
       {kForcePicture,
        plot_force_png(request.times, request.forces, {.title = title + ": force on the device"})},
   };

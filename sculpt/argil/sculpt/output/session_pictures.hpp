@@ -1,6 +1,7 @@
 #pragma once
 // The pictures a sculpt run writes: the surfaces before and after with the
-// tool path (after: coloured by how far each point moved), and the force plot.
+// tool path (after: coloured by how far each point moved along the normal, in
+// or out), and the force plot.
 
 #include <filesystem>
 #include <string>
@@ -25,10 +26,27 @@ struct SessionPicturesRequest {
   std::vector<double> times;            // one per tick [s]
   std::vector<Eigen::Vector3d> forces;  // force on the device per tick [N]
   std::string title;                    // prefix of every picture's title
+  /// Displacements up to this are no change [mm] (the scene's eps).
+  double tolerance_mm = 0.0;
+  /// The tool's radius [mm] (a sphere; 0 draws a point's cross).
+  double tool_radius_mm = 0.0;
 };
 
+/// The "after" picture's colouring: how far each vertex of `after_mesh` moved
+/// from the same (face, u, v) of `before`, signed along the outward normal
+/// before (negative: pushed in), on a scale symmetric about 0 up to the
+/// largest |displacement|. When no point moved by more than `tolerance_mm`,
+/// no colour and a note saying so, with the largest movement.
+SurfacePictureOptions after_picture_options(const io::Model& before,
+                                            const io::TriangleMesh& after_mesh,
+                                            double tolerance_mm, const std::string& title);
+
 /// Writes before.png, after.png (same camera, fitted to both surfaces and the
-/// path) and force.png into `folder`, each atomically.
+/// path) and force.png into `folder`, each atomically. Both surface pictures
+/// draw the tool where the force on the device peaked while engaged; when the
+/// visible change (points that moved more than a tenth of the largest
+/// movement, and eps) spans less than a third of the model, after.png adds an
+/// inset zoomed on it.
 Status write_session_pictures(const SessionPicturesRequest& request,
                               const std::filesystem::path& folder);
 

@@ -68,6 +68,8 @@ void write_pictures(const RunInputs& in, const Session& session,
   pictures.times = state.log.times();
   pictures.forces = state.log.forces();
   pictures.title = in.scene_name;
+  pictures.tolerance_mm = in.scene.tolerance;
+  pictures.tool_radius_mm = session.tool().type == ToolType::sphere ? session.tool().radius : 0.0;
   for (std::size_t m = 0; m < before.size(); ++m) {
     for (const io::FaceRecord& f : before[m].faces) pictures.before.faces.push_back(f);
     for (const io::FaceRecord& f : session.current_faces(static_cast<int>(m)).faces)
