@@ -48,14 +48,14 @@ std::vector<std::string> start_warnings(const ResumePlan& plan) {
 }
 
 /// Replays the journal when resuming; fills the report's resume fields.
-Status resume(Session& session, const OpenedJournal& journal, const RunInputs& in, RunState& state,
-              RunReport& report) {
+Status resume(Session& session, const OpenedJournal& journal, const RunInputs& in,
+              const ScriptSampler& sampler, RunState& state, RunReport& report) {
   report.start = journal.plan.start;
   report.warnings = in.scene.warnings;
   for (std::string& w : start_warnings(journal.plan)) report.warnings.push_back(std::move(w));
   if (journal.plan.start != RunStart::resumed) return Status::success();
   const Status replayed =
-      detail::replay_journal(session, journal.plan.journal, in.out / kJournalName, state);
+      detail::replay_journal(session, journal.plan.journal, in.out / kJournalName, sampler, state);
   if (!replayed.ok()) return replayed;
   report.records_replayed = journal.plan.journal.records.size();
   report.ticks_replayed = state.next_tick;
@@ -131,7 +131,7 @@ Result<RunReport> run_session(const RunOptions& options) {
   for (const FaceRefinement& r : session.refinements())
     report.refinements.push_back(refinement_text(r));
   RunState state;
-  const Status resumed = resume(session, journal.value(), in, state, report);
+  const Status resumed = resume(session, journal.value(), in, sampler, state, report);
   if (!resumed.ok()) return resumed;
   Result<detail::LoopEnd> ended =
       detail::run_live_ticks(session, sampler, journal.value().writer, options, state);

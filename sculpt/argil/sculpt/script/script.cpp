@@ -32,6 +32,10 @@ bool parse_event(std::string_view text, ScriptEvent& out) {
     out = ScriptEvent::engage;
   else if (text == "release")
     out = ScriptEvent::release;
+  else if (text == "undo")
+    out = ScriptEvent::undo;
+  else if (text == "redo")
+    out = ScriptEvent::redo;
   else
     return false;
   return true;
@@ -112,6 +116,11 @@ Status check_keyframes(const std::vector<Keyframe>& keyframes, const std::string
     } else if (f.event == ScriptEvent::release) {
       if (!engaged) return error(k, "event", "release while not engaged");
       engaged = false;
+    } else if (f.event == ScriptEvent::undo || f.event == ScriptEvent::redo) {
+      if (engaged) {
+        return error(k, "event",
+                     std::string(to_string(f.event)) + " while engaged: release first");
+      }
     }
   }
   return Status::success();
@@ -346,6 +355,10 @@ const char* to_string(ScriptEvent event) {
       return "engage";
     case ScriptEvent::release:
       return "release";
+    case ScriptEvent::undo:
+      return "undo";
+    case ScriptEvent::redo:
+      return "redo";
   }
   return "none";
 }
@@ -442,10 +455,15 @@ ScriptSampler::ScriptSampler(Script script, double rate_hz)
   tick_count_ = static_cast<long long>(std::ceil(last * rate_ - kTickRounding)) + 1;
   bool engaged = false;
   engaged_after_.reserve(script_.keyframes.size());
-  for (const Keyframe& f : script_.keyframes) {
+  for (std::size_t k = 0; k < script_.keyframes.size(); ++k) {
+    const Keyframe& f = script_.keyframes[k];
     if (f.event == ScriptEvent::engage) engaged = true;
     if (f.event == ScriptEvent::release) engaged = false;
     engaged_after_.push_back(engaged);
+    if (f.event == ScriptEvent::undo || f.event == ScriptEvent::redo) {
+      commands_.push_back(
+          {static_cast<long long>(std::ceil(f.t * rate_ - kTickRounding)), f.event, k});
+    }
   }
   long long first = -1;
   for (long long t = 0; t < tick_count_; ++t) {
@@ -488,11 +506,28 @@ DeviceSample ScriptSampler::sample(long long tick) const {
   return s;
 }
 
-Script record_script(const std::vector<DeviceSample>& samples, const std::string& tool) {
+Script record_script(const std::vector<DeviceSample>& samples, const std::string& tool,
+                     const std::vector<ScriptSampler::Command>& commands) {
   Script script;
   script.tool = tool;
   bool engaged = false;
-  for (const DeviceSample& s : samples) {
+  std::size_t next_command = 0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const DeviceSample& s = samples[i];
+    // Commands before this tick: their own keyframes midway from the previous
+    // tick (the sampler maps them to this one), at the previous tick's pose.
+    // Before the first tick there is nothing to undo or redo: none is kept.
+    double gap = 0.5;  // of the tick interval, halved for each further command
+    for (; next_command < commands.size() && commands[next_command].tick <= s.tick;
+         ++next_command, gap *= 0.5) {
+      if (i == 0) continue;
+      Keyframe c;
+      c.t = s.t - gap * (s.t - samples[i - 1].t);
+      c.X_WD.p = samples[i - 1].X_WD.p;
+      c.X_WD.R = samples[i - 1].X_WD.R;
+      c.event = commands[next_command].event;
+      script.keyframes.push_back(c);
+    }
     Keyframe f;
     f.t = s.t;
     f.X_WD.p = s.X_WD.p;

@@ -21,8 +21,10 @@ inline constexpr std::string_view kScriptFormatName = "argil.script";
 inline constexpr int kScriptFormatVersion = 1;
 
 /// What happens at a keyframe: the tool starts (engage) or stops (release)
-/// acting on the models; `none` only moves it.
-enum class ScriptEvent { none, engage, release };
+/// acting on the models; `none` only moves it; `undo` and `redo` (between
+/// strokes only) take back the last finished stroke or restore the last one
+/// taken back, before the tick at or after the keyframe.
+enum class ScriptEvent { none, engage, release, undo, redo };
 const char* to_string(ScriptEvent event);
 
 /// A device pose at a time: X_WD, the device handle D in the world [mm], a
@@ -61,7 +63,8 @@ std::string script_to_csv(const Script& script);
 Status write_script(const Script& script, const std::filesystem::path& path);
 
 /// Checks what the parsers check (times finite, >= 0, strictly increasing;
-/// finite positions; unit quaternions; at least one keyframe), naming the keyframe.
+/// finite positions; unit quaternions; at least one keyframe; engage and
+/// release alternating; undo and redo only while not engaged), naming the keyframe.
 Status validate(const Script& script, const std::string& source_name = "script");
 
 /// The device's path during each engaged interval: the keyframe positions
@@ -91,6 +94,15 @@ class ScriptSampler {
   long long tick_count() const { return tick_count_; }
   double rate() const { return rate_; }
   DeviceSample sample(long long tick) const;
+  /// An undo or redo keyframe: applied before stepping `tick`, the first tick
+  /// at or after its time (with the same rounding as tick_count()).
+  struct Command {
+    long long tick = 0;
+    ScriptEvent event = ScriptEvent::undo;
+    std::size_t keyframe = 0;
+  };
+  /// The undo and redo keyframes, in order.
+  const std::vector<Command>& commands() const { return commands_; }
   /// The engaged intervals, in order.
   const std::vector<Stroke>& strokes() const { return strokes_; }
   const Script& script() const { return script_; }
@@ -101,6 +113,7 @@ class ScriptSampler {
   long long tick_count_ = 0;
   std::vector<bool> engaged_after_;  // engaged state from keyframe k on
   std::vector<Stroke> strokes_;
+  std::vector<Command> commands_;
 };
 
 /// Time of tick k at `rate_hz`, the same expression everywhere: k / rate.
@@ -109,7 +122,10 @@ inline double tick_time(long long tick, double rate_hz) {
 }
 
 /// A script holding one keyframe per sample (with engage/release where the
-/// engaged state changes) that replays the samples exactly at the same rate.
-Script record_script(const std::vector<DeviceSample>& samples, const std::string& tool);
+/// engaged state changes) that replays the samples exactly at the same rate,
+/// and each command as a keyframe midway between the tick it came before and
+/// the previous one (at the previous one's pose).
+Script record_script(const std::vector<DeviceSample>& samples, const std::string& tool,
+                     const std::vector<ScriptSampler::Command>& commands = {});
 
 }  // namespace argil::sculpt

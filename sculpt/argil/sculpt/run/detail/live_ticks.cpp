@@ -1,8 +1,11 @@
 #include "argil/sculpt/run/detail/live_ticks.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <thread>
+
+#include "argil/core/base/number_text.hpp"
 
 namespace argil::sculpt::detail {
 namespace {
@@ -32,14 +35,42 @@ Result<TickReport> timed_step(Session& session, const DeviceSample& sample, RunS
   return report;
 }
 
-/// Appends the samples since the last record, with the state they lead to.
+/// Appends the samples since the last record, with the state they lead to;
+/// a record holding an engaged sample counts as a stroke.
 Status journal_stroke(Session& session, JournalWriter& journal, RunState& state) {
   JournalRecord record;
   record.samples = std::move(state.unjournalled);
   state.unjournalled.clear();
   record.state_hash = session.state_hash();
   const Status appended = journal.append(record);
-  if (appended.ok()) ++state.strokes;
+  const bool stroke = std::any_of(record.samples.begin(), record.samples.end(),
+                                  [](const DeviceSample& s) { return s.engaged; });
+  if (appended.ok() && stroke) ++state.strokes;
+  return appended;
+}
+
+/// The script's undo or redo before a tick: the samples since the last record
+/// are journalled first, so a resume replays them, then the command and its
+/// record. Errors name the keyframe ("nothing to undo").
+Status apply_command(Session& session, JournalWriter& journal, const ScriptSampler& sampler,
+                     const ScriptSampler::Command& command, RunState& state) {
+  if (!state.unjournalled.empty()) {
+    const Status flushed = journal_stroke(session, journal, state);
+    if (!flushed.ok()) return flushed;
+  }
+  const bool undo = command.event == ScriptEvent::undo;
+  const Status done = undo ? session.undo() : session.redo();
+  if (!done.ok()) {
+    return Status::error(done.code, "script keyframe " + std::to_string(command.keyframe) +
+                                        " (t = " + number_text(
+                                            sampler.script().keyframes[command.keyframe].t) +
+                                        " s): " + to_string(command.event) + ": " + done.message);
+  }
+  JournalRecord record;
+  record.kind = undo ? JournalRecord::Kind::undo : JournalRecord::Kind::redo;
+  record.state_hash = session.state_hash();
+  const Status appended = journal.append(record);
+  if (appended.ok()) state.commands.push_back(command);
   return appended;
 }
 
@@ -57,7 +88,14 @@ Result<LoopEnd> run_live_ticks(Session& session, const ScriptSampler& sampler,
   const long long total = sampler.tick_count();
   const double rate = session.scene().haptic_rate;
   const Clock::time_point start = Clock::now();
+  const std::vector<ScriptSampler::Command>& commands = sampler.commands();
   for (long long k = first; k < total; ++k) {
+    // Commands are journalled in order: those a resume replayed are done.
+    while (state.commands.size() < commands.size() && commands[state.commands.size()].tick <= k) {
+      const Status applied =
+          apply_command(session, journal, sampler, commands[state.commands.size()], state);
+      if (!applied.ok()) return applied;
+    }
     const DeviceSample sample = sampler.sample(k);
     if (options.realtime) {
       std::this_thread::sleep_until(

@@ -1,5 +1,6 @@
 #include "argil/sculpt/run/detail/replay_journal.hpp"
 
+#include <algorithm>
 #include <string>
 
 namespace argil::sculpt::detail {
@@ -20,14 +21,18 @@ Status replay_stroke(Session& session, const JournalRecord& record, std::size_t 
     state.received.push_back(s);
     ++state.next_tick;
   }
-  ++state.strokes;
+  // Free moves journalled before an undo or redo are not strokes.
+  if (std::any_of(record.samples.begin(), record.samples.end(),
+                  [](const DeviceSample& s) { return s.engaged; }))
+    ++state.strokes;
   return Status::success();
 }
 
 }  // namespace
 
 Status replay_journal(Session& session, const JournalContents& journal,
-                      const std::filesystem::path& journal_path, RunState& state) {
+                      const std::filesystem::path& journal_path, const ScriptSampler& sampler,
+                      RunState& state) {
   for (std::size_t r = 0; r < journal.records.size(); ++r) {
     const JournalRecord& record = journal.records[r];
     if (record.kind == JournalRecord::Kind::stroke) {
@@ -40,6 +45,18 @@ Status replay_journal(Session& session, const JournalContents& journal,
         return Status::error(StatusCode::failed_precondition,
                              journal_path.string() + ": " + done.message);
       }
+      // The script's next command is the one this record journalled.
+      const std::vector<ScriptSampler::Command>& commands = sampler.commands();
+      const ScriptEvent kind =
+          record.kind == JournalRecord::Kind::undo ? ScriptEvent::undo : ScriptEvent::redo;
+      if (state.commands.size() >= commands.size() ||
+          commands[state.commands.size()].event != kind) {
+        return Status::error(StatusCode::failed_precondition,
+                             journal_path.string() + ": record " + std::to_string(r) +
+                                 " is an " + to_string(kind) +
+                                 " the script does not have next (inputs changed?)");
+      }
+      state.commands.push_back(commands[state.commands.size()]);
     }
     if (session.state_hash() != record.state_hash) {
       return Status::error(StatusCode::failed_precondition,

@@ -12,10 +12,13 @@
 namespace argil::sculpt::detail {
 
 /// Steps `session` through every record of `journal` (the samples of strokes,
-/// undo and redo), logging each tick into `state`. Fails with
-/// failed_precondition when a record skips ticks or does not replay to its
-/// state hash (the inputs changed under the journal).
+/// undo and redo), logging each tick into `state` and each command as the
+/// script's next (`sampler`'s commands, in order). Fails with
+/// failed_precondition when a record skips ticks, does not replay to its
+/// state hash, or is a command the script does not have next (the inputs
+/// changed under the journal).
 Status replay_journal(Session& session, const JournalContents& journal,
-                      const std::filesystem::path& journal_path, RunState& state);
+                      const std::filesystem::path& journal_path, const ScriptSampler& sampler,
+                      RunState& state);
 
 }  // namespace argil::sculpt::detail

@@ -56,7 +56,8 @@ void write_logs(const RunInputs& in, const Session& session, const RunState& sta
   }
   const std::filesystem::path recorded = in.out / kRecordedScriptName;
   record(outputs, recorded,
-         write_script(record_script(state.received, session.tool().name), recorded));
+         write_script(record_script(state.received, session.tool().name, state.commands),
+                      recorded));
 }
 
 /// Pictures of the faces the scene names, before and after: where the tool

@@ -16,6 +16,8 @@ struct RunState {
   std::vector<DeviceSample> unjournalled;  // since the last journal record
   int strokes = 0;                         // journalled
   long long next_tick = 0;
+  /// The script's undo and redo commands applied (and journalled) so far.
+  std::vector<ScriptSampler::Command> commands;
 };
 
 }  // namespace argil::sculpt::detail
