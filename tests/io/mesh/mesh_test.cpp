@@ -203,7 +203,7 @@ TEST_CASE("trimmed faces are meshed conforming to their trims: outer loop and ho
 }
 
 TEST_CASE("every face of real models gets triangles, the thinnest trimmed strips too",
-          "[io][mesh]") {
+          "[io][mesh][slow]") {
   // Ventilator's 13 blade strips are narrower than a cell of the surface's own
   // tessellation; trimming by centroid used to leave them empty.
   for (const char* name : {"Ventilator.stp", "screw.step", "bearing.iges"}) {
