@@ -63,60 +63,39 @@ std::optional<Eigen::Vector3d> hardest_press(const SessionPicturesRequest& reque
   return at;
 }
 
-/// The box of the vertices that moved by more than a tenth of the largest
-/// movement (and eps): the visible change. Grown by half its size and to at
-/// least three tool radii; none when nothing moved by more than eps or when
-/// it spans more than a third of the model (the whole view shows it).
-std::optional<Box3> moved_region(const io::Model& before, const io::TriangleMesh& after_mesh,
-                                 double tolerance_mm, double tool_radius_mm,
-                                 const Box3& models) {
-  std::vector<double> moved(static_cast<std::size_t>(after_mesh.positions.rows()));
-  double largest = 0.0;
+/// How far each vertex of `after_mesh` moved from the same (face, u, v) of
+/// `before` [mm].
+std::vector<Eigen::Vector3d> vertex_movements(const io::Model& before,
+                                              const io::TriangleMesh& after_mesh) {
+  std::vector<Eigen::Vector3d> moved(static_cast<std::size_t>(after_mesh.positions.rows()));
   for (Eigen::Index k = 0; k < after_mesh.positions.rows(); ++k) {
-    const auto face =
-        static_cast<std::size_t>(after_mesh.vertex_face[static_cast<std::size_t>(k)]);
-    const Eigen::Vector3d was =
+    const auto face = static_cast<std::size_t>(after_mesh.vertex_face[static_cast<std::size_t>(k)]);
+    moved[static_cast<std::size_t>(k)] =
+        after_mesh.positions.row(k).transpose() -
         evaluate(before.faces[face].surface, after_mesh.uv(k, 0), after_mesh.uv(k, 1));
-    moved[static_cast<std::size_t>(k)] = (after_mesh.positions.row(k).transpose() - was).norm();
-    largest = std::max(largest, moved[static_cast<std::size_t>(k)]);
   }
-  if (!(largest > tolerance_mm)) return std::nullopt;
-  const double visible = std::max(tolerance_mm, 0.1 * largest);
-  Box3 box{Eigen::Vector3d::Constant(1e300), Eigen::Vector3d::Constant(-1e300)};
-  for (Eigen::Index k = 0; k < after_mesh.positions.rows(); ++k) {
-    if (!(moved[static_cast<std::size_t>(k)] > visible)) continue;
-    box.min = box.min.cwiseMin(after_mesh.positions.row(k).transpose());
-    box.max = box.max.cwiseMax(after_mesh.positions.row(k).transpose());
-  }
-  if (box.diagonal() > models.diagonal() / 3.0) return std::nullopt;
-  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
-  const Eigen::Vector3d half =
-      (0.75 * (box.max - box.min)).cwiseMax(Eigen::Vector3d::Constant(1.5 * tool_radius_mm));
-  return Box3{centre - half, centre + half};
+  return moved;
 }
 
-}  // namespace
-
-SurfacePictureOptions after_picture_options(const io::Model& before,
-                                            const io::TriangleMesh& after_mesh,
-                                            double tolerance_mm, const std::string& title) {
+/// after_picture_options() from the vertices' movements.
+SurfacePictureOptions signed_colouring(const io::Model& before, const io::TriangleMesh& after_mesh,
+                                       const std::vector<Eigen::Vector3d>& moved,
+                                       double tolerance_mm, const std::string& title) {
   SurfacePictureOptions options;
   options.title = title + ": after";
-  options.vertex_displacement.resize(static_cast<std::size_t>(after_mesh.positions.rows()));
+  options.vertex_displacement.resize(moved.size());
   double largest_signed = 0.0, largest_moved = 0.0;
-  for (Eigen::Index k = 0; k < after_mesh.positions.rows(); ++k) {
-    const auto face =
-        static_cast<std::size_t>(after_mesh.vertex_face[static_cast<std::size_t>(k)]);
-    const io::FaceRecord& was_face = before.faces[face];
-    const double u = after_mesh.uv(k, 0), v = after_mesh.uv(k, 1);
-    const Eigen::Vector3d moved = after_mesh.positions.row(k).transpose() -
-                                  evaluate(was_face.surface, u, v);
+  for (std::size_t k = 0; k < moved.size(); ++k) {
+    const io::FaceRecord& was_face =
+        before.faces[static_cast<std::size_t>(after_mesh.vertex_face[k])];
+    const auto row = static_cast<Eigen::Index>(k);
     const Eigen::Vector3d normal =
-        (was_face.reversed ? -1.0 : 1.0) * unit_normal(was_face.surface, u, v);
-    const double along = moved.dot(normal);
-    options.vertex_displacement[static_cast<std::size_t>(k)] = along;
+        (was_face.reversed ? -1.0 : 1.0) *
+        unit_normal(was_face.surface, after_mesh.uv(row, 0), after_mesh.uv(row, 1));
+    const double along = moved[k].dot(normal);
+    options.vertex_displacement[k] = along;
     largest_signed = std::max(largest_signed, std::abs(along));
-    largest_moved = std::max(largest_moved, moved.norm());
+    largest_moved = std::max(largest_moved, moved[k].norm());
   }
   if (largest_moved > tolerance_mm && largest_signed > 0.0) {
     options.displacement_scale = largest_signed;
@@ -128,6 +107,40 @@ SurfacePictureOptions after_picture_options(const io::Model& before,
     options.note = note;
   }
   return options;
+}
+
+/// The box of the vertices that moved by more than a tenth of the largest
+/// movement (and eps): the visible change. Grown by half its size and to at
+/// least three tool radii; none when nothing moved by more than eps or when
+/// it spans more than a third of the model (the whole view shows it).
+std::optional<Box3> moved_region(const io::TriangleMesh& after_mesh,
+                                 const std::vector<Eigen::Vector3d>& moved, double tolerance_mm,
+                                 double tool_radius_mm, const Box3& models) {
+  double largest = 0.0;
+  for (const Eigen::Vector3d& m : moved) largest = std::max(largest, m.norm());
+  if (!(largest > tolerance_mm)) return std::nullopt;
+  const double visible = std::max(tolerance_mm, 0.1 * largest);
+  Box3 box{Eigen::Vector3d::Constant(1e300), Eigen::Vector3d::Constant(-1e300)};
+  for (std::size_t k = 0; k < moved.size(); ++k) {
+    if (!(moved[k].norm() > visible)) continue;
+    const Eigen::Vector3d p = after_mesh.positions.row(static_cast<Eigen::Index>(k)).transpose();
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  if (box.diagonal() > models.diagonal() / 3.0) return std::nullopt;
+  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
+  const Eigen::Vector3d half =
+      (0.75 * (box.max - box.min)).cwiseMax(Eigen::Vector3d::Constant(1.5 * tool_radius_mm));
+  return Box3{centre - half, centre + half};
+}
+
+}  // namespace
+
+SurfacePictureOptions after_picture_options(const io::Model& before,
+                                            const io::TriangleMesh& after_mesh, double tolerance_mm,
+                                            const std::string& title) {
+  return signed_colouring(before, after_mesh, vertex_movements(before, after_mesh), tolerance_mm,
+                          title);
 }
 
 Status write_session_pictures(const SessionPicturesRequest& request,
@@ -149,12 +162,13 @@ Status write_session_pictures(const SessionPicturesRequest& request,
   before_options.title = title + ": before";
   before_options.tool_position = hardest_press(request);
   before_options.tool_radius_mm = request.tool_radius_mm;
+  const std::vector<Eigen::Vector3d> moved = vertex_movements(before, after_mesh.value());
   SurfacePictureOptions after_options =
-      after_picture_options(before, after_mesh.value(), request.tolerance_mm, title);
+      signed_colouring(before, after_mesh.value(), moved, request.tolerance_mm, title);
   after_options.tool_position = before_options.tool_position;
   after_options.tool_radius_mm = request.tool_radius_mm;
-  after_options.zoom = moved_region(before, after_mesh.value(), request.tolerance_mm,
-                                    request.tool_radius_mm, models);
+  after_options.zoom =
+      moved_region(after_mesh.value(), moved, request.tolerance_mm, request.tool_radius_mm, models);
   const struct {
     const char* name;
     Result<std::string> png;

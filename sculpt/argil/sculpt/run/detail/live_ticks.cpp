@@ -1,6 +1,5 @@
 #include "argil/sculpt/run/detail/live_ticks.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <thread>
@@ -43,9 +42,7 @@ Status journal_stroke(Session& session, JournalWriter& journal, RunState& state)
   state.unjournalled.clear();
   record.state_hash = session.state_hash();
   const Status appended = journal.append(record);
-  const bool stroke = std::any_of(record.samples.begin(), record.samples.end(),
-                                  [](const DeviceSample& s) { return s.engaged; });
-  if (appended.ok() && stroke) ++state.strokes;
+  if (appended.ok() && holds_stroke(record.samples)) ++state.strokes;
   return appended;
 }
 

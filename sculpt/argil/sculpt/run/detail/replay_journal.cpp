@@ -1,6 +1,5 @@
 #include "argil/sculpt/run/detail/replay_journal.hpp"
 
-#include <algorithm>
 #include <string>
 
 namespace argil::sculpt::detail {
@@ -21,10 +20,7 @@ Status replay_stroke(Session& session, const JournalRecord& record, std::size_t 
     state.received.push_back(s);
     ++state.next_tick;
   }
-  // Free moves journalled before an undo or redo are not strokes.
-  if (std::any_of(record.samples.begin(), record.samples.end(),
-                  [](const DeviceSample& s) { return s.engaged; }))
-    ++state.strokes;
+  if (holds_stroke(record.samples)) ++state.strokes;
   return Status::success();
 }
 

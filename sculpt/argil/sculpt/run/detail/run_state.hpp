@@ -2,6 +2,7 @@
 // Internal to the runner: what a run accumulates tick by tick, for the journal
 // and the outputs written at the end.
 
+#include <algorithm>
 #include <vector>
 
 #include "argil/sculpt/output/tick_log.hpp"
@@ -19,5 +20,12 @@ struct RunState {
   /// The script's undo and redo commands applied (and journalled) so far.
   std::vector<ScriptSampler::Command> commands;
 };
+
+/// Whether a journal record's samples make a stroke: free moves journalled
+/// before an undo or redo do not.
+inline bool holds_stroke(const std::vector<DeviceSample>& samples) {
+  return std::any_of(samples.begin(), samples.end(),
+                     [](const DeviceSample& s) { return s.engaged; });
+}
 
 }  // namespace argil::sculpt::detail
