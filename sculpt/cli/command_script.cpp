@@ -141,8 +141,9 @@ int run_script(const std::vector<std::string>& args) {
   const std::string model_name = a.text("--model").value_or("");
   const sculpt::ModelOptions* model = find_model(scene.value(), model_name);
   if (model == nullptr) {
-    std::fprintf(stderr, "argil script: %s: no %s\n", scene_path.c_str(),
-                 model_name.empty() ? "deformable model" : ("model \"" + model_name + "\"").c_str());
+    std::fprintf(
+        stderr, "argil script: %s: no %s\n", scene_path.c_str(),
+        model_name.empty() ? "deformable model" : ("model \"" + model_name + "\"").c_str());
     return kExitFailure;
   }
   const std::string tool_name = a.text("--tool").value_or("");
@@ -161,9 +162,8 @@ int run_script(const std::vector<std::string>& args) {
     return kExitFailure;
   }
   const auto face = static_cast<std::size_t>(*a.index("--face"));
-  if (!model->faces.empty() &&
-      std::find(model->faces.begin(), model->faces.end(), static_cast<int>(face)) ==
-          model->faces.end()) {
+  if (!model->faces.empty() && std::find(model->faces.begin(), model->faces.end(),
+                                         static_cast<int>(face)) == model->faces.end()) {
     std::fprintf(stderr, "argil script: %s: model \"%s\" does not hold face %zu of %s\n",
                  scene_path.c_str(), model->name.c_str(), face, model->file.c_str());
     return kExitFailure;

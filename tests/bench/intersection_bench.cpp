@@ -153,8 +153,8 @@ int main(int argc, char** argv) {
     for (int e : exponents) {
       const double eps = std::pow(10.0, -e) * pair.size;
       for (Peer peer : kPeers) {
-        if (!peers_only.empty() && std::find(peers_only.begin(), peers_only.end(),
-                                             peer_name(peer)) == peers_only.end())
+        if (!peers_only.empty() &&
+            std::find(peers_only.begin(), peers_only.end(), peer_name(peer)) == peers_only.end())
           continue;
         Cell cell;
         const GuardedResult run =

@@ -276,10 +276,10 @@ TEST_CASE("curve tidying drops covered short pieces, keeps isolated ones, joins 
     CHECK(bridged[0].points[2].isApprox(Eigen::Vector3d(1.0015, 0, 0)));
     // Overlapping by 3 eps, each past the other's end: the overlapped points
     // of one go, and the curve runs on without turning back.
-    const auto overlapped = argil::detail::tidy_curves(
-        {curve({{0, 0, 0}, {0.5, 0, 0}, {1, 0, 0}}),
-         curve({{0.997, 0, 0}, {0.9985, 0, 0}, {1.5, 0, 0}, {2, 0, 0}})},
-        eps, straight);
+    const auto overlapped =
+        argil::detail::tidy_curves({curve({{0, 0, 0}, {0.5, 0, 0}, {1, 0, 0}}),
+                                    curve({{0.997, 0, 0}, {0.9985, 0, 0}, {1.5, 0, 0}, {2, 0, 0}})},
+                                   eps, straight);
     REQUIRE(overlapped.size() == 1);
     const std::vector<Eigen::Vector3d>& p = overlapped[0].points;
     for (std::size_t k = 0; k + 1 < p.size(); ++k) CHECK(p[k + 1].x() > p[k].x());
@@ -287,15 +287,13 @@ TEST_CASE("curve tidying drops covered short pieces, keeps isolated ones, joins 
     // Side by side (the gap across the curves) or farther than the reach:
     // the bridge is not even asked.
     asked = 0;
-    CHECK(argil::detail::tidy_curves({curve({{0, 0, 0}, {1, 0, 0}}),
-                                      curve({{1, 0.003, 0}, {2, 0.003, 0}})},
-                                     eps, straight)
+    CHECK(argil::detail::tidy_curves(
+              {curve({{0, 0, 0}, {1, 0, 0}}), curve({{1, 0.003, 0}, {2, 0.003, 0}})}, eps, straight)
               .size() == 2);
-    CHECK(argil::detail::tidy_curves({curve({{0, 0, 0}, {1, 0, 0}}),
-                                      curve({{1.0 + 1.01 * argil::detail::kBridgeReach * eps, 0,
-                                              0},
-                                             {2, 0, 0}})},
-                                     eps, straight)
+    CHECK(argil::detail::tidy_curves(
+              {curve({{0, 0, 0}, {1, 0, 0}}),
+               curve({{1.0 + 1.01 * argil::detail::kBridgeReach * eps, 0, 0}, {2, 0, 0}})},
+              eps, straight)
               .size() == 2);
     CHECK(asked == 0);
   }

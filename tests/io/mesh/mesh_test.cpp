@@ -151,8 +151,7 @@ TEST_CASE("an untrimmed face's mesh has no cracks: inner edges are shared by two
   CHECK(boundary_edges > 0);
 }
 
-TEST_CASE("trimmed faces are meshed conforming to their trims: outer loop and hole",
-          "[io][mesh]") {
+TEST_CASE("trimmed faces are meshed conforming to their trims: outer loop and hole", "[io][mesh]") {
   const Model model = panel_and_trimmed_face();
   const FaceRecord& face = model.faces[1];
   TessellationOptions options;

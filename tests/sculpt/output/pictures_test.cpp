@@ -184,8 +184,7 @@ TEST_CASE("the after picture colours the signed displacement, and says when noth
   CHECK(*hi <= 1e-12);
   CHECK(in.displacement_scale == -*lo);
   // Raised: the same magnitudes, out.
-  const SurfacePictureOptions out =
-      after_picture_options(flat, mesh_of(sheet(5.0)), 1e-3, "sheet");
+  const SurfacePictureOptions out = after_picture_options(flat, mesh_of(sheet(5.0)), 1e-3, "sheet");
   CHECK(*std::max_element(out.vertex_displacement.begin(), out.vertex_displacement.end()) ==
         Approx(-*lo).epsilon(1e-12));
   // Not moved, or by less than eps: no colour, and a note that says so.
@@ -204,8 +203,7 @@ TEST_CASE("the after picture colours the signed displacement, and says when noth
 
 namespace argil::sculpt {
 
-TEST_CASE("the tool is drawn where given, and a zoom inset shows the region again",
-          "[pictures]") {
+TEST_CASE("the tool is drawn where given, and a zoom inset shows the region again", "[pictures]") {
   const io::TriangleMesh mesh = mesh_of(sheet(-5.0));
   const Box3 box{Eigen::Vector3d(0, 0, -6), Eigen::Vector3d(100, 100, 1)};
   const Camera camera = fit_camera(box, 400, 300);

@@ -59,8 +59,7 @@ ControlNet poles_of(const fs::path& file) {
 
 bool same_bits(const ControlNet& a, const ControlNet& b) {
   return a.size() == b.size() &&
-         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) ==
-             0;
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
 }
 
 RunReport run_ok(const RunOptions& options) {
@@ -81,18 +80,20 @@ TEST_CASE("undo events take strokes back to the bit, and redo restores them", "[
 
   // Both presses taken back: the plate as read.
   const fs::path undone = kWork / "undone";
-  const RunReport u = run_ok(options_for(
-      script_with("undone", "0.4,100,20,10,1,0,0,0,undo\n0.42,100,20,10,1,0,0,0,undo\n"
-                            "0.45,100,20,10,1,0,0,0,\n"),
-      undone));
+  const RunReport u =
+      run_ok(options_for(script_with("undone",
+                                     "0.4,100,20,10,1,0,0,0,undo\n0.42,100,20,10,1,0,0,0,undo\n"
+                                     "0.45,100,20,10,1,0,0,0,\n"),
+                         undone));
   CHECK(u.strokes == 2);
   CHECK(same_bits(poles_of(undone / "plate.json"), original));
 
   // Taken back and restored: the plain run's plate.
   const fs::path redone = kWork / "redone";
-  const fs::path redone_script = script_with(
-      "redone", "0.4,100,20,10,1,0,0,0,undo\n0.42,100,20,10,1,0,0,0,redo\n"
-                "0.45,100,20,10,1,0,0,0,\n");
+  const fs::path redone_script =
+      script_with("redone",
+                  "0.4,100,20,10,1,0,0,0,undo\n0.42,100,20,10,1,0,0,0,redo\n"
+                  "0.45,100,20,10,1,0,0,0,\n");
   run_ok(options_for(redone_script, redone));
   CHECK(same_bits(poles_of(redone / "plate.json"), pressed));
 
@@ -108,9 +109,9 @@ TEST_CASE("undo events take strokes back to the bit, and redo restores them", "[
 }
 
 TEST_CASE("a run with undo stopped part way resumes to the same bits", "[run]") {
-  const fs::path script = script_with(
-      "resumed", "0.4,100,20,10,1,0,0,0,undo\n0.44,140,0,1,1,0,0,0,engage\n"
-                 "0.5,140,10,-4,1,0,0,0,\n0.57,140,20,5,1,0,0,0,release\n");
+  const fs::path script = script_with("resumed",
+                                      "0.4,100,20,10,1,0,0,0,undo\n0.44,140,0,1,1,0,0,0,engage\n"
+                                      "0.5,140,10,-4,1,0,0,0,\n0.57,140,20,5,1,0,0,0,release\n");
   const fs::path whole = kWork / "resumed-whole";
   run_ok(options_for(script, whole));
   const fs::path out = kWork / "resumed";
@@ -141,10 +142,11 @@ TEST_CASE("a run with undo stopped part way resumes to the same bits", "[run]") 
 TEST_CASE("undo with nothing to take back fails naming the keyframe; undo while engaged is refused",
           "[run]") {
   const fs::path out = kWork / "too-many";
-  const Result<RunReport> r = run_session(options_for(
-      script_with("too-many", "0.4,100,20,10,1,0,0,0,undo\n0.41,100,20,10,1,0,0,0,undo\n"
+  const Result<RunReport> r = run_session(
+      options_for(script_with("too-many",
+                              "0.4,100,20,10,1,0,0,0,undo\n0.41,100,20,10,1,0,0,0,undo\n"
                               "0.42,100,20,10,1,0,0,0,undo\n"),
-      out));
+                  out));
   REQUIRE_FALSE(r.ok());
   CHECK_THAT(r.status().message, Catch::Contains("script keyframe 10 (t = 0.42 s): undo:"));
   const Result<RunReport> engaged = run_session(options_for(

@@ -295,9 +295,8 @@ double worst_chord_bound(VertexCache& cache, const std::vector<std::array<int, 3
 /// A trimmed face meshed conforming to its trim curves by OpenCASCADE's
 /// mesher, its deflection tightened until every triangle passes the chord
 /// bound; an error when the mesher fails on the face or does not get there.
-Result<TriangleMesh> conforming_trimmed(const FaceRecord& face,
-                                               const TessellationOptions& options,
-                                               int face_index) {
+Result<TriangleMesh> conforming_trimmed(const FaceRecord& face, const TessellationOptions& options,
+                                        int face_index) {
   constexpr int kAttempts = 3;
   const double tolerance = options.chord_tolerance_mm;
   double deflection = tolerance;

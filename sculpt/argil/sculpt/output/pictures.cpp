@@ -268,8 +268,7 @@ void draw_colour_bar(cairo_t* cr, const Camera& camera, double displacement_scal
   draw_text(cr, x0, y0 - 4, low, 12);
   draw_text(cr, x0 + w / 2, y0 - 4, "0", 12, true);
   draw_text(cr, x0 + w, y0 - 4, high, 12, false, true);
-  draw_text(cr, x0 + w / 2, y0 + h + 13, "in  <  displacement along the normal  >  out", 11,
-            true);
+  draw_text(cr, x0 + w / 2, y0 + h + 13, "in  <  displacement along the normal  >  out", 11, true);
 }
 
 /// Title, the path legend and the colour bar (or the note in its place).

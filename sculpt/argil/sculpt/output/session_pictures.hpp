@@ -38,8 +38,8 @@ struct SessionPicturesRequest {
 /// largest |displacement|. When no point moved by more than `tolerance_mm`,
 /// no colour and a note saying so, with the largest movement.
 SurfacePictureOptions after_picture_options(const io::Model& before,
-                                            const io::TriangleMesh& after_mesh,
-                                            double tolerance_mm, const std::string& title);
+                                            const io::TriangleMesh& after_mesh, double tolerance_mm,
+                                            const std::string& title);
 
 /// Writes before.png, after.png (same camera, fitted to both surfaces and the
 /// path) and force.png into `folder`, each atomically. Both surface pictures

@@ -118,8 +118,7 @@ Status check_keyframes(const std::vector<Keyframe>& keyframes, const std::string
       engaged = false;
     } else if (f.event == ScriptEvent::undo || f.event == ScriptEvent::redo) {
       if (engaged) {
-        return error(k, "event",
-                     std::string(to_string(f.event)) + " while engaged: release first");
+        return error(k, "event", std::string(to_string(f.event)) + " while engaged: release first");
       }
     }
   }

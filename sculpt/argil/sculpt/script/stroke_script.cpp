@@ -22,7 +22,8 @@ struct SurfacePlace {
 
 class FacePlaces {
  public:
-  FacePlaces(const io::FaceRecord& face, std::string label) : face_(face), label_(std::move(label)) {}
+  FacePlaces(const io::FaceRecord& face, std::string label)
+      : face_(face), label_(std::move(label)) {}
 
   Status init() {
     if (!face_.trimmed()) return Status::success();
@@ -34,10 +35,9 @@ class FacePlaces {
 
   Result<SurfacePlace> at(const Eigen::Vector2d& uv) const {
     const BSplineSurface& s = face_.surface;
-    const bool in_domain = uv.x() >= s.domain_start(Direction::u) &&
-                           uv.x() <= s.domain_end(Direction::u) &&
-                           uv.y() >= s.domain_start(Direction::v) &&
-                           uv.y() <= s.domain_end(Direction::v);
+    const bool in_domain =
+        uv.x() >= s.domain_start(Direction::u) && uv.x() <= s.domain_end(Direction::u) &&
+        uv.y() >= s.domain_start(Direction::v) && uv.y() <= s.domain_end(Direction::v);
     if (!in_domain) {
       return error(uv_text(uv) + " is outside the surface's domain [" +
                    number_text(s.domain_start(Direction::u)) + ", " +

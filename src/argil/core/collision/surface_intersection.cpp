@@ -619,9 +619,9 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
     }
     // A yes/no test needs only whether there is a curve.
     if (!request.first_crossing_only)
-      result.curves = detail::tidy_curves(std::move(result.curves), request.tolerance,
-                                          request.refine ? bridge_for(pair, request.tolerance)
-                                                         : detail::GapBridge{});
+      result.curves = detail::tidy_curves(
+          std::move(result.curves), request.tolerance,
+          request.refine ? bridge_for(pair, request.tolerance) : detail::GapBridge{});
   }
   std::vector<LeafContact> leaves;
   leaves.reserve(descent.pending.size());

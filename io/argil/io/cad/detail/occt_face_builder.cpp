@@ -295,7 +295,8 @@ Result<TopoDS_Face> build_occt_mesh_face(const FaceRecord& record, double tolera
     if (!wire.ok()) return wire.status();
     wires.push_back(wire.value());
   }
-  if (wires.empty()) return Status::error(StatusCode::invalid_argument, "the face has no trim loop");
+  if (wires.empty())
+    return Status::error(StatusCode::invalid_argument, "the face has no trim loop");
   BRepBuilderAPI_MakeFace make(surface, wires.front(), true);
   for (std::size_t w = 1; w < wires.size() && make.IsDone(); ++w) make.Add(wires[w]);
   if (!make.IsDone()) {

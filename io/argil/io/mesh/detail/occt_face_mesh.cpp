@@ -22,11 +22,10 @@ Result<FaceTriangles> occt_face_triangles(const FaceRecord& face, double deflect
   const Result<TopoDS_Face> built = build_occt_mesh_face(face, tolerance);
   if (!built.ok()) return built.status();
   constexpr double kAngularDeflection = 0.5;  // rad; the chord check decides, not the angle
-  const BRepMesh_IncrementalMesh mesher(built.value(), deflection_mm, false,
-                                        kAngularDeflection, false);
+  const BRepMesh_IncrementalMesh mesher(built.value(), deflection_mm, false, kAngularDeflection,
+                                        false);
   TopLoc_Location location;
-  const Handle(Poly_Triangulation) mesh =
-      BRep_Tool::Triangulation(built.value(), location);
+  const Handle(Poly_Triangulation) mesh = BRep_Tool::Triangulation(built.value(), location);
   if (mesh.IsNull() || mesh->NbTriangles() == 0 || !mesh->HasUVNodes()) {
     return Status::error(StatusCode::invalid_argument,
                          "OpenCASCADE's mesher made no triangles at deflection " +
@@ -44,10 +43,10 @@ Result<FaceTriangles> occt_face_triangles(const FaceRecord& face, double deflect
     mesh->Triangle(t).Get(a, b, c);
     std::array<int, 3> tri{a - 1, b - 1, c - 1};
     // Counter-clockwise in (u, v), whatever the face's orientation in OCCT.
-    const Eigen::Vector2d e1 = out.uv[static_cast<std::size_t>(tri[1])] -
-                               out.uv[static_cast<std::size_t>(tri[0])];
-    const Eigen::Vector2d e2 = out.uv[static_cast<std::size_t>(tri[2])] -
-                               out.uv[static_cast<std::size_t>(tri[0])];
+    const Eigen::Vector2d e1 =
+        out.uv[static_cast<std::size_t>(tri[1])] - out.uv[static_cast<std::size_t>(tri[0])];
+    const Eigen::Vector2d e2 =
+        out.uv[static_cast<std::size_t>(tri[2])] - out.uv[static_cast<std::size_t>(tri[0])];
     if (e1.x() * e2.y() - e1.y() * e2.x() < 0.0) std::swap(tri[1], tri[2]);
     out.triangles.push_back(tri);
   }

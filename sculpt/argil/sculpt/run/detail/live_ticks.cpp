@@ -58,10 +58,10 @@ Status apply_command(Session& session, JournalWriter& journal, const ScriptSampl
   const bool undo = command.event == ScriptEvent::undo;
   const Status done = undo ? session.undo() : session.redo();
   if (!done.ok()) {
-    return Status::error(done.code, "script keyframe " + std::to_string(command.keyframe) +
-                                        " (t = " + number_text(
-                                            sampler.script().keyframes[command.keyframe].t) +
-                                        " s): " + to_string(command.event) + ": " + done.message);
+    return Status::error(
+        done.code, "script keyframe " + std::to_string(command.keyframe) +
+                       " (t = " + number_text(sampler.script().keyframes[command.keyframe].t) +
+                       " s): " + to_string(command.event) + ": " + done.message);
   }
   JournalRecord record;
   record.kind = undo ? JournalRecord::Kind::undo : JournalRecord::Kind::redo;

@@ -48,8 +48,8 @@ Status replay_journal(Session& session, const JournalContents& journal,
       if (state.commands.size() >= commands.size() ||
           commands[state.commands.size()].event != kind) {
         return Status::error(StatusCode::failed_precondition,
-                             journal_path.string() + ": record " + std::to_string(r) +
-                                 " is an " + to_string(kind) +
+                             journal_path.string() + ": record " + std::to_string(r) + " is an " +
+                                 to_string(kind) +
                                  " the script does not have next (inputs changed?)");
       }
       state.commands.push_back(commands[state.commands.size()]);

@@ -55,9 +55,9 @@ void write_logs(const RunInputs& in, const Session& session, const RunState& sta
     write_file(in.out / "timing.json", timing_json(wall, cpu, in.scene_path.string()), outputs);
   }
   const std::filesystem::path recorded = in.out / kRecordedScriptName;
-  record(outputs, recorded,
-         write_script(record_script(state.received, session.tool().name, state.commands),
-                      recorded));
+  record(
+      outputs, recorded,
+      write_script(record_script(state.received, session.tool().name, state.commands), recorded));
 }
 
 /// Pictures of the faces the scene names, before and after: where the tool

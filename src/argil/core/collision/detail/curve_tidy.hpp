@@ -22,8 +22,8 @@ struct CurvePoint {
 /// apart, in order from `from` to `to`, on both surfaces with every chord
 /// within eps/3 of the curve; nullopt when no single branch of the curve runs
 /// from one end to the other.
-using GapBridge = std::function<std::optional<IntersectionCurve>(const CurvePoint& from,
-                                                                 const CurvePoint& to)>;
+using GapBridge =
+    std::function<std::optional<IntersectionCurve>(const CurvePoint& from, const CurvePoint& to)>;
 
 /// How far apart two free ends may lie for tidy_curves() to ask the bridge,
 /// in eps: pieces of one curve meet up to about 1.6 eps apart where leaves of
