@@ -30,6 +30,10 @@ int run_sculpt(const std::vector<std::string>& args);
 const CommandDeclaration& script_command();
 int run_script(const std::vector<std::string>& args);
 
+/// argil view INPUT [--out FILE] [--scene SCENE] [--every N] [--scale S] [--chord C]
+const CommandDeclaration& view_command();
+int run_view(const std::vector<std::string>& args);
+
 /// argil materials
 const CommandDeclaration& materials_command();
 int run_materials(const std::vector<std::string>& args);
