@@ -14,6 +14,8 @@ CMAKE_ARGS ?=
 
 PACKAGES := g++ make cmake ninja-build libeigen3-dev libocct-data-exchange-dev libtbb-dev \
             libassimp-dev nlohmann-json3-dev catch2 libcairo2-dev pkg-config
+# Headless Chromium runs the viewer page's test (web/check_view.cjs).
+BROWSER_PACKAGES := chromium
 BENCH_PACKAGES := libbenchmark-dev libfcl-dev libsisl-dev
 # libFuzzer ships with clang's compiler-rt.
 FUZZ_PACKAGES := clang-14 libclang-rt-14-dev
@@ -24,7 +26,7 @@ FUZZ_TARGETS := fuzz_json_surfaces fuzz_step_import fuzz_iges_import fuzz_scene 
 
 # Installs only the Debian packages that are missing; never touches apt otherwise.
 deps:
-	@./tools/install-packages $(PACKAGES)
+	@./tools/install-packages $(PACKAGES) $(BROWSER_PACKAGES)
 	@./tools/install-web
 
 bench-deps:

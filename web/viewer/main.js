@@ -73,7 +73,9 @@ class Viewer {
     const d = this.data;
     const panel = element("div", { id: "panel" }, document.body);
     element("h1", { text: d.title }, panel);
-    element("div", { text: `eps ${mm(d.tolerance_mm)} · ${d.faces.length} faces · mm, Z up` }, panel);
+    element("div", {
+      text: (d.run ? `eps ${mm(d.tolerance_mm)} · ` : "") + `${d.faces.length} faces · mm, Z up`,
+    }, panel);
     const toggle = (id, text, checked, onChange) => {
       const label = element("label", {}, panel);
       const box = element("input", { type: "checkbox", id }, label);
@@ -89,6 +91,7 @@ class Viewer {
       });
     }
     this.colourBox = toggle("deviation", "signed deviation colours", true, () => this.update());
+    if (!d.frames.length) this.colourBox.parentElement.style.display = "none";
     if (d.run) {
       toggle("show-path", "device path (orange: engaged)", true, (on) => {
         this.view.setVisible("path", on);
@@ -104,7 +107,9 @@ class Viewer {
     this.scaleInput = element("input", { id: "scale", size: 7 }, scaleLabel);
     if (d.scale_mm) this.scaleInput.value = String(d.scale_mm);
     this.scaleInput.addEventListener("change", () => this.update());
+    if (!d.frames.length) scaleLabel.style.display = "none";
     const legend = element("div", { id: "legend" }, panel);
+    if (!d.frames.length) legend.style.display = "none";
     element("div", { class: "bar", style: `background: ${legendGradient()}` }, legend);
     const ticks = element("div", { class: "ticks" }, legend);
     this.legendLow = element("span", {}, ticks);
@@ -138,6 +143,13 @@ class Viewer {
 
   buildTimeline() {
     const bottom = element("div", { id: "bottom" }, document.body);
+    if (!this.data.frames.length) {
+      // A model file: no run to replay, the view takes the whole page.
+      bottom.style.display = "none";
+      document.getElementById("view").style.bottom = "0";
+      this.view.resize();
+      this.view.fit();
+    }
     const bar = element("div", { id: "timeline" }, bottom);
     const frames = this.data.frames.length;
     this.play = element("button", { id: "play", text: "play" }, bar);
@@ -285,7 +297,7 @@ class Viewer {
     const normal = n.map((x) => x / length);
     const point = [hit.point.x, hit.point.y, hit.point.z];
     const model = this.data.models[face.model];
-    this.lastPick = { model: model.name, face: face.face, name: face.name, u: uv[0], v: uv[1], point, normal };
+    this.lastPick = { model: model.name, face: face.face, faceIndex: hit.face, triangle: hit.triangle, name: face.name, u: uv[0], v: uv[1], point, normal };
     this.pickText.textContent =
       `model ${model.name}, face ${face.face} (${face.name})\n` +
       `(u, v) = (${fixed(uv[0])}, ${fixed(uv[1])})\n` +
@@ -383,6 +395,16 @@ function start() {
         return range;
       },
       size: () => viewer.view.size,
+      eye: () => viewer.view.camera.position.toArray(),
+      triangleCount: (f) => data.faces[f].indices.length / 3,
+      triangle: (f, t) => {
+        const corners = Array.from(data.faces[f].indices.subarray(3 * t, 3 * t + 3));
+        const p = viewer.shownPositions(f);
+        return {
+          positions: corners.map((i) => Array.from(p.subarray(3 * i, 3 * i + 3))),
+          uv: corners.map((i) => [data.faces[f].uv[2 * i], data.faces[f].uv[2 * i + 1]]),
+        };
+      },
       deepest: () => viewer.deepest(),
     };
   } catch (error) {

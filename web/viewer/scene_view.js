@@ -183,6 +183,6 @@ export class SceneView {
     const { a, b, c } = h.face;
     const weights = new THREE.Vector3();
     new THREE.Triangle(corner(a), corner(b), corner(c)).getBarycoord(h.point, weights);
-    return { face: h.object.userData.face, vertices: [a, b, c], weights, point: h.point };
+    return { face: h.object.userData.face, triangle: h.faceIndex, vertices: [a, b, c], weights, point: h.point };
   }
 }
