@@ -2,7 +2,8 @@
 // argil::sculpt, the entry header. Modules from the bottom up: scene (models,
 // tools, materials from JSON), script (timed tool poses from JSON or CSV),
 // session (the deterministic session and its journal), output (tick logs,
-// timing, run summary, pictures), run (a whole session from files, resumable: run_session).
+// timing, run summary, pictures), run (a whole session from files, resumable: run_session),
+// view (a finished run replayed, and the interactive page of it or of a model).
 
 #include "argil/io.hpp"  // IWYU pragma: export
 
@@ -24,3 +25,6 @@
 // run
 #include "argil/sculpt/run/resume_plan.hpp"     // IWYU pragma: export
 #include "argil/sculpt/run/session_runner.hpp"  // IWYU pragma: export
+// view
+#include "argil/sculpt/view/session_replay.hpp"  // IWYU pragma: export
+#include "argil/sculpt/view/view_page.hpp"       // IWYU pragma: export

@@ -34,7 +34,6 @@ struct PageModel {
 struct FaceMesh {
   std::vector<Eigen::Vector2d> uv;
   std::vector<std::uint32_t> indices;
-  std::string label;
 };
 
 std::vector<FaceMesh> split_by_face(const io::TriangleMesh& mesh, std::size_t faces) {
@@ -50,7 +49,6 @@ std::vector<FaceMesh> split_by_face(const io::TriangleMesh& mesh, std::size_t fa
         mesh.vertex_face[static_cast<std::size_t>(mesh.triangles(t, 0))])];
     for (int c = 0; c < 3; ++c) face.indices.push_back(local[static_cast<std::size_t>(mesh.triangles(t, c))]);
   }
-  for (std::size_t f = 0; f < faces && f < mesh.face_names.size(); ++f) out[f].label = mesh.face_names[f];
   return out;
 }
 
@@ -72,6 +70,12 @@ std::vector<float> normals_at(const io::FaceRecord& face, const std::vector<Eige
     for (int c = 0; c < 3; ++c) out.push_back(static_cast<float>(n[c]));
   }
   return out;
+}
+
+/// "#120 Fillet": the face's source entity and name, as far as it has them.
+std::string face_label(const io::FaceRecord& face) {
+  if (face.source_id.empty() || face.name.empty()) return face.source_id + face.name;
+  return face.source_id + " " + face.name;
 }
 
 bool same_surface(const BSplineSurface& a, const BSplineSurface& b) {
@@ -130,7 +134,7 @@ Result<json> page_data(const std::vector<PageModel>& models, const std::vector<j
       const std::size_t page_face = data["faces"].size();
       data["faces"].push_back({{"model", m},
                                {"face", file_face},
-                               {"name", before.name.empty() ? before.source_id : before.name},
+                               {"name", face_label(before)},
                                {"positions", base64_of(positions_at(before, faces[f].uv))},
                                {"normals", base64_of(normals_at(before, faces[f].uv))},
                                {"uv", base64_of(uv)},
