@@ -23,9 +23,9 @@ const CommandDeclaration& help_command() {
 
 const std::vector<Command>& all_commands() {
   static const std::vector<Command> commands = {
-      {info_command, run_info},       {convert_command, run_convert},
-      {collide_command, run_collide}, {sculpt_command, run_sculpt},
-      {script_command, run_script},   {view_command, run_view},
+      {info_command, run_info},           {convert_command, run_convert},
+      {collide_command, run_collide},     {sculpt_command, run_sculpt},
+      {script_command, run_script},       {view_command, run_view},
       {materials_command, run_materials}, {help_command, run_help},
   };
   return commands;

@@ -105,10 +105,10 @@ int run_view(const std::vector<std::string>& args) {
     std::fprintf(stderr, "argil view: %s\n", page.status().message.c_str());
     return kExitFailure;
   }
-  const std::filesystem::path out =
-      a.text("--out") ? std::filesystem::path(*a.text("--out"))
-      : std::filesystem::is_directory(input) ? input / "view.html"
-                                             : std::filesystem::path(input.stem().string() + ".html");
+  const std::filesystem::path out = a.text("--out") ? std::filesystem::path(*a.text("--out"))
+                                    : std::filesystem::is_directory(input)
+                                        ? input / "view.html"
+                                        : std::filesystem::path(input.stem().string() + ".html");
   if (const Status written = io::write_bytes_atomically(out, page.value()); !written.ok()) {
     std::fprintf(stderr, "argil view: %s\n", written.message.c_str());
     return kExitFailure;

@@ -129,9 +129,9 @@ TEST_CASE("a replay reaches the run's surfaces to the bit, with frames at stroke
   CHECK_FALSE(same_bits(frame_of("stroke end", 1)->models[0].faces[0].surface.control_points,
                         frame_of("stroke end", 0)->models[0].faces[0].surface.control_points));
   // Every 50th tick is a frame, and every tick is logged.
-  CHECK(std::count_if(r.frames.begin(), r.frames.end(),
-                      [](const ReplayFrame& f) { return f.kind == "tick"; }) ==
-        static_cast<long>(r.time.size() / 50));
+  CHECK(std::count_if(r.frames.begin(), r.frames.end(), [](const ReplayFrame& f) {
+          return f.kind == "tick";
+        }) == static_cast<long>(r.time.size() / 50));
   CHECK(r.device.size() == r.time.size());
   CHECK(r.force.size() == r.time.size());
   CHECK(r.engaged.size() == r.time.size());
@@ -208,8 +208,8 @@ TEST_CASE("a replay refuses what is not the run: a folder, another scene, a chan
     const Result<SessionReplay> r = replay_session({.folder = run, .scene = other});
     REQUIRE_FALSE(r.ok());
     CHECK(r.status().code == StatusCode::failed_precondition);
-    CHECK_THAT(r.status().message, Catch::Contains("other_scene.json") &&
-                                       Catch::Contains("changed since the run"));
+    CHECK_THAT(r.status().message,
+               Catch::Contains("other_scene.json") && Catch::Contains("changed since the run"));
   }
   SECTION("a recording whose stroke was changed does not reach the journal's state") {
     const fs::path copy = kWork / "tampered";

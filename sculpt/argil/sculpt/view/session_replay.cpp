@@ -35,9 +35,10 @@ Result<RunRecord> read_run_record(const ReplayOptions& options) {
   Result<std::string> summary_text = io::read_text_file(summary_path);
   if (!summary_text.ok()) return folder_error(summary_path, "cannot be read");
   const nlohmann::json summary = nlohmann::json::parse(summary_text.value(), nullptr, false);
-  if (summary.is_discarded() || !summary.is_object() || summary.value("format", "") != "argil.summary" ||
-      !summary.contains("scene") || !summary["scene"].is_string() ||
-      !summary.contains("tolerance_mm") || !summary["tolerance_mm"].is_number()) {
+  if (summary.is_discarded() || !summary.is_object() ||
+      summary.value("format", "") != "argil.summary" || !summary.contains("scene") ||
+      !summary["scene"].is_string() || !summary.contains("tolerance_mm") ||
+      !summary["tolerance_mm"].is_number()) {
     return folder_error(summary_path, "not an argil.summary with \"scene\" and \"tolerance_mm\"");
   }
   run.scene = options.scene.empty() ? std::filesystem::path(summary["scene"].get<std::string>())
@@ -59,11 +60,11 @@ Result<RunRecord> read_run_record(const ReplayOptions& options) {
 Result<Scene> read_run_scene(const RunRecord& run, const ReplayOptions& options) {
   Result<Scene> scene = read_scene(run.scene);
   if (!scene.ok()) {
-    return Status::error(scene.status().code,
-                         scene.status().message +
-                             (options.scene.empty() ? " (the scene named in summary.json; give "
-                                                      "the scene with --scene)"
-                                                    : ""));
+    return Status::error(
+        scene.status().code,
+        scene.status().message + (options.scene.empty() ? " (the scene named in summary.json; give "
+                                                          "the scene with --scene)"
+                                                        : ""));
   }
   scene.value().tolerance = run.tolerance;
   Result<std::string> bytes = io::read_text_file(run.scene);
@@ -123,7 +124,10 @@ class Replayer {
  public:
   Replayer(Session& session, const ScriptSampler& sampler, std::vector<Checkpoint> checkpoints,
            SessionReplay& replay)
-      : session_(session), sampler_(sampler), checkpoints_(std::move(checkpoints)), replay_(replay) {}
+      : session_(session),
+        sampler_(sampler),
+        checkpoints_(std::move(checkpoints)),
+        replay_(replay) {}
 
   Status run(long long every);
 
@@ -147,7 +151,8 @@ Status Replayer::check(long long samples_done) {
       return Status::error(StatusCode::failed_precondition,
                            "after tick " + std::to_string(samples_done - 1) +
                                " the surfaces differ from the state session.journal recorded "
-                               "(record " + std::to_string(next_checkpoint_ + 1) +
+                               "(record " +
+                               std::to_string(next_checkpoint_ + 1) +
                                "): a model file changed since the run?");
     }
     ++next_checkpoint_;
@@ -228,14 +233,14 @@ Result<SessionReplay> replay_session(const ReplayOptions& options) {
   }
   const ScriptSampler sampler(recorded, replay.haptic_rate);
   const long long every =
-      options.every > 0 ? options.every
-                        : std::max<long long>(1, (sampler.tick_count() + kDefaultFrames - 1) /
-                                                     kDefaultFrames);
+      options.every > 0
+          ? options.every
+          : std::max<long long>(1, (sampler.tick_count() + kDefaultFrames - 1) / kDefaultFrames);
   Replayer replayer(session, sampler, checkpoints_of(run.value().journal), replay);
   const Status stepped = replayer.run(every);
   if (!stepped.ok()) {
-    return Status::error(stepped.code,
-                         (options.folder / "recorded.csv").string() + ": replay: " + stepped.message);
+    return Status::error(
+        stepped.code, (options.folder / "recorded.csv").string() + ": replay: " + stepped.message);
   }
   return replay;
 }

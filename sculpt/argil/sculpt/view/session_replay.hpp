@@ -40,10 +40,10 @@ struct SessionReplay {
   std::vector<std::vector<int>> file_faces;
   std::vector<ReplayFrame> frames;
   // One entry per tick.
-  std::vector<double> time;                    // [s]
-  std::vector<Eigen::Vector3d> device;         // device position p_WD [mm]
+  std::vector<double> time;                     // [s]
+  std::vector<Eigen::Vector3d> device;          // device position p_WD [mm]
   std::vector<Eigen::Quaterniond> orientation;  // device orientation R_WD
-  std::vector<Eigen::Vector3d> proxy;          // tool proxy p_WT [mm]
+  std::vector<Eigen::Vector3d> proxy;           // tool proxy p_WT [mm]
   std::vector<bool> engaged;
   std::vector<Eigen::Vector3d> force;  // on the device [N]
   double haptic_rate = 0.0;            // [Hz]

@@ -13,8 +13,8 @@
 namespace argil::sculpt {
 namespace {
 
-using nlohmann::json;
 using detail::base64_of;
+using nlohmann::json;
 
 constexpr double kChordRelative = 5e-4;
 constexpr std::size_t kMaxTriangles = 2'000'000;
@@ -47,12 +47,14 @@ std::vector<FaceMesh> split_by_face(const io::TriangleMesh& mesh, std::size_t fa
   for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
     FaceMesh& face = out[static_cast<std::size_t>(
         mesh.vertex_face[static_cast<std::size_t>(mesh.triangles(t, 0))])];
-    for (int c = 0; c < 3; ++c) face.indices.push_back(local[static_cast<std::size_t>(mesh.triangles(t, c))]);
+    for (int c = 0; c < 3; ++c)
+      face.indices.push_back(local[static_cast<std::size_t>(mesh.triangles(t, c))]);
   }
   return out;
 }
 
-std::vector<float> positions_at(const io::FaceRecord& face, const std::vector<Eigen::Vector2d>& uv) {
+std::vector<float> positions_at(const io::FaceRecord& face,
+                                const std::vector<Eigen::Vector2d>& uv) {
   std::vector<float> out;
   out.reserve(3 * uv.size());
   for (const Eigen::Vector2d& p : uv) {
@@ -66,7 +68,8 @@ std::vector<float> normals_at(const io::FaceRecord& face, const std::vector<Eige
   std::vector<float> out;
   out.reserve(3 * uv.size());
   for (const Eigen::Vector2d& p : uv) {
-    const Eigen::Vector3d n = (face.reversed ? -1.0 : 1.0) * unit_normal(face.surface, p.x(), p.y());
+    const Eigen::Vector3d n =
+        (face.reversed ? -1.0 : 1.0) * unit_normal(face.surface, p.x(), p.y());
     for (int c = 0; c < 3; ++c) out.push_back(static_cast<float>(n[c]));
   }
   return out;
@@ -109,9 +112,13 @@ Result<json> page_data(const std::vector<PageModel>& models, const std::vector<j
   io::TessellationOptions tessellation;
   tessellation.chord_tolerance_mm = chord_for(models, eps, options);
   tessellation.max_triangles = kMaxTriangles;
-  json data = {{"format", "argil.view"}, {"version", 1},         {"title", options.title},
-               {"tolerance_mm", eps},    {"chord_mm", tessellation.chord_tolerance_mm},
-               {"models", json::array()}, {"faces", json::array()}};
+  json data = {{"format", "argil.view"},
+               {"version", 1},
+               {"title", options.title},
+               {"tolerance_mm", eps},
+               {"chord_mm", tessellation.chord_tolerance_mm},
+               {"models", json::array()},
+               {"faces", json::array()}};
   data["scale_mm"] = options.scale_mm ? json(*options.scale_mm) : json(nullptr);
   std::vector<json> frames = frame_heads;
   for (json& frame : frames) frame["faces"] = json::object();
@@ -123,7 +130,8 @@ Result<json> page_data(const std::vector<PageModel>& models, const std::vector<j
     const io::Model& shape = model.frames.empty() ? *model.before : *model.frames.back();
     tessellation.max_triangles = kMaxTriangles - triangles;
     Result<io::TriangleMesh> mesh = io::tessellate(shape, tessellation);
-    if (!mesh.ok()) return Status::error(mesh.status().code, model.name + ": " + mesh.status().message);
+    if (!mesh.ok())
+      return Status::error(mesh.status().code, model.name + ": " + mesh.status().message);
     triangles += static_cast<std::size_t>(mesh.value().triangles.rows());
     const std::vector<FaceMesh> faces = split_by_face(mesh.value(), shape.faces.size());
     for (std::size_t f = 0; f < faces.size(); ++f) {
@@ -174,15 +182,20 @@ Result<std::string> page_html(const json& data, const std::string& title) {
   }
   std::string html_title;
   for (const char c : title) {
-    if (c == '<') html_title += "&lt;";
-    else if (c == '&') html_title += "&amp;";
-    else html_title += c;
+    if (c == '<')
+      html_title += "&lt;";
+    else if (c == '&')
+      html_title += "&amp;";
+    else
+      html_title += c;
   }
   std::string page;
   page.reserve(escaped.size() + script.size() + 512);
   page += "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>";
   page += html_title;
-  page += " - argil view</title>\n</head>\n<body>\n<script id=\"argil-data\" type=\"application/json\">";
+  page +=
+      " - argil view</title>\n</head>\n<body>\n<script id=\"argil-data\" "
+      "type=\"application/json\">";
   page += escaped;
   page += "</script>\n<script>\n";
   page += script;
@@ -222,9 +235,11 @@ Result<json> tool_data(const ToolOptions& tool, double chord) {
     io::TessellationOptions options;
     options.chord_tolerance_mm = chord;
     const io::TriangleMesh mesh = io::tessellate_face(face, options);
-    std::vector<float> positions(mesh.positions.data(), mesh.positions.data() + mesh.positions.size());
+    std::vector<float> positions(mesh.positions.data(),
+                                 mesh.positions.data() + mesh.positions.size());
     std::vector<float> normals(mesh.normals.data(), mesh.normals.data() + mesh.normals.size());
-    std::vector<std::uint32_t> indices(mesh.triangles.data(), mesh.triangles.data() + mesh.triangles.size());
+    std::vector<std::uint32_t> indices(mesh.triangles.data(),
+                                       mesh.triangles.data() + mesh.triangles.size());
     out["mesh"] = {{"positions", base64_of(positions)},
                    {"normals", base64_of(normals)},
                    {"indices", base64_of(indices)}};

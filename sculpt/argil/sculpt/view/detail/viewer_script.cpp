@@ -6,7 +6,8 @@
 asm(".section .rodata\n"
     ".global argil_viewer_bundle_begin\n"
     "argil_viewer_bundle_begin:\n"
-    ".incbin \"" ARGIL_VIEWER_BUNDLE "\"\n"
+    ".incbin \"" ARGIL_VIEWER_BUNDLE
+    "\"\n"
     ".global argil_viewer_bundle_end\n"
     "argil_viewer_bundle_end:\n"
     ".byte 0\n"
