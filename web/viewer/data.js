@@ -39,11 +39,13 @@ export function loadViewData(element) {
     run.orientation = float32(run.orientation);
     run.engaged = uint8(run.engaged);
     run.force = float32(run.force);
+    run.tool = uint8(run.tool);
   }
-  if (data.tool && data.tool.mesh) {
-    data.tool.mesh.positions = float32(data.tool.mesh.positions);
-    data.tool.mesh.normals = float32(data.tool.mesh.normals);
-    data.tool.mesh.indices = uint32(data.tool.mesh.indices);
+  for (const tool of data.tools) {
+    if (!tool.mesh) continue;
+    tool.mesh.positions = float32(tool.mesh.positions);
+    tool.mesh.normals = float32(tool.mesh.normals);
+    tool.mesh.indices = uint32(tool.mesh.indices);
   }
   return data;
 }

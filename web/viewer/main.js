@@ -272,7 +272,8 @@ class Viewer {
       this.slider.value = String(this.frame);
       this.label.textContent = this.before
         ? "before: the surfaces as loaded"
-        : `frame ${this.frame + 1}/${d.frames.length} · tick ${frame.tick} · t = ${fixed(frame.time, 4)} s · ${frame.kind}`;
+        : `frame ${this.frame + 1}/${d.frames.length} · tick ${frame.tick} · t = ${fixed(frame.time, 4)} s · ${frame.kind}` +
+          (d.tools.length > 1 ? ` · tool ${d.tools[d.run.tool[frame.tick]].name}` : "");
       this.view.showTick(frame.tick, frame.contacts);
       if (this.forcePlot) this.forcePlot.draw(frame.tick);
     }
@@ -303,12 +304,16 @@ class Viewer {
       `(u, v) = (${fixed(uv[0])}, ${fixed(uv[1])})\n` +
       `point [mm] = (${point.map((x) => fixed(x)).join(", ")})\n` +
       `normal = (${normal.map((x) => fixed(x, 4)).join(", ")})`;
-    const tool = this.data.tool;
+    // The tool held at the frame shown.
+    const run = this.data.run;
+    const held = run && this.data.frames.length ? run.tool[this.data.frames[this.frame].tick] : 0;
+    const tool = this.data.tools[held];
     const reach = tool && tool.type === "sphere" ? tool.radius : 0;
     const at = point.map((x, c) => fixed(x + reach * normal[c]));
     const keyframe = { t: 0, position: at, event: "engage" };
     const command = this.data.script
-      ? `argil script ${this.data.script.scene} my.json --model ${model.name} --face ${face.face} --uv "${fixed(uv[0])},${fixed(uv[1])}"`
+      ? `argil script ${this.data.script.scene} my.json --model ${model.name} --face ${face.face} --uv "${fixed(uv[0])},${fixed(uv[1])}"` +
+        (tool ? ` --tool ${tool.name}` : "")
       : "";
     this.keyframeText.value = JSON.stringify(keyframe) + (command ? "\n" + command : "");
     return this.lastPick;

@@ -64,7 +64,7 @@ export class SceneView {
   }
 
   addRun() {
-    const { run, tool } = this.data;
+    const { run, tools } = this.data;
     if (!run) return;
     const n = run.time.length;
     // The device path, at most 20000 points (every k-th tick).
@@ -80,7 +80,10 @@ export class SceneView {
     path.setAttribute("color", new THREE.Float32BufferAttribute(colours, 3));
     this.path = new THREE.Line(path, new THREE.LineBasicMaterial({ vertexColors: true }));
     this.scene.add(this.path);
-    this.tool = this.toolObject(tool);
+    // One object per tool the run held; showTick shows the one held then.
+    this.tools = tools.map((tool) => this.toolObject(tool));
+    this.tool = new THREE.Group();
+    for (const object of this.tools) this.tool.add(object);
     this.scene.add(this.tool);
     this.contacts = new THREE.Points(
       new THREE.BufferGeometry(),
@@ -118,6 +121,7 @@ export class SceneView {
   showTick(k, contacts) {
     const run = this.data.run;
     if (!run || k < 0) return;
+    this.tools.forEach((object, i) => (object.visible = i === run.tool[k]));
     this.tool.position.set(run.proxy[3 * k], run.proxy[3 * k + 1], run.proxy[3 * k + 2]);
     const q = run.orientation;
     this.tool.quaternion.set(q[4 * k + 1], q[4 * k + 2], q[4 * k + 3], q[4 * k]);

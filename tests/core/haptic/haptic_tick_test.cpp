@@ -316,3 +316,30 @@ TEST_CASE("world options name the rejected max_contacts value", "[haptic]") {
   REQUIRE_FALSE(w.ok());
   CHECK(w.status().message == "world.max_contacts must be at least 1, got -2");
 }
+
+TEST_CASE("set_tool changes the tool between strokes only; the new one rides on the surface",
+          "[haptic]") {
+  argil::HapticWorld w = world(argil::SphereToolShape{0.0});  // a point
+  REQUIRE(w.add_rigid(sheet(10, 10.0, 0.0), 0.0).ok());
+  REQUIRE(w.step(at(40, 40, 10), 1e-3).status.ok());
+  REQUIRE(w.step(at(40, 40, -1), 1e-3).status.ok());  // engaged: a stroke
+  const argil::Status refused = w.set_tool(argil::SphereToolShape{4.0});
+  CHECK(refused.code == argil::StatusCode::failed_precondition);
+  argil::DeviceSample released = at(40, 40, 10);
+  released.engaged = false;
+  REQUIRE(w.step(released, 1e-3).status.ok());
+  // A bad radius is refused and the point stays.
+  CHECK_FALSE(w.set_tool(argil::SphereToolShape{-1.0}).ok());
+  REQUIRE(w.step(at(40, 40, 10), 1e-3).status.ok());
+  REQUIRE(w.step(at(40, 40, -1), 1e-3).status.ok());
+  CHECK(w.proxy().X_WT.p.z() == Approx(0.0).margin(0.02));
+  released = at(40, 40, 10);
+  released.engaged = false;
+  REQUIRE(w.step(released, 1e-3).status.ok());
+  // The ball rests one radius above the sheet.
+  REQUIRE(w.set_tool(argil::SphereToolShape{4.0}).ok());
+  REQUIRE(w.step(at(40, 40, 10), 1e-3).status.ok());
+  const argil::TickResult r = w.step(at(40, 40, -1), 1e-3);
+  REQUIRE(r.status.ok());
+  CHECK(r.proxy.X_WT.p.z() == Approx(4.0).margin(0.02));
+}

@@ -14,7 +14,7 @@ namespace {
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 bool same_keyframe(const Keyframe& a, const Keyframe& b) {
-  bool same = same_bits(a.t, b.t) && a.event == b.event;
+  bool same = same_bits(a.t, b.t) && a.event == b.event && a.tool == b.tool;
   for (int c = 0; c < 3; ++c) same = same && same_bits(a.X_WD.p[c], b.X_WD.p[c]);
   for (int c = 0; c < 4; ++c) same = same && same_bits(a.X_WD.R.coeffs()[c], b.X_WD.R.coeffs()[c]);
   return same;
@@ -43,6 +43,24 @@ Script random_script(unsigned seed, int count) {
   return s;
 }
 
+/// A press with the pin, the ball taken at 0.3 s, a press with it.
+Script two_keyframes_for_tools() {
+  Script s;
+  s.tool = "pin";
+  const double times[] = {0.0, 0.1, 0.2, 0.3, 0.4, 0.5};
+  const ScriptEvent events[] = {ScriptEvent::none, ScriptEvent::engage, ScriptEvent::release,
+                                ScriptEvent::tool, ScriptEvent::engage, ScriptEvent::release};
+  for (int k = 0; k < 6; ++k) {
+    Keyframe f;
+    f.t = times[k];
+    f.X_WD.p = Eigen::Vector3d(k, 0, 1);
+    f.event = events[k];
+    if (f.event == ScriptEvent::tool) f.tool = "ball";
+    s.keyframes.push_back(f);
+  }
+  return s;
+}
+
 TEST_CASE("a script written as JSON or CSV reads back bit for bit", "[script]") {
   const Script original = random_script(7, 40);
   for (const bool csv : {false, true}) {
@@ -56,6 +74,28 @@ TEST_CASE("a script written as JSON or CSV reads back bit for bit", "[script]") 
       CHECK(same_keyframe(back.value().keyframes[k], original.keyframes[k]));
     }
   }
+}
+
+TEST_CASE("a tool event reads and writes as tool:NAME in both formats; tools_held lists them",
+          "[script]") {
+  Script original = two_keyframes_for_tools();
+  for (const bool csv : {false, true}) {
+    const std::string text = csv ? script_to_csv(original) : script_to_json(original);
+    CHECK(text.find("tool:ball") != std::string::npos);
+    const Result<Script> back =
+        csv ? parse_script_csv(text, "s.csv") : parse_script_json(text, "s.json");
+    INFO(back.status().message);
+    REQUIRE(back.ok());
+    REQUIRE(back.value().keyframes.size() == original.keyframes.size());
+    for (std::size_t k = 0; k < original.keyframes.size(); ++k)
+      CHECK(same_keyframe(back.value().keyframes[k], original.keyframes[k]));
+  }
+  CHECK(tools_held(original) == std::vector<std::string>{"pin", "ball"});
+  const ScriptSampler sampler(original, 1000.0);
+  REQUIRE(sampler.commands().size() == 1);
+  CHECK(sampler.commands()[0].event == ScriptEvent::tool);
+  CHECK(sampler.commands()[0].tool == "ball");
+  CHECK(sampler.commands()[0].tick == 300);
 }
 
 Script two_keyframes() {
@@ -179,6 +219,13 @@ TEST_CASE("bad JSON scripts give an error naming the field", "[script][bad-input
       {head + R"({"t": 0, "position": [0,0,0], "event": "engage"},)" +
            R"({"t": 1, "position": [0,0,0], "event": "engage"}]})",
        "keyframes[1].event: engage while already engaged"},
+      {head + R"({"t": 0, "position": [0,0,0], "event": "engage"},)" +
+           R"({"t": 1, "position": [0,0,0], "event": "tool:ball"}]})",
+       "keyframes[1].event: tool while engaged: release first"},
+      {head + R"({"t": 0, "position": [0,0,0], "event": "tool:"}]})",
+       "keyframes[0].event: expected engage, release, undo, redo, tool:NAME"},
+      {head + R"({"t": 0, "position": [0,0,0], "event": "tool:two words"}]})",
+       "keyframes[0].event: tool name must be one word"},
       {head + R"({"t": 0, "position": [0,0,0], "speed": 3}]})",
        "keyframes[0].speed: unknown field"},
       {R"({"format": "argil.script", "version": 1, "keyframes": {}})",
@@ -207,6 +254,8 @@ TEST_CASE("bad CSV scripts give an error naming the line and column", "[script][
       {header + "0,0,0,0,,0,0,0\n", "line 2: qw: empty cell"},
       {header + "0,0,0,0,0,0,0,0\n", "line 2: qw..qz: not a unit quaternion"},
       {header + "0,0,0,0,1,0,0,0,press\n", "line 2: event"},
+      {header + "0,0,0,0,1,0,0,0,engage\n1,0,0,0,1,0,0,0,tool:ball\n",
+       "tool while engaged: release first"},
       {header + "0.5,0,0,0,1,0,0,0\n\n0.25,0,0,0,1,0,0,0\n", "line 4: t: time 0.25 s is not after"},
       {"# argil.script version 3\n" + header + "0,0,0,0,1,0,0,0\n",
        "line 1: unknown schema version 3"},

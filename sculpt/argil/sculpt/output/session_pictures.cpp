@@ -48,8 +48,8 @@ Eigen::Vector3d eye_direction_for(const io::TriangleMesh& mesh) {
 }
 
 /// Where the tool pressed hardest: the engaged sample of the largest force.
-std::optional<Eigen::Vector3d> hardest_press(const SessionPicturesRequest& request) {
-  std::optional<Eigen::Vector3d> at;
+std::optional<std::size_t> hardest_press(const SessionPicturesRequest& request) {
+  std::optional<std::size_t> at;
   double largest = -1.0;
   const std::size_t n = std::min(request.path.positions.size(), request.forces.size());
   for (std::size_t k = 0; k < n; ++k) {
@@ -57,7 +57,7 @@ std::optional<Eigen::Vector3d> hardest_press(const SessionPicturesRequest& reque
     const double f = request.forces[k].norm();
     if (f > largest) {
       largest = f;
-      at = request.path.positions[k];
+      at = k;
     }
   }
   return at;
@@ -160,13 +160,16 @@ Status write_session_pictures(const SessionPicturesRequest& request,
       fit_camera(with_engaged_path(models, path), 960, 720, eye_direction_for(before_mesh.value()));
   SurfacePictureOptions before_options;
   before_options.title = title + ": before";
-  before_options.tool_position = hardest_press(request);
-  before_options.tool_radius_mm = request.tool_radius_mm;
+  if (const std::optional<std::size_t> press = hardest_press(request)) {
+    before_options.tool_position = path.positions[*press];
+    before_options.tool_radius_mm =
+        *press < request.tool_radii.size() ? request.tool_radii[*press] : request.tool_radius_mm;
+  }
   const std::vector<Eigen::Vector3d> moved = vertex_movements(before, after_mesh.value());
   SurfacePictureOptions after_options =
       signed_colouring(before, after_mesh.value(), moved, request.tolerance_mm, title);
   after_options.tool_position = before_options.tool_position;
-  after_options.tool_radius_mm = request.tool_radius_mm;
+  after_options.tool_radius_mm = before_options.tool_radius_mm;
   after_options.zoom =
       moved_region(after_mesh.value(), moved, request.tolerance_mm, request.tool_radius_mm, models);
   const struct {

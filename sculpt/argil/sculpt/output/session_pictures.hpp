@@ -28,8 +28,10 @@ struct SessionPicturesRequest {
   std::string title;                    // prefix of every picture's title
   /// Displacements up to this are no change [mm] (the scene's eps).
   double tolerance_mm = 0.0;
-  /// The tool's radius [mm] (a sphere; 0 draws a point's cross).
+  /// The tool's radius [mm] (a sphere; 0 draws a point's cross), or per tick
+  /// when the run switched tools (`tool_radii`, one per tick, in its place).
   double tool_radius_mm = 0.0;
+  std::vector<double> tool_radii;
 };
 
 /// The "after" picture's colouring: how far each vertex of `after_mesh` moved

@@ -30,6 +30,7 @@ void TickLog::add(const TickReport& report) {
   proxies_.push_back(report.proxy);
   clamped_.push_back(report.clamped ? 1 : 0);
   contact_counts_.push_back(static_cast<int>(report.contacts.size()));
+  tools_.push_back(report.tool);
   max_depths_.push_back(report.max_depth);
   for (const ContactRecord& c : report.contacts) {
     contacts_.emplace_back(report.tick, c);

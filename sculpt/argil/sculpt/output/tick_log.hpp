@@ -28,6 +28,8 @@ class TickLog {
   const std::vector<Eigen::Vector3d>& forces() const { return forces_; }
   /// Contacts of each tick.
   const std::vector<int>& contact_counts() const { return contact_counts_; }
+  /// The scene tool held at each tick (TickReport::tool).
+  const std::vector<int>& tools() const { return tools_; }
   std::size_t size() const { return times_.size(); }
 
  private:
@@ -36,6 +38,7 @@ class TickLog {
   std::vector<Eigen::Vector3d> forces_, proxies_;
   std::vector<char> clamped_;
   std::vector<int> contact_counts_;
+  std::vector<int> tools_;
   std::vector<double> max_depths_;
   std::vector<std::pair<long long, ContactRecord>> contacts_;
   std::vector<double> contact_times_;

@@ -65,7 +65,10 @@ Status resume(Session& session, const OpenedJournal& journal, const RunInputs& i
 
 /// The session with the scene's models loaded, and the output folder made.
 Result<Session> prepare(const RunInputs& in) {
-  Result<Session> created = Session::create(in.scene, in.script.tool, engaged_paths(in.script));
+  const std::vector<std::string> tools = tools_held(in.script);
+  Result<Session> created =
+      Session::create(in.scene, in.script.tool, engaged_paths(in.script),
+                      std::vector<std::string>(tools.begin() + 1, tools.end()));
   if (!created.ok()) {
     return Status::error(created.status().code,
                          in.scene_path.string() + ": " + created.status().message);

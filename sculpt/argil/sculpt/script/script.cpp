@@ -25,21 +25,30 @@ constexpr double kUnitNormRounding = 1e-12;
 // (rounding of times written in decimal or computed by sums).
 constexpr double kTickRounding = 1e-6;
 
-bool parse_event(std::string_view text, ScriptEvent& out) {
+/// The event text of a file ("engage", "tool:pin") into the keyframe; false
+/// when it is none of them.
+bool parse_event(std::string_view text, Keyframe& out) {
+  ScriptEvent& e = out.event;
   if (text.empty() || text == "none")
-    out = ScriptEvent::none;
+    e = ScriptEvent::none;
   else if (text == "engage")
-    out = ScriptEvent::engage;
+    e = ScriptEvent::engage;
   else if (text == "release")
-    out = ScriptEvent::release;
+    e = ScriptEvent::release;
   else if (text == "undo")
-    out = ScriptEvent::undo;
+    e = ScriptEvent::undo;
   else if (text == "redo")
-    out = ScriptEvent::redo;
-  else
+    e = ScriptEvent::redo;
+  else if (text.substr(0, 5) == "tool:" && text.size() > 5) {
+    e = ScriptEvent::tool;
+    out.tool = std::string(text.substr(5));
+  } else {
     return false;
+  }
   return true;
 }
+
+constexpr const char* kEventsExpected = "engage, release, undo, redo, tool:NAME, none or nothing";
 
 /// Checks the norm and normalises when it is not unit already; error text or "".
 std::string normalise_quaternion(Eigen::Quaterniond& q) {
@@ -116,9 +125,14 @@ Status check_keyframes(const std::vector<Keyframe>& keyframes, const std::string
     } else if (f.event == ScriptEvent::release) {
       if (!engaged) return error(k, "event", "release while not engaged");
       engaged = false;
-    } else if (f.event == ScriptEvent::undo || f.event == ScriptEvent::redo) {
+    } else if (f.event == ScriptEvent::undo || f.event == ScriptEvent::redo ||
+               f.event == ScriptEvent::tool) {
       if (engaged) {
         return error(k, "event", std::string(to_string(f.event)) + " while engaged: release first");
+      }
+      if (f.event == ScriptEvent::tool) {
+        if (const std::string problem = tool_name_problem(f.tool); !problem.empty())
+          return error(k, "event", problem);
       }
     }
   }
@@ -172,9 +186,9 @@ class ScriptJsonReader {
     if (const Json* event = r_.member(value, path, "event", false)) {
       std::string text;
       if (!r_.string(*event, path + ".event", text)) return false;
-      if (!parse_event(text, out.event)) {
+      if (!parse_event(text, out)) {
         return r_.fail(path + ".event",
-                       "expected \"engage\", \"release\" or \"none\", got \"" + text + "\"");
+                       "expected " + std::string(kEventsExpected) + ", got \"" + text + "\"");
       }
     }
     return true;
@@ -314,8 +328,8 @@ class CsvScriptReader {
     f.X_WD.R = Eigen::Quaterniond(values[4], values[5], values[6], values[7]);
     const std::string problem = normalise_quaternion(f.X_WD.R);
     if (!problem.empty()) return "qw..qz: " + problem;
-    if (cells.size() == kCsvColumnCount && !parse_event(cells[8], f.event)) {
-      return "event: expected engage, release, none or nothing, got '" + cells[8] + "'";
+    if (cells.size() == kCsvColumnCount && !parse_event(cells[8], f)) {
+      return "event: expected " + std::string(kEventsExpected) + ", got '" + cells[8] + "'";
     }
     script_.keyframes.push_back(f);
     lines_.push_back(line_number_);
@@ -358,8 +372,15 @@ const char* to_string(ScriptEvent event) {
       return "undo";
     case ScriptEvent::redo:
       return "redo";
+    case ScriptEvent::tool:
+      return "tool";
   }
   return "none";
+}
+
+std::string event_text(const Keyframe& keyframe) {
+  if (keyframe.event == ScriptEvent::tool) return "tool:" + keyframe.tool;
+  return to_string(keyframe.event);
 }
 
 Result<Script> parse_script_json(std::string_view text, const std::string& source_name) {
@@ -409,8 +430,7 @@ std::string script_to_json(const Script& script) {
            ", " + number_text(f.X_WD.p.y()) + ", " + number_text(f.X_WD.p.z()) +
            "], \"orientation\": [" + number_text(f.X_WD.R.w()) + ", " + number_text(f.X_WD.R.x()) +
            ", " + number_text(f.X_WD.R.y()) + ", " + number_text(f.X_WD.R.z()) + "]";
-    if (f.event != ScriptEvent::none)
-      out += ", \"event\": \"" + std::string(to_string(f.event)) + "\"";
+    if (f.event != ScriptEvent::none) out += ", \"event\": " + Json(event_text(f)).dump();
     out += "}";
   }
   out += "\n  ]\n}\n";
@@ -426,7 +446,7 @@ std::string script_to_csv(const Script& script) {
     const double values[8] = {f.t,          f.X_WD.p.x(), f.X_WD.p.y(), f.X_WD.p.z(),
                               f.X_WD.R.w(), f.X_WD.R.x(), f.X_WD.R.y(), f.X_WD.R.z()};
     for (const double v : values) out += number_text(v) + ",";
-    if (f.event != ScriptEvent::none) out += to_string(f.event);
+    if (f.event != ScriptEvent::none) out += event_text(f);
     out += "\n";
   }
   return out;
@@ -459,9 +479,10 @@ ScriptSampler::ScriptSampler(Script script, double rate_hz)
     if (f.event == ScriptEvent::engage) engaged = true;
     if (f.event == ScriptEvent::release) engaged = false;
     engaged_after_.push_back(engaged);
-    if (f.event == ScriptEvent::undo || f.event == ScriptEvent::redo) {
+    if (f.event == ScriptEvent::undo || f.event == ScriptEvent::redo ||
+        f.event == ScriptEvent::tool) {
       commands_.push_back(
-          {static_cast<long long>(std::ceil(f.t * rate_ - kTickRounding)), f.event, k});
+          {static_cast<long long>(std::ceil(f.t * rate_ - kTickRounding)), f.event, k, f.tool});
     }
   }
   long long first = -1;
@@ -515,16 +536,22 @@ Script record_script(const std::vector<DeviceSample>& samples, const std::string
     const DeviceSample& s = samples[i];
     // Commands before this tick: their own keyframes midway from the previous
     // tick (the sampler maps them to this one), at the previous tick's pose.
-    // Before the first tick there is nothing to undo or redo: none is kept.
+    // Before the first tick there is nothing to undo or redo: none is kept;
+    // a tool taken then is the tool the script starts with.
     double gap = 0.5;  // of the tick interval, halved for each further command
     for (; next_command < commands.size() && commands[next_command].tick <= s.tick;
          ++next_command, gap *= 0.5) {
-      if (i == 0) continue;
+      if (i == 0) {
+        if (commands[next_command].event == ScriptEvent::tool)
+          script.tool = commands[next_command].tool;
+        continue;
+      }
       Keyframe c;
       c.t = s.t - gap * (s.t - samples[i - 1].t);
       c.X_WD.p = samples[i - 1].X_WD.p;
       c.X_WD.R = samples[i - 1].X_WD.R;
       c.event = commands[next_command].event;
+      c.tool = commands[next_command].tool;
       script.keyframes.push_back(c);
     }
     Keyframe f;
@@ -536,6 +563,17 @@ Script record_script(const std::vector<DeviceSample>& samples, const std::string
     script.keyframes.push_back(f);
   }
   return script;
+}
+
+std::vector<std::string> tools_held(const Script& script) {
+  std::vector<std::string> tools = {script.tool};
+  for (const Keyframe& k : script.keyframes) {
+    if (k.event == ScriptEvent::tool &&
+        std::find(tools.begin(), tools.end(), k.tool) == tools.end()) {
+      tools.push_back(k.tool);
+    }
+  }
+  return tools;
 }
 
 std::vector<std::vector<Eigen::Vector3d>> engaged_paths(const Script& script) {

@@ -23,8 +23,10 @@ inline constexpr int kScriptFormatVersion = 1;
 /// What happens at a keyframe: the tool starts (engage) or stops (release)
 /// acting on the models; `none` only moves it; `undo` and `redo` (between
 /// strokes only) take back the last finished stroke or restore the last one
-/// taken back, before the tick at or after the keyframe.
-enum class ScriptEvent { none, engage, release, undo, redo };
+/// taken back, and `tool` (between strokes only) puts another of the scene's
+/// tools in the device's hand (Keyframe::tool), before the tick at or after
+/// the keyframe.
+enum class ScriptEvent { none, engage, release, undo, redo, tool };
 const char* to_string(ScriptEvent event);
 
 /// A device pose at a time: X_WD, the device handle D in the world [mm], a
@@ -35,10 +37,14 @@ struct Keyframe {
   double t = 0.0;  // [s], >= 0
   Pose X_WD;
   ScriptEvent event = ScriptEvent::none;
+  std::string tool{};  // ScriptEvent::tool: the scene tool the device takes
 };
 
+/// The event as the file formats write it: "engage", ..., "tool:NAME".
+std::string event_text(const Keyframe& keyframe);
+
 /// Keyframes in strictly increasing time; `tool` names the scene tool the
-/// device holds (empty: the scene's first tool).
+/// device holds first (empty: the scene's first tool).
 struct Script {
   std::string tool;
   std::vector<Keyframe> keyframes;
@@ -64,13 +70,19 @@ Status write_script(const Script& script, const std::filesystem::path& path);
 
 /// Checks what the parsers check (times finite, >= 0, strictly increasing;
 /// finite positions; unit quaternions; at least one keyframe; engage and
-/// release alternating; undo and redo only while not engaged), naming the keyframe.
+/// release alternating; undo, redo and tool only while not engaged; tool names
+/// one word), naming the keyframe. Whether a tool is the scene's is the
+/// runner's check.
 Status validate(const Script& script, const std::string& source_name = "script");
 
 /// The device's path during each engaged interval: the keyframe positions
 /// from an engage through the next release (or the last keyframe), in order;
 /// the device moves linearly between them. Where the tool can touch anything.
 std::vector<std::vector<Eigen::Vector3d>> engaged_paths(const Script& script);
+
+/// The tools the device holds over the script: `tool` (empty: the scene's
+/// first), then each tool event's, without repeats, in order.
+std::vector<std::string> tools_held(const Script& script);
 
 /// An engaged interval: ticks first..last inclusive.
 struct Stroke {
@@ -94,14 +106,15 @@ class ScriptSampler {
   long long tick_count() const { return tick_count_; }
   double rate() const { return rate_; }
   DeviceSample sample(long long tick) const;
-  /// An undo or redo keyframe: applied before stepping `tick`, the first tick
-  /// at or after its time (with the same rounding as tick_count()).
+  /// An undo, redo or tool keyframe: applied before stepping `tick`, the
+  /// first tick at or after its time (with the same rounding as tick_count()).
   struct Command {
     long long tick = 0;
     ScriptEvent event = ScriptEvent::undo;
     std::size_t keyframe = 0;
+    std::string tool{};  // ScriptEvent::tool: the tool taken
   };
-  /// The undo and redo keyframes, in order.
+  /// The undo, redo and tool keyframes, in order.
   const std::vector<Command>& commands() const { return commands_; }
   /// The engaged intervals, in order.
   const std::vector<Stroke>& strokes() const { return strokes_; }

@@ -65,6 +65,9 @@ bool parse_record(const std::string& body, JournalRecord& out) {
   in >> kind;
   if (kind == "undo" || kind == "redo") {
     out.kind = kind == "undo" ? JournalRecord::Kind::undo : JournalRecord::Kind::redo;
+  } else if (kind == "tool") {
+    out.kind = JournalRecord::Kind::tool;
+    if (!(in >> out.tool) || out.tool < 0) return false;
   } else if (kind == "stroke") {
     out.kind = JournalRecord::Kind::stroke;
     long long count = 0;
@@ -108,6 +111,8 @@ std::string record_body(const JournalRecord& record) {
   if (record.kind == JournalRecord::Kind::stroke) {
     body = "stroke " + std::to_string(record.samples.size());
     for (const DeviceSample& s : record.samples) body += "  " + sample_text(s);
+  } else if (record.kind == JournalRecord::Kind::tool) {
+    body = "tool " + std::to_string(record.tool);
   } else {
     body = record.kind == JournalRecord::Kind::undo ? "undo" : "redo";
   }

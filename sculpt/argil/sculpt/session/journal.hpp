@@ -28,10 +28,11 @@ struct JournalHeader {
 };
 
 /// One journal entry: the samples of ticks first_tick .. first_tick + n - 1
-/// (consecutive), then, if `kind` is undo or redo, that session command.
+/// (consecutive), or an undo, redo or tool change (Session::switch_tool).
 struct JournalRecord {
-  enum class Kind { stroke, undo, redo };
+  enum class Kind { stroke, undo, redo, tool };
   Kind kind = Kind::stroke;
+  int tool = -1;                      // Kind::tool: the scene tool's index
   std::vector<DeviceSample> samples;  // stroke: consecutive ticks; empty for commands
   std::uint64_t state_hash = 0;       // Session::state_hash() after the record
 };

@@ -89,25 +89,40 @@ Result<LoadedModel> load_model(const Scene& scene, std::size_t m) {
 }  // namespace
 
 Result<Session> Session::create(const Scene& scene, const std::string& tool_name,
-                                const std::vector<std::vector<Eigen::Vector3d>>& tool_paths) {
+                                const std::vector<std::vector<Eigen::Vector3d>>& tool_paths,
+                                const std::vector<std::string>& later_tools) {
   Session s;
   s.scene_ = scene;
-  s.tool_index_ = scene.tool_index(tool_name);
+  s.shapes_.resize(scene.tools.size());
+  s.initial_tool_ = s.tool_index_ = scene.tool_index(tool_name);
   if (s.tool_index_ < 0) {
     return Status::error(StatusCode::invalid_argument,
                          "tool \"" + tool_name + "\" is not in the scene's tools");
   }
-  Result<ToolShape> shape = tool_shape(scene.tools[static_cast<std::size_t>(s.tool_index_)],
-                                       "tools[" + std::to_string(s.tool_index_) + "]");
-  if (!shape.ok()) return shape.status();
-  s.tool_shape_ = std::move(shape).value();
+  // Refined for every tool the script holds: the widest reach, the finest
+  // positive resolution (a point tool derives none).
+  Result<ToolShape> widest = s.shape_of(s.tool_index_);
+  if (!widest.ok()) return widest.status();
+  double resolution = refinement_resolution(scene, widest.value());
+  for (const std::string& name : later_tools) {
+    const int index = scene.tool_index(name);
+    if (index < 0) {
+      return Status::error(StatusCode::invalid_argument,
+                           "tool \"" + name + "\" is not in the scene's tools");
+    }
+    Result<ToolShape> shape = s.shape_of(index);
+    if (!shape.ok()) return shape.status();
+    if (tool_bound_radius(shape.value()) > tool_bound_radius(widest.value())) widest = shape;
+    const double r = refinement_resolution(scene, shape.value());
+    if (r > 0.0 && (resolution <= 0.0 || r < resolution)) resolution = r;
+  }
   for (std::size_t m = 0; m < scene.models.size(); ++m) {
     Result<LoadedModel> loaded = load_model(scene, m);
     if (!loaded.ok()) return loaded.status();
     s.models_.push_back(std::move(loaded).value());
   }
-  Result<std::vector<FaceRefinement>> refined = refine_faces(
-      s.models_, s.tool_shape_, refinement_resolution(scene, s.tool_shape_), tool_paths);
+  Result<std::vector<FaceRefinement>> refined =
+      refine_faces(s.models_, widest.value(), resolution, tool_paths);
   if (!refined.ok()) return refined.status();
   s.refinements_ = std::move(refined).value();
   const Status built = s.rebuild_world();
@@ -115,15 +130,61 @@ Result<Session> Session::create(const Scene& scene, const std::string& tool_name
   return s;
 }
 
+Result<ToolShape> Session::shape_of(int index) {
+  std::optional<ToolShape>& shape = shapes_[static_cast<std::size_t>(index)];
+  if (!shape) {
+    Result<ToolShape> read = tool_shape(scene_.tools[static_cast<std::size_t>(index)],
+                                        "tools[" + std::to_string(index) + "]");
+    if (!read.ok()) return read.status();
+    shape = std::move(read).value();
+  }
+  return *shape;
+}
+
+Status Session::hold_tool(int index) {
+  Result<ToolShape> shape = shape_of(index);
+  if (!shape.ok()) return shape.status();
+  const Status set = world_->set_tool(shape.value());
+  if (!set.ok()) {
+    return Status::error(set.code, "tools[" + std::to_string(index) + "]: " + set.message);
+  }
+  tool_index_ = index;
+  return Status::success();
+}
+
+Status Session::switch_tool(const std::string& name) {
+  if (engaged_) {
+    return Status::error(StatusCode::invalid_argument, "tool: a stroke is in progress");
+  }
+  const int index = scene_.tool_index(name);
+  if (index < 0) {
+    return Status::error(StatusCode::invalid_argument,
+                         "tool: \"" + name + "\" is not in the scene's tools");
+  }
+  if (index == tool_index_) return Status::success();
+  const Status held = hold_tool(index);
+  if (!held.ok()) return held;
+  tool_changes_.push_back({history_.size(), index});
+  return Status::success();
+}
+
+void Session::forget_tool_changes_after_history() {
+  while (!tool_changes_.empty() && tool_changes_.back().at > history_.size())
+    tool_changes_.pop_back();
+}
+
 Status Session::rebuild_world() {
   WorldOptions options;
   options.tolerance = scene_.tolerance;
   options.coupling = scene_.coupling;
-  Result<HapticWorld> world = HapticWorld::create(tool_shape_, options);
+  Result<ToolShape> shape = shape_of(initial_tool_);
+  if (!shape.ok()) return shape.status();
+  Result<HapticWorld> world = HapticWorld::create(shape.value(), options);
   if (!world.ok()) {
-    return Status::error(world.status().code, "tools[" + std::to_string(tool_index_) +
+    return Status::error(world.status().code, "tools[" + std::to_string(initial_tool_) +
                                                   "] or coupling: " + world.status().message);
   }
+  tool_index_ = initial_tool_;
   world_.emplace(std::move(world).value());
   body_owner_.clear();
   for (std::size_t m = 0; m < models_.size(); ++m) {
@@ -175,6 +236,7 @@ Result<TickReport> Session::advance(const DeviceSample& sample) {
   report.clamped = r.clamped;
   report.proxy = r.proxy.X_WT.p;
   report.max_depth = r.max_depth;
+  report.tool = tool_index_;
   for (std::size_t b = 0; b < r.body_contacts.size() && b < body_owner_.size(); ++b) {
     const auto [model, face] = body_owner_[b];
     for (const Contact& c : r.body_contacts[b]) {
@@ -217,8 +279,10 @@ Status Session::undo() {
   entry.start = stroke.start;
   entry.samples.assign(history_.begin() + static_cast<std::ptrdiff_t>(stroke.start),
                        history_.begin() + static_cast<std::ptrdiff_t>(stroke.end));
+  entry.tool = tool_at(stroke.start);
   redo_.push_back(std::move(entry));
   history_.resize(stroke.start);
+  forget_tool_changes_after_history();
   engaged_ = false;
   // Exact restore: a fresh world replays the inputs that led to the stroke's start.
   return replay_history();
@@ -233,8 +297,15 @@ Status Session::redo() {
     // Free moves came after the undo: drop them so the result is exactly the
     // state the stroke finished with.
     history_.resize(entry.start);
+    forget_tool_changes_after_history();
     const Status replayed = replay_history();
     if (!replayed.ok()) return replayed;
+  }
+  // The stroke is made again with the tool it was made with.
+  if (entry.tool != tool_index_) {
+    const Status held = hold_tool(entry.tool);
+    if (!held.ok()) return held;
+    tool_changes_.push_back({history_.size(), entry.tool});
   }
   for (const DeviceSample& s : entry.samples) {
     const Result<TickReport> r = advance(s);
@@ -249,11 +320,27 @@ Status Session::redo() {
 Status Session::replay_history() {
   const Status built = rebuild_world();
   if (!built.ok()) return built;
-  for (const DeviceSample& s : history_) {
-    const Result<TickReport> r = advance(s);
+  std::size_t change = 0;
+  const auto hold_changes_at = [&](std::size_t at) {
+    for (; change < tool_changes_.size() && tool_changes_[change].at == at; ++change) {
+      const Status held = hold_tool(tool_changes_[change].tool);
+      if (!held.ok()) return held;
+    }
+    return Status::success();
+  };
+  for (std::size_t i = 0; i < history_.size(); ++i) {
+    if (const Status held = hold_changes_at(i); !held.ok()) return held;
+    const Result<TickReport> r = advance(history_[i]);
     if (!r.ok()) return r.status();
   }
-  return Status::success();
+  return hold_changes_at(history_.size());
+}
+
+int Session::tool_at(std::size_t at) const {
+  int tool = initial_tool_;
+  for (const ToolChange& c : tool_changes_)
+    if (c.at <= at) tool = c.tool;
+  return tool;
 }
 
 io::Model Session::current_faces(int index) const {
@@ -290,6 +377,7 @@ std::uint64_t Session::state_hash() const {
     }
   }
   const ProxyState& proxy = world_->proxy();
+  hash_bytes(h, &tool_index_, sizeof tool_index_);
   hash_bytes(h, proxy.X_WT.p.data(), 3 * sizeof(double));
   hash_bytes(h, proxy.v_WT.data(), 3 * sizeof(double));
   return h;

@@ -43,6 +43,7 @@ struct TickReport {
   double max_depth = 0.0;                           // [mm]
   std::vector<ContactRecord> contacts;
   bool stroke_finished = false;  // this sample released the tool
+  int tool = 0;                  // the scene tool held (index in Scene::tools)
 };
 
 /// One scene model as loaded: its whole file (the exports write it back with
@@ -72,9 +73,12 @@ class Session {
   /// ...").
   /// With `tool_paths` (where the device goes while engaged: engaged_paths()
   /// of the script), the deformable faces they come near are first refined
-  /// exactly to the scene's resolution (face_refinement.hpp; refinements()).
+  /// exactly to the scene's resolution (face_refinement.hpp; refinements()),
+  /// for the finest and widest of `tool_name` and `later_tools` (the tools
+  /// the script switches to, tools_held()).
   static Result<Session> create(const Scene& scene, const std::string& tool_name = "",
-                                const std::vector<std::vector<Eigen::Vector3d>>& tool_paths = {});
+                                const std::vector<std::vector<Eigen::Vector3d>>& tool_paths = {},
+                                const std::vector<std::string>& later_tools = {});
 
   /// One haptic tick of 1 / haptic_rate seconds with the device at `sample`.
   /// An engaged sample after a released one starts a stroke; a released one
@@ -95,6 +99,10 @@ class Session {
   /// samples are stepped again from its start (free moves made since the undo
   /// are dropped). A new stroke after an undo clears the redo list.
   Status redo();
+  /// Puts the scene's tool `name` in the device's hand, between strokes only
+  /// (refused during a stroke, or for a name not in the scene). Kept in the
+  /// history: undo and redo replay each stroke with the tool it was made with.
+  Status switch_tool(const std::string& name);
 
   const Scene& scene() const { return scene_; }
   /// The faces create() refined for the tool's path.
@@ -125,16 +133,31 @@ class Session {
   struct RedoEntry {
     std::size_t start = 0;              // history length the stroke started at
     std::vector<DeviceSample> samples;  // the stroke through its release sample
+    int tool = 0;                       // the tool it was made with
+  };
+  /// From history_[at] on (at == history_.size(): from now), tool `tool`.
+  struct ToolChange {
+    std::size_t at = 0;
+    int tool = 0;
   };
   Session() = default;
   Status rebuild_world();
+  /// The shape of scene tool `index`, read once.
+  Result<ToolShape> shape_of(int index);
+  Status hold_tool(int index);
+  /// Drops the tool changes after history_'s end (the history was cut).
+  void forget_tool_changes_after_history();
+  /// The tool held at history_[at].
+  int tool_at(std::size_t at) const;
   /// A fresh world stepped through history_.
   Status replay_history();
   Result<TickReport> advance(const DeviceSample& sample);
 
   Scene scene_;
-  int tool_index_ = 0;
-  ToolShape tool_shape_;
+  int initial_tool_ = 0;
+  int tool_index_ = 0;                            // the tool held now
+  std::vector<std::optional<ToolShape>> shapes_;  // per scene tool, once read
+  std::vector<ToolChange> tool_changes_;          // in history order
   std::vector<LoadedModel> models_;
   std::vector<FaceRefinement> refinements_;
   std::vector<std::pair<int, int>> body_owner_;  // body -> (model, loaded face)

@@ -162,9 +162,12 @@ Status Replayer::check(long long samples_done) {
 
 Status Replayer::apply_command(const ScriptSampler::Command& command, long long tick) {
   const bool undo = command.event == ScriptEvent::undo;
-  const Status done = undo ? session_.undo() : session_.redo();
+  const Status done = undo                                 ? session_.undo()
+                      : command.event == ScriptEvent::redo ? session_.redo()
+                                                           : session_.switch_tool(command.tool);
   if (!done.ok()) return done;
   ++commands_done_;
+  if (command.event == ScriptEvent::tool) return check(tick);
   // The command's frame shows the surfaces it restored, at the tick it came
   // before (the tool is where the previous tick left it).
   const long long shown = std::max<long long>(tick - 1, 0);
@@ -196,6 +199,7 @@ Status Replayer::run(long long every) {
     replay.proxy.push_back(report.proxy);
     replay.engaged.push_back(sample.engaged);
     replay.force.push_back(report.force);
+    replay.tool_index.push_back(report.tool);
     const char* kind = k + 1 == total           ? "end"
                        : report.stroke_finished ? "stroke end"
                        : (k + 1) % every == 0   ? "tick"
@@ -216,7 +220,10 @@ Result<SessionReplay> replay_session(const ReplayOptions& options) {
   Result<Scene> scene = read_run_scene(run.value(), options);
   if (!scene.ok()) return scene.status();
   const Script& recorded = run.value().recorded;
-  Result<Session> created = Session::create(scene.value(), recorded.tool, engaged_paths(recorded));
+  const std::vector<std::string> tools = tools_held(recorded);
+  Result<Session> created =
+      Session::create(scene.value(), recorded.tool, engaged_paths(recorded),
+                      std::vector<std::string>(tools.begin() + 1, tools.end()));
   if (!created.ok()) {
     return Status::error(created.status().code,
                          run.value().scene.string() + ": " + created.status().message);
@@ -225,7 +232,7 @@ Result<SessionReplay> replay_session(const ReplayOptions& options) {
   SessionReplay replay;
   replay.scene_path = run.value().scene;
   replay.scene = scene.value();
-  replay.tool = session.tool();
+  replay.tools = scene.value().tools;
   replay.haptic_rate = scene.value().haptic_rate;
   for (int m = 0; m < static_cast<int>(session.models().size()); ++m) {
     replay.before.push_back(session.current_faces(m));

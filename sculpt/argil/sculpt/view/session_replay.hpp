@@ -32,8 +32,8 @@ struct ReplayFrame {
 /// What a run did, tick by tick.
 struct SessionReplay {
   std::filesystem::path scene_path;
-  Scene scene;  // with the run's tolerance
-  ToolOptions tool;
+  Scene scene;                     // with the run's tolerance
+  std::vector<ToolOptions> tools;  // the scene's
   /// The named faces of each model before the first tick (refined for the
   /// tool as the run refined them); LoadedModel::file_faces of each.
   std::vector<io::Model> before;
@@ -46,6 +46,7 @@ struct SessionReplay {
   std::vector<Eigen::Vector3d> proxy;           // tool proxy p_WT [mm]
   std::vector<bool> engaged;
   std::vector<Eigen::Vector3d> force;  // on the device [N]
+  std::vector<int> tool_index;         // the tool held (index in `tools`)
   double haptic_rate = 0.0;            // [Hz]
 };
 

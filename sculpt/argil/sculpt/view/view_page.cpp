@@ -203,20 +203,35 @@ Result<std::string> page_html(const json& data, const std::string& title) {
   return page;
 }
 
-json run_data(const SessionReplay& replay) {
+/// The scene tools the run held, in order of first use (the page's tools).
+std::vector<int> tools_used(const SessionReplay& replay) {
+  std::vector<int> used;
+  for (const int t : replay.tool_index)
+    if (std::find(used.begin(), used.end(), t) == used.end()) used.push_back(t);
+  if (used.empty()) used.push_back(0);
+  return used;
+}
+
+json run_data(const SessionReplay& replay, const std::vector<int>& used) {
   std::vector<float> orientation;
   for (const Eigen::Quaterniond& q : replay.orientation) {
     orientation.insert(orientation.end(), {static_cast<float>(q.w()), static_cast<float>(q.x()),
                                            static_cast<float>(q.y()), static_cast<float>(q.z())});
   }
   std::vector<std::uint8_t> engaged(replay.engaged.begin(), replay.engaged.end());
+  std::vector<std::uint8_t> tool;  // index in the page's tools
+  for (const int t : replay.tool_index) {
+    tool.push_back(
+        static_cast<std::uint8_t>(std::find(used.begin(), used.end(), t) - used.begin()));
+  }
   return {{"rate", replay.haptic_rate},
           {"time", base64_of(replay.time)},
           {"device", vector3_base64(replay.device)},
           {"proxy", vector3_base64(replay.proxy)},
           {"orientation", base64_of(orientation)},
           {"engaged", base64_of(engaged)},
-          {"force", vector3_base64(replay.force)}};
+          {"force", vector3_base64(replay.force)},
+          {"tool", base64_of(tool)}};
 }
 
 /// The tool as the page draws it: a sphere's radius, or a B-spline tool's
@@ -257,7 +272,7 @@ Result<std::string> model_view_page(const io::Model& model, const std::string& s
   if (!data.ok()) return data.status();
   data.value()["source"] = source;
   data.value()["run"] = nullptr;
-  data.value()["tool"] = nullptr;
+  data.value()["tools"] = json::array();
   data.value()["script"] = nullptr;
   return page_html(data.value(), options.title);
 }
@@ -283,11 +298,21 @@ Result<std::string> session_view_page(const SessionReplay& replay, const ViewPag
   }
   Result<json> data = page_data(models, heads, replay.scene.tolerance, options);
   if (!data.ok()) return data.status();
-  Result<json> tool = tool_data(replay.tool, data.value()["chord_mm"].get<double>());
-  if (!tool.ok()) return tool.status();
+  // Tools held once each (the page indexes them per tick); at most 255.
+  const std::vector<int> used = tools_used(replay);
+  if (used.size() > 255) {
+    return Status::error(StatusCode::invalid_argument, "the run held more than 255 tools");
+  }
+  json tools = json::array();
+  for (const int t : used) {
+    Result<json> tool = tool_data(replay.tools[static_cast<std::size_t>(t)],
+                                  data.value()["chord_mm"].get<double>());
+    if (!tool.ok()) return tool.status();
+    tools.push_back(tool.value());
+  }
   data.value()["source"] = replay.scene_path.string();
-  data.value()["run"] = run_data(replay);
-  data.value()["tool"] = tool.value();
+  data.value()["run"] = run_data(replay, used);
+  data.value()["tools"] = tools;
   data.value()["script"] = {{"scene", replay.scene_path.string()}};
   return page_html(data.value(), options.title);
 }

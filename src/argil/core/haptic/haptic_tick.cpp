@@ -68,28 +68,43 @@ Result<HapticWorld> HapticWorld::create(const ToolShape& tool, const WorldOption
   HapticWorld world;
   world.options_ = options;
   world.cache_ = std::make_unique<OperatorCache>();
+  if (Status s = world.install_tool(tool); !s.ok()) return s;
+  return world;
+}
+
+Status HapticWorld::set_tool(const ToolShape& tool) {
+  if (engaged_) {
+    return Status::error(StatusCode::failed_precondition,
+                         "the tool can only change while released (a stroke is in progress)");
+  }
+  return install_tool(tool);
+}
+
+Status HapticWorld::install_tool(const ToolShape& tool) {
   if (const auto* sphere = std::get_if<SphereToolShape>(&tool)) {
     if (!(sphere->radius >= 0.0 && std::isfinite(sphere->radius))) {
       return Status::error(
           StatusCode::invalid_argument,
           "tool.radius " + number_text(sphere->radius) + " mm must be finite and at least 0 mm");
     }
-    world.sphere_.emplace(sphere->radius, options.tolerance);
-    world.tool_reach_ = sphere->radius;
-    return world;
+    surface_tool_.reset();
+    sphere_.emplace(sphere->radius, options_.tolerance);
+    tool_reach_ = sphere->radius;
+    return Status::success();
   }
   Result<SurfaceToolProxy> proxy = SurfaceToolProxy::create(
-      std::get<SurfaceToolShape>(tool).surface, options.tolerance, *world.cache_);
+      std::get<SurfaceToolShape>(tool).surface, options_.tolerance, *cache_);
   if (!proxy.ok()) {
     Status s = proxy.status();
     s.message = "tool surface: " + s.message;
     return s;
   }
-  world.surface_tool_.emplace(std::move(proxy).value());
+  sphere_.reset();
+  surface_tool_.emplace(std::move(proxy).value());
   // Its push-out out of a surface that moved into it goes up to 4 tool sizes.
   const ControlNet& points = std::get<SurfaceToolShape>(tool).surface.control_points;
-  world.tool_reach_ = points.rowwise().norm().maxCoeff() + 4.0 * world.surface_tool_->size();
-  return world;
+  tool_reach_ = points.rowwise().norm().maxCoeff() + 4.0 * surface_tool_->size();
+  return Status::success();
 }
 
 Result<int> HapticWorld::add_deformable(const BSplineSurface& surface, const Material& material,

@@ -98,6 +98,10 @@ class HapticWorld {
  public:
   /// Validates the options and the tool (radius >= 0, a valid tool surface).
   static Result<HapticWorld> create(const ToolShape& tool, const WorldOptions& options);
+  /// Gives the device another tool, between strokes only (failed_precondition
+  /// while engaged: a released tool touches nothing, so the bodies need not
+  /// know). Checked as create() checks its tool; on failure the old one stays.
+  Status set_tool(const ToolShape& tool);
 
   /// Adds a deformable body; returns its index. `friction` is the Coulomb
   /// coefficient mu [-] of the world's tool against this body, in [0,
@@ -192,6 +196,7 @@ class HapticWorld {
     /// every step's load so a held edge does not spring open again.
     ControlNet joint_force;
   };
+  Status install_tool(const ToolShape& tool);
   /// The proxy's move this tick (steps 1-2) and its contacts with every body.
   struct [[nodiscard]] ProxyMove {
     Status status;

@@ -46,17 +46,18 @@ Status journal_stroke(Session& session, JournalWriter& journal, RunState& state)
   return appended;
 }
 
-/// The script's undo or redo before a tick: the samples since the last record
-/// are journalled first, so a resume replays them, then the command and its
-/// record. Errors name the keyframe ("nothing to undo").
+/// The script's undo, redo or tool change before a tick: the samples since
+/// the last record are journalled first, so a resume replays them, then the
+/// command and its record. Errors name the keyframe ("nothing to undo").
 Status apply_command(Session& session, JournalWriter& journal, const ScriptSampler& sampler,
                      const ScriptSampler::Command& command, RunState& state) {
   if (!state.unjournalled.empty()) {
     const Status flushed = journal_stroke(session, journal, state);
     if (!flushed.ok()) return flushed;
   }
-  const bool undo = command.event == ScriptEvent::undo;
-  const Status done = undo ? session.undo() : session.redo();
+  const Status done = command.event == ScriptEvent::undo   ? session.undo()
+                      : command.event == ScriptEvent::redo ? session.redo()
+                                                           : session.switch_tool(command.tool);
   if (!done.ok()) {
     return Status::error(
         done.code, "script keyframe " + std::to_string(command.keyframe) +
@@ -64,7 +65,10 @@ Status apply_command(Session& session, JournalWriter& journal, const ScriptSampl
                        " s): " + to_string(command.event) + ": " + done.message);
   }
   JournalRecord record;
-  record.kind = undo ? JournalRecord::Kind::undo : JournalRecord::Kind::redo;
+  record.kind = command.event == ScriptEvent::undo   ? JournalRecord::Kind::undo
+                : command.event == ScriptEvent::redo ? JournalRecord::Kind::redo
+                                                     : JournalRecord::Kind::tool;
+  record.tool = session.scene().tool_index(command.tool);
   record.state_hash = session.state_hash();
   const Status appended = journal.append(record);
   if (appended.ok()) state.commands.push_back(command);

@@ -24,6 +24,36 @@ Status replay_stroke(Session& session, const JournalRecord& record, std::size_t 
   return Status::success();
 }
 
+/// An undo, redo or tool record: done again, and matched with the script's
+/// next command.
+Status replay_command(Session& session, const JournalRecord& record, std::size_t r,
+                      const std::filesystem::path& journal_path, const ScriptSampler& sampler,
+                      RunState& state) {
+  const std::vector<ScriptSampler::Command>& commands = sampler.commands();
+  const ScriptEvent kind = record.kind == JournalRecord::Kind::undo   ? ScriptEvent::undo
+                           : record.kind == JournalRecord::Kind::redo ? ScriptEvent::redo
+                                                                      : ScriptEvent::tool;
+  const bool tools = static_cast<std::size_t>(record.tool) < session.scene().tools.size();
+  if (state.commands.size() >= commands.size() || commands[state.commands.size()].event != kind ||
+      (kind == ScriptEvent::tool &&
+       (!tools || commands[state.commands.size()].tool !=
+                      session.scene().tools[static_cast<std::size_t>(record.tool)].name))) {
+    return Status::error(StatusCode::failed_precondition,
+                         journal_path.string() + ": record " + std::to_string(r) + " is a " +
+                             to_string(kind) + " the script does not have next (inputs changed?)");
+  }
+  const ScriptSampler::Command& command = commands[state.commands.size()];
+  const Status done = kind == ScriptEvent::undo   ? session.undo()
+                      : kind == ScriptEvent::redo ? session.redo()
+                                                  : session.switch_tool(command.tool);
+  if (!done.ok()) {
+    return Status::error(StatusCode::failed_precondition,
+                         journal_path.string() + ": " + done.message);
+  }
+  state.commands.push_back(command);
+  return Status::success();
+}
+
 }  // namespace
 
 Status replay_journal(Session& session, const JournalContents& journal,
@@ -35,24 +65,8 @@ Status replay_journal(Session& session, const JournalContents& journal,
       const Status replayed = replay_stroke(session, record, r, journal_path, state);
       if (!replayed.ok()) return replayed;
     } else {
-      const Status done =
-          record.kind == JournalRecord::Kind::undo ? session.undo() : session.redo();
-      if (!done.ok()) {
-        return Status::error(StatusCode::failed_precondition,
-                             journal_path.string() + ": " + done.message);
-      }
-      // The script's next command is the one this record journalled.
-      const std::vector<ScriptSampler::Command>& commands = sampler.commands();
-      const ScriptEvent kind =
-          record.kind == JournalRecord::Kind::undo ? ScriptEvent::undo : ScriptEvent::redo;
-      if (state.commands.size() >= commands.size() ||
-          commands[state.commands.size()].event != kind) {
-        return Status::error(StatusCode::failed_precondition,
-                             journal_path.string() + ": record " + std::to_string(r) + " is an " +
-                                 to_string(kind) +
-                                 " the script does not have next (inputs changed?)");
-      }
-      state.commands.push_back(commands[state.commands.size()]);
+      const Status replayed = replay_command(session, record, r, journal_path, sampler, state);
+      if (!replayed.ok()) return replayed;
     }
     if (session.state_hash() != record.state_hash) {
       return Status::error(StatusCode::failed_precondition,

@@ -19,6 +19,15 @@ Status check_script_fits(const RunInputs& in) {
                                                            in.script.tool + "\" is not a tool of " +
                                                            in.scene_path.string());
   }
+  for (std::size_t k = 0; k < in.script.keyframes.size(); ++k) {
+    const Keyframe& f = in.script.keyframes[k];
+    if (f.event == ScriptEvent::tool && in.scene.tool_index(f.tool) < 0) {
+      return Status::error(StatusCode::invalid_argument,
+                           in.script_path.string() + ": keyframes[" + std::to_string(k) +
+                               "].event: tool \"" + f.tool + "\" is not a tool of " +
+                               in.scene_path.string());
+    }
+  }
   const double ticks = in.script.keyframes.back().t * in.scene.haptic_rate;
   if (ticks > kMaxTicks) {
     return Status::error(

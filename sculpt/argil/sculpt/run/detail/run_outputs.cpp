@@ -55,9 +55,8 @@ void write_logs(const RunInputs& in, const Session& session, const RunState& sta
     write_file(in.out / "timing.json", timing_json(wall, cpu, in.scene_path.string()), outputs);
   }
   const std::filesystem::path recorded = in.out / kRecordedScriptName;
-  record(
-      outputs, recorded,
-      write_script(record_script(state.received, session.tool().name, state.commands), recorded));
+  record(outputs, recorded,
+         write_script(record_script(state.received, in.script.tool, state.commands), recorded));
 }
 
 /// Pictures of the faces the scene names, before and after: where the tool
@@ -70,7 +69,10 @@ void write_pictures(const RunInputs& in, const Session& session,
   pictures.forces = state.log.forces();
   pictures.title = in.scene_name;
   pictures.tolerance_mm = in.scene.tolerance;
-  pictures.tool_radius_mm = session.tool().type == ToolType::sphere ? session.tool().radius : 0.0;
+  for (const int tool : state.log.tools()) {
+    const ToolOptions& held = session.scene().tools[static_cast<std::size_t>(tool)];
+    pictures.tool_radii.push_back(held.type == ToolType::sphere ? held.radius : 0.0);
+  }
   for (std::size_t m = 0; m < before.size(); ++m) {
     for (const io::FaceRecord& f : before[m].faces) pictures.before.faces.push_back(f);
     for (const io::FaceRecord& f : session.current_faces(static_cast<int>(m)).faces)
