@@ -163,6 +163,8 @@ async function main() {
       const deepest = await page.evaluate(() => window.argilView.deepest());
       check(deepest !== null && deepest.deviation < 0, `a point moved in (${deepest && deepest.deviation.toPrecision(3)} mm)`);
       if (deepest) {
+        // Seen from outside along its normal before the run: into the dent.
+        await page.evaluate(([p, n]) => window.argilView.lookAt(p, n), [deepest.position, deepest.normal]);
         const p = await page.evaluate((x) => window.argilView.project(x), deepest.position);
         const pixels = await canvasPixels(page, [p]);
         const [r, g, b] = pixels.at[0];

@@ -86,8 +86,11 @@ void print_report(const Options& o, const RunReport& report) {
   }
   for (const std::string& w : report.warnings)
     std::fprintf(stderr, "argil sculpt: %s\n", w.c_str());
-  std::printf("argil sculpt: %s, %lld ticks at %g Hz, %d strokes, tool %s\n", o.scene.c_str(),
-              report.ticks, report.haptic_rate, report.strokes, report.tool.c_str());
+  std::string tools;
+  for (const std::string& name : report.tools) tools += (tools.empty() ? "" : ", ") + name;
+  std::printf("argil sculpt: %s, %lld ticks at %g Hz, %d strokes, tool%s %s\n", o.scene.c_str(),
+              report.ticks, report.haptic_rate, report.strokes, report.tools.size() > 1 ? "s" : "",
+              tools.c_str());
   if (!report.refinements.empty())
     std::printf("refined for the tool (exactly: the shape does not change):\n");
   for (const std::string& r : report.refinements) std::printf("  %s\n", r.c_str());

@@ -352,7 +352,11 @@ class Viewer {
         if (!best || d[i] < best.deviation) best = { face: f, index: i, deviation: d[i] };
       }
     });
-    if (best) best.position = Array.from(this.shownPositions(best.face).subarray(3 * best.index, 3 * best.index + 3));
+    if (best) {
+      const i = 3 * best.index;
+      best.position = Array.from(this.shownPositions(best.face).subarray(i, i + 3));
+      best.normal = Array.from(this.data.faces[best.face].normals.subarray(i, i + 3));
+    }
     return best;
   }
 
@@ -411,6 +415,10 @@ function start() {
         };
       },
       deepest: () => viewer.deepest(),
+      lookAt: (point, normal) => {
+        viewer.view.lookAt(point, normal);
+        viewer.view.render();
+      },
     };
   } catch (error) {
     document.body.textContent = "argil view: cannot show this page: " + error.message;

@@ -158,6 +158,16 @@ export class SceneView {
     this.controls.update();
   }
 
+  /// The eye on the outward side of `point`, along `normal`, a third of the
+  /// models' size away, looking at it.
+  lookAt(point, normal) {
+    const target = new THREE.Vector3(...point);
+    const n = new THREE.Vector3(...normal).normalize();
+    this.camera.position.copy(target).addScaledVector(n, this.size / 3);
+    this.controls.target.copy(target);
+    this.controls.update();
+  }
+
   render() {
     this.renderer.render(this.scene, this.camera);
   }

@@ -131,6 +131,10 @@ Result<RunReport> run_session(const RunOptions& options) {
                    .tool = session.tool().name,
                    .haptic_rate = in.scene.haptic_rate,
                    .ticks = sampler.tick_count()};
+  report.tools = {report.tool};
+  for (const std::string& name : tools_held(in.script)) {
+    if (!name.empty() && name != report.tool) report.tools.push_back(name);
+  }
   for (const FaceRefinement& r : session.refinements())
     report.refinements.push_back(refinement_text(r));
   RunState state;

@@ -52,10 +52,11 @@ struct OutputFailure {
 
 /// What a run did.
 struct RunReport {
-  std::filesystem::path out{};  // the output folder
-  std::string scene_name{};     // the scene file's stem, or its folder's name for scene.json
-  std::string tool{};           // the tool the script holds
-  double haptic_rate = 0.0;     // [Hz]
+  std::filesystem::path out{};       // the output folder
+  std::string scene_name{};          // the scene file's stem, or its folder's name for scene.json
+  std::string tool{};                // the tool the script holds first
+  std::vector<std::string> tools{};  // every tool it holds (tool events), in order
+  double haptic_rate = 0.0;          // [Hz]
   RunStart start = RunStart::no_journal;
   long long ticks = 0;               // ticks of the script
   long long ticks_replayed = 0;      // replayed from the journal: logged, not timed

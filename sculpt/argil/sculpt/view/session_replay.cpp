@@ -148,12 +148,13 @@ Status Replayer::check(long long samples_done) {
          checkpoints_[next_checkpoint_].samples == samples_done &&
          checkpoints_[next_checkpoint_].commands == commands_done_) {
     if (checkpoints_[next_checkpoint_].state_hash != session_.state_hash()) {
-      return Status::error(StatusCode::failed_precondition,
-                           "after tick " + std::to_string(samples_done - 1) +
-                               " the surfaces differ from the state session.journal recorded "
-                               "(record " +
-                               std::to_string(next_checkpoint_ + 1) +
-                               "): a model file changed since the run?");
+      return Status::error(
+          StatusCode::failed_precondition,
+          "after tick " + std::to_string(samples_done - 1) +
+              " the surfaces differ from the state session.journal recorded "
+              "(record " +
+              std::to_string(next_checkpoint_ + 1) +
+              "): a model file changed since the run, or another version of argil ran it?");
     }
     ++next_checkpoint_;
   }
