@@ -148,24 +148,39 @@ Eigen::Vector3d diverging(double t) {
   return t < 0.0 ? ((1.0 + t) * neutral - t * in).eval() : ((1.0 - t) * neutral + t * out).eval();
 }
 
-/// Triangles shaded by a light over the viewer's left shoulder, clay or
-/// coloured by the signed displacement, both per vertex and interpolated per
-/// pixel (Gouraud) by one cairo mesh pattern whose patches paint in order.
-void draw_triangles(cairo_t* cr, const io::TriangleMesh& mesh, const Camera& camera,
-                    const SurfacePictureOptions& options) {
+// Supersampling of the shaded triangles in each direction: cairo draws mesh
+// patterns without antialiasing, so they are drawn this much larger and
+// scaled down (silhouettes and trims come out smooth).
+constexpr int kSupersampling = 2;
+
+/// Triangles shaded by a head light and a raking key light from over the
+/// viewer's left shoulder (diffuse and a little specular, so a dent on a
+/// nearly flat panel shows by its shading), clay or coloured by the signed displacement, both per vertex
+/// and interpolated per pixel (Gouraud) by one cairo mesh pattern whose
+/// patches paint in order.
+void draw_triangles_sharp(cairo_t* cr, const io::TriangleMesh& mesh, const Camera& camera,
+                          const SurfacePictureOptions& options) {
   const bool coloured = !options.vertex_displacement.empty();
   const Eigen::Vector3d light =
-      (camera.eye_direction + 0.5 * camera.up - 0.3 * camera.right).normalized();
+      (0.45 * camera.eye_direction + 0.75 * camera.up - 0.5 * camera.right).normalized();
+  const Eigen::Vector3d half_way = (light + camera.eye_direction).normalized();
   const Eigen::Vector3d clay(0.82, 0.64, 0.47);
   const auto vertex_colour = [&](int v, const Eigen::Vector3d& flat_normal) {
     Eigen::Vector3d n = mesh.normals.row(v).transpose();
     if (!(n.squaredNorm() > 0.5)) n = flat_normal;
-    const double lambert = std::abs(n.dot(light));
+    if (n.dot(camera.eye_direction) < 0.0) n = -n;  // the side seen
+    // A head light keeps every face turned to the viewer lit; the raking key
+    // light adds the relief.
+    const double head = n.dot(camera.eye_direction);
+    const double key = std::max(0.0, n.dot(light));
+    const double specular = std::pow(std::max(0.0, n.dot(half_way)), 40.0);
     const Eigen::Vector3d base =
         coloured ? diverging(options.vertex_displacement[static_cast<std::size_t>(v)] /
                              options.displacement_scale)
                  : clay;
-    return Eigen::Vector3d(base * (0.3 + 0.7 * lambert));
+    const Eigen::Vector3d lit = base * (0.25 + 0.55 * head + 0.35 * key) +
+                                Eigen::Vector3d::Constant(0.15 * specular);
+    return Eigen::Vector3d(lit.cwiseMin(1.0));
   };
   cairo_pattern_t* pattern = cairo_pattern_create_mesh();
   for (const Eigen::Index t : far_to_near(mesh, camera)) {
@@ -196,6 +211,34 @@ void draw_triangles(cairo_t* cr, const io::TriangleMesh& mesh, const Camera& cam
   cairo_pattern_destroy(pattern);
 }
 
+/// draw_triangles_sharp, supersampled: drawn kSupersampling times larger on a
+/// transparent layer, then scaled down onto `cr` with a box filter.
+void draw_triangles(cairo_t* cr, const io::TriangleMesh& mesh, const Camera& camera,
+                    const SurfacePictureOptions& options) {
+  Camera large = camera;
+  large.width *= kSupersampling;
+  large.height *= kSupersampling;
+  large.pixels_per_mm *= kSupersampling;
+  cairo_surface_t* layer = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, large.width, large.height);
+  cairo_t* lc = cairo_create(layer);
+  if (cairo_status(lc) != CAIRO_STATUS_SUCCESS) {
+    // Out of memory for the large layer: draw without supersampling.
+    cairo_destroy(lc);
+    cairo_surface_destroy(layer);
+    draw_triangles_sharp(cr, mesh, camera, options);
+    return;
+  }
+  draw_triangles_sharp(lc, mesh, large, options);
+  cairo_destroy(lc);
+  cairo_save(cr);
+  cairo_scale(cr, 1.0 / kSupersampling, 1.0 / kSupersampling);
+  cairo_set_source_surface(cr, layer, 0.0, 0.0);
+  cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_GOOD);
+  cairo_paint(cr);
+  cairo_restore(cr);
+  cairo_surface_destroy(layer);
+}
+
 /// The tool path: red where engaged, grey where moving freely.
 void draw_tool_path(cairo_t* cr, const ToolPath& path, const Camera& camera) {
   cairo_set_line_width(cr, 2.0);
@@ -224,7 +267,7 @@ void draw_tool(cairo_t* cr, const Camera& camera, const SurfacePictureOptions& o
   if (r >= 1.0) {
     cairo_new_path(cr);
     cairo_arc(cr, at.x(), at.y(), r, 0.0, 2.0 * M_PI);
-    cairo_set_source_rgba(cr, 0.3, 0.3, 0.35, 0.25);
+    cairo_set_source_rgba(cr, 0.3, 0.3, 0.35, 0.08);  // faint: the change under it shows
     cairo_fill_preserve(cr);
     cairo_set_source_rgba(cr, 0.15, 0.15, 0.2, 0.9);
     cairo_stroke(cr);
@@ -312,7 +355,8 @@ Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolP
     cairo_stroke(cr);
     const int w = camera.width * 3 / 8, h = camera.height * 3 / 8;
     const double x0 = camera.width - w - 10.0, y0 = 10.0;
-    const Camera inset = fit_camera(*options.zoom, w, h, camera.eye_direction);
+    const Camera inset =
+        fit_camera(*options.zoom, w, h, options.zoom_eye.value_or(camera.eye_direction));
     cairo_save(cr);
     cairo_rectangle(cr, x0, y0, w, h);
     cairo_clip(cr);

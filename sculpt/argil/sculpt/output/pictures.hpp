@@ -64,10 +64,14 @@ struct SurfacePictureOptions {
   /// A region drawn again, zoomed, in an inset at the top right (its frame
   /// marked on the whole view); none when unset.
   std::optional<Box3> zoom;
+  /// The inset's eye direction (towards the viewer); none: the whole view's.
+  std::optional<Eigen::Vector3d> zoom_eye;
 };
 
-/// The mesh shaded smoothly (Lambert at each vertex from its normal, two-sided,
-/// interpolated per pixel; painter's order back to front) with the tool path on
+/// The mesh shaded smoothly (a head light and a raking key light at each
+/// vertex from its normal, two-sided, interpolated per pixel, drawn at twice
+/// the size and scaled down so edges are antialiased; painter's order back to
+/// front) with the tool path on
 /// top (engaged segments red, free moves grey), as PNG bytes.
 Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolPath& path,
                                        const Camera& camera,

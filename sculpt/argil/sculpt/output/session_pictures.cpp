@@ -134,6 +134,27 @@ std::optional<Box3> moved_region(const io::TriangleMesh& after_mesh,
   return Box3{centre - half, centre + half};
 }
 
+/// Where to look at the change from: the mean outward normal of the vertices
+/// that moved visibly (as moved_region counts them), tilted a third of the
+/// way towards the whole view's eye so its relief shows; none when nothing
+/// moved visibly or the normals cancel out.
+std::optional<Eigen::Vector3d> change_eye(const io::TriangleMesh& after_mesh,
+                                          const std::vector<Eigen::Vector3d>& moved,
+                                          double tolerance_mm, const Eigen::Vector3d& view_eye) {
+  double largest = 0.0;
+  for (const Eigen::Vector3d& m : moved) largest = std::max(largest, m.norm());
+  const double visible = std::max(tolerance_mm, 0.1 * largest);
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < moved.size(); ++k) {
+    if (moved[k].norm() > visible)
+      normal += after_mesh.normals.row(static_cast<Eigen::Index>(k)).transpose();
+  }
+  if (!(normal.norm() > 1e-9)) return std::nullopt;
+  normal.normalize();
+  const Eigen::Vector3d tangent = view_eye - view_eye.dot(normal) * normal;
+  return (normal + 0.5 * tangent).normalized();
+}
+
 }  // namespace
 
 SurfacePictureOptions after_picture_options(const io::Model& before,
@@ -172,6 +193,10 @@ Status write_session_pictures(const SessionPicturesRequest& request,
   after_options.tool_radius_mm = before_options.tool_radius_mm;
   after_options.zoom =
       moved_region(after_mesh.value(), moved, request.tolerance_mm, request.tool_radius_mm, models);
+  if (after_options.zoom) {
+    after_options.zoom_eye =
+        change_eye(after_mesh.value(), moved, request.tolerance_mm, camera.eye_direction);
+  }
   const struct {
     const char* name;
     Result<std::string> png;
