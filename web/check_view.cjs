@@ -119,7 +119,7 @@ async function main() {
         // Another triangle nearer the eye hides this one; the triangle itself
         // must give the centre's (u, v).
         const same = pick && pick.faceIndex === f && pick.triangle === t;
-        if (pick && !same && distance(pick.point) < distance(centre)) {
+        if (pick && !same && distance(pick.point) < distance(centre) - 1e-4 * size) {
           hidden += 1;
           continue;
         }
@@ -159,7 +159,9 @@ async function main() {
       check(at === frames - 1, `play reaches the last frame (${at + 1} of ${frames})`);
       const label = await page.textContent("#frame-label");
       check(label.includes(`frame ${frames}/${frames}`), `the timeline says so: "${label}"`);
-      await page.uncheck("#show-tool"); // the tool's glass would tint the dent
+      // The tool's glass and the path would tint the dent.
+      await page.uncheck("#show-tool");
+      await page.uncheck("#show-path");
       const deepest = await page.evaluate(() => window.argilView.deepest());
       check(deepest !== null && deepest.deviation < 0, `a point moved in (${deepest && deepest.deviation.toPrecision(3)} mm)`);
       if (deepest) {
@@ -171,6 +173,8 @@ async function main() {
         check(b > r + 20, `the deepest point is drawn blue (rgb ${r}, ${g}, ${b})`);
       }
       await page.check("#show-tool");
+      await page.check("#show-path");
+      await page.evaluate(() => window.argilView.fit()); // the view the picks were made in
     }
 
     const pixels = await canvasPixels(page, target ? [target.pixel] : []);

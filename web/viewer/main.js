@@ -250,6 +250,8 @@ class Viewer {
         } else {
           geometry.computeVertexNormals();
         }
+        // Raycasting skips a mesh whose box the ray misses: keep it the frame's.
+        geometry.computeBoundingBox();
         geometry.computeBoundingSphere();
         mesh.userData.shown = positions;
       }
@@ -415,6 +417,10 @@ function start() {
         };
       },
       deepest: () => viewer.deepest(),
+      fit: () => {
+        viewer.view.fit();
+        viewer.view.render();
+      },
       lookAt: (point, normal) => {
         viewer.view.lookAt(point, normal);
         viewer.view.render();

@@ -193,6 +193,28 @@ TEST_CASE("a tool switch is refused during a stroke, for a tool not in the scene
   CHECK(session.value().tool().name == "ball");
 }
 
+TEST_CASE("a tool taken before the first tick: recorded.csv and the viewer's replay agree",
+          "[run]") {
+  fs::create_directories(kWork);
+  const fs::path script = kWork / "first.csv";
+  std::ofstream(script, std::ios::binary) << "# argil.script version 1\n"
+                                             "# tool: pin\n"
+                                             "t,x,y,z,qw,qx,qy,qz,event\n"
+                                             "0,60,0,10,1,0,0,0,tool:ball\n"
+                                             "0.04,60,0,1,1,0,0,0,engage\n"
+                                             "0.1,60,10,-4,1,0,0,0,\n"
+                                             "0.17,60,20,5,1,0,0,0,release\n"
+                                             "0.2,60,20,10,1,0,0,0,\n";
+  const fs::path out = kWork / "first";
+  run_ok(options_for(script, out));
+  run_ok(options_for(out / "recorded.csv", kWork / "first-replayed"));
+  CHECK(same_bits(poles_of(out / "plate.json"), poles_of(kWork / "first-replayed" / "plate.json")));
+  const Result<SessionReplay> replay = replay_session({.folder = out});
+  INFO(replay.status().message);
+  REQUIRE(replay.ok());
+  CHECK(replay.value().tool_index.front() == 1);
+}
+
 TEST_CASE("the viewer's replay of a run with a tool switch reaches its surfaces and tools",
           "[run]") {
   const fs::path out = kWork / "viewed";
@@ -206,6 +228,96 @@ TEST_CASE("the viewer's replay of a run with a tool switch reaches its surfaces 
   REQUIRE_FALSE(replay.value().tool_index.empty());
   CHECK(replay.value().tool_index.front() == 0);
   CHECK(replay.value().tool_index.back() == 1);
+}
+
+}  // namespace argil::sculpt
+
+namespace argil::sculpt {
+namespace {
+
+/// A session on the two-tool scene holding the pin, refined for both tools
+/// along two presses (at x = 60 and x = 100).
+Session two_tool_session() {
+  const Result<Scene> scene = read_scene(kScene);
+  REQUIRE(scene.ok());
+  const std::vector<std::vector<Eigen::Vector3d>> paths = {
+      {{60, 0, 1}, {60, 10, -4}, {60, 20, 5}}, {{100, 0, 1}, {100, 10, -4}, {100, 20, 5}}};
+  Result<Session> s = Session::create(scene.value(), "pin", paths, {"ball"});
+  REQUIRE(s.ok());
+  return std::move(s).value();
+}
+
+/// Steps free moves above x, then a press through (x, 10, -4), released, then
+/// (`trail`) free moves away.
+void press(Session& s, double x, long long& tick, bool trail = true) {
+  const auto step = [&](const Eigen::Vector3d& p, bool engaged) {
+    DeviceSample d;
+    d.tick = tick;
+    d.t = static_cast<double>(tick) / 1000.0;
+    d.X_WD.p = p;
+    d.engaged = engaged;
+    ++tick;
+    REQUIRE(s.step(d).ok());
+  };
+  for (int k = 0; k < 20; ++k) step({x, 0, 10 - 0.45 * k}, false);
+  for (int k = 0; k <= 60; ++k) step({x, k / 3.0, 1 - 5 * std::sin(M_PI * k / 60.0)}, true);
+  step({x, 20, 5}, false);  // the release
+  for (int k = 1; trail && k < 20; ++k) step({x, 20, 5 + 0.25 * k}, false);
+}
+
+}  // namespace
+
+TEST_CASE(
+    "undo keeps the tool in hand; redo makes the stroke with its own tool, then gives it back",
+    "[run]") {
+  long long t1 = 0, t2 = 0;
+  // A: a pin press, the ball taken, the press undone, a press at 100.
+  Session a = two_tool_session();
+  press(a, 60, t1);
+  REQUIRE(a.switch_tool("ball").ok());
+  REQUIRE(a.undo().ok());
+  CHECK(a.tool().name == "ball");
+  press(a, 100, t1, false);
+  // B: the same free moves (A's history after its undo), the ball, a press at 100.
+  Session b = two_tool_session();
+  long long free_ticks = 0;
+  for (int k = 0; k < 20; ++k) {
+    DeviceSample d;
+    d.tick = free_ticks++;
+    d.X_WD.p = Eigen::Vector3d(60, 0, 10 - 0.45 * k);
+    REQUIRE(b.step(d).ok());
+  }
+  REQUIRE(b.switch_tool("ball").ok());
+  press(b, 100, t2, false);
+  CHECK(a.state_hash() == b.state_hash());
+
+  // Redo after taking another tool: the stroke comes back as the ball made it,
+  // and the hand keeps the pin taken since.
+  REQUIRE(a.undo().ok());
+  REQUIRE(a.switch_tool("pin").ok());
+  REQUIRE(a.redo().ok());
+  CHECK(a.tool().name == "pin");
+  CHECK(a.current_faces(0).faces[0].surface.control_points ==
+        b.current_faces(0).faces[0].surface.control_points);
+}
+
+TEST_CASE("two undos and two redos with free moves between the strokes restore the state exactly",
+          "[run]") {
+  long long tick = 0;
+  Session s = two_tool_session();
+  press(s, 60, tick);
+  REQUIRE(s.switch_tool("ball").ok());
+  press(s, 100, tick, false);
+  const std::uint64_t state = s.state_hash();
+  REQUIRE(s.undo().ok());
+  REQUIRE(s.undo().ok());
+  CHECK(s.tool().name == "ball");
+  REQUIRE(s.switch_tool("pin").ok());
+  REQUIRE(s.redo().ok());
+  REQUIRE(s.redo().ok());
+  CHECK(s.tool().name == "pin");
+  REQUIRE(s.switch_tool("ball").ok());
+  CHECK(s.state_hash() == state);
 }
 
 }  // namespace argil::sculpt

@@ -323,3 +323,48 @@ TEST_CASE("tool names are one word of valid UTF-8 in both formats", "[script][ba
 
 }  // namespace
 }  // namespace argil::sculpt
+
+namespace argil::sculpt {
+
+TEST_CASE("a command less than a tick after a release waits for the tick after the release",
+          "[script]") {
+  Script s;
+  const double times[] = {0.0, 0.005, 0.0101, 0.0103, 0.02};
+  const ScriptEvent events[] = {ScriptEvent::none, ScriptEvent::engage, ScriptEvent::release,
+                                ScriptEvent::tool, ScriptEvent::none};
+  for (int k = 0; k < 5; ++k) {
+    Keyframe f;
+    f.t = times[k];
+    f.event = events[k];
+    if (f.event == ScriptEvent::tool) f.tool = "ball";
+    s.keyframes.push_back(f);
+  }
+  const ScriptSampler sampler(s, 1000.0);
+  // Tick 10 (t = 0.010) is still engaged, tick 11 is the release: the tool
+  // change comes before tick 12.
+  CHECK(sampler.sample(10).engaged);
+  CHECK_FALSE(sampler.sample(11).engaged);
+  REQUIRE(sampler.commands().size() == 1);
+  CHECK(sampler.commands()[0].tick == 12);
+}
+
+TEST_CASE("record_script keeps a tool taken before the first tick on the first keyframe",
+          "[script]") {
+  std::vector<DeviceSample> samples(3);
+  for (int k = 0; k < 3; ++k) {
+    samples[static_cast<std::size_t>(k)].tick = k;
+    samples[static_cast<std::size_t>(k)].t = k / 1000.0;
+  }
+  const std::vector<ScriptSampler::Command> commands = {{0, ScriptEvent::tool, 0, "ball"}};
+  const Script recorded = record_script(samples, "pin", commands);
+  CHECK(recorded.tool == "pin");
+  REQUIRE(recorded.keyframes.front().event == ScriptEvent::tool);
+  CHECK(recorded.keyframes.front().tool == "ball");
+  CHECK(tools_held(recorded) == std::vector<std::string>{"pin", "ball"});
+  const ScriptSampler sampler(recorded, 1000.0);
+  REQUIRE(sampler.commands().size() == 1);
+  CHECK(sampler.commands()[0].tick == 0);
+  CHECK_FALSE(validate(Script{"pin", {Keyframe{0.0, {}, ScriptEvent::tool, "a,b"}}}).ok());
+}
+
+}  // namespace argil::sculpt

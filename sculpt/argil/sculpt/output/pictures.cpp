@@ -155,9 +155,9 @@ constexpr int kSupersampling = 2;
 
 /// Triangles shaded by a head light and a raking key light from over the
 /// viewer's left shoulder (diffuse and a little specular, so a dent on a
-/// nearly flat panel shows by its shading), clay or coloured by the signed displacement, both per vertex
-/// and interpolated per pixel (Gouraud) by one cairo mesh pattern whose
-/// patches paint in order.
+/// nearly flat panel shows by its shading), clay or coloured by the signed displacement, both per
+/// vertex and interpolated per pixel (Gouraud) by one cairo mesh pattern whose patches paint in
+/// order.
 void draw_triangles_sharp(cairo_t* cr, const io::TriangleMesh& mesh, const Camera& camera,
                           const SurfacePictureOptions& options) {
   const bool coloured = !options.vertex_displacement.empty();
@@ -178,8 +178,8 @@ void draw_triangles_sharp(cairo_t* cr, const io::TriangleMesh& mesh, const Camer
         coloured ? diverging(options.vertex_displacement[static_cast<std::size_t>(v)] /
                              options.displacement_scale)
                  : clay;
-    const Eigen::Vector3d lit = base * (0.25 + 0.55 * head + 0.35 * key) +
-                                Eigen::Vector3d::Constant(0.15 * specular);
+    const Eigen::Vector3d lit =
+        base * (0.25 + 0.55 * head + 0.35 * key) + Eigen::Vector3d::Constant(0.15 * specular);
     return Eigen::Vector3d(lit.cwiseMin(1.0));
   };
   cairo_pattern_t* pattern = cairo_pattern_create_mesh();
@@ -219,7 +219,8 @@ void draw_triangles(cairo_t* cr, const io::TriangleMesh& mesh, const Camera& cam
   large.width *= kSupersampling;
   large.height *= kSupersampling;
   large.pixels_per_mm *= kSupersampling;
-  cairo_surface_t* layer = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, large.width, large.height);
+  cairo_surface_t* layer =
+      cairo_image_surface_create(CAIRO_FORMAT_ARGB32, large.width, large.height);
   cairo_t* lc = cairo_create(layer);
   if (cairo_status(lc) != CAIRO_STATUS_SUCCESS) {
     // Out of memory for the large layer: draw without supersampling.

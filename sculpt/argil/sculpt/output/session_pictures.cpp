@@ -181,18 +181,19 @@ Status write_session_pictures(const SessionPicturesRequest& request,
       fit_camera(with_engaged_path(models, path), 960, 720, eye_direction_for(before_mesh.value()));
   SurfacePictureOptions before_options;
   before_options.title = title + ": before";
+  before_options.tool_radius_mm = request.tool_radius_mm;
   if (const std::optional<std::size_t> press = hardest_press(request)) {
     before_options.tool_position = path.positions[*press];
-    before_options.tool_radius_mm =
-        *press < request.tool_radii.size() ? request.tool_radii[*press] : request.tool_radius_mm;
+    if (*press < request.tool_radii.size())
+      before_options.tool_radius_mm = request.tool_radii[*press];
   }
   const std::vector<Eigen::Vector3d> moved = vertex_movements(before, after_mesh.value());
   SurfacePictureOptions after_options =
       signed_colouring(before, after_mesh.value(), moved, request.tolerance_mm, title);
   after_options.tool_position = before_options.tool_position;
   after_options.tool_radius_mm = before_options.tool_radius_mm;
-  after_options.zoom =
-      moved_region(after_mesh.value(), moved, request.tolerance_mm, request.tool_radius_mm, models);
+  after_options.zoom = moved_region(after_mesh.value(), moved, request.tolerance_mm,
+                                    after_options.tool_radius_mm, models);
   if (after_options.zoom) {
     after_options.zoom_eye =
         change_eye(after_mesh.value(), moved, request.tolerance_mm, camera.eye_direction);

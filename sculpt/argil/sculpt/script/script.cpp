@@ -133,6 +133,8 @@ Status check_keyframes(const std::vector<Keyframe>& keyframes, const std::string
       if (f.event == ScriptEvent::tool) {
         if (const std::string problem = tool_name_problem(f.tool); !problem.empty())
           return error(k, "event", problem);
+        if (f.tool.find(',') != std::string::npos)
+          return error(k, "event", "a tool event's name cannot hold ',' (CSV cells)");
       }
     }
   }
@@ -474,15 +476,22 @@ ScriptSampler::ScriptSampler(Script script, double rate_hz)
   tick_count_ = static_cast<long long>(std::ceil(last * rate_ - kTickRounding)) + 1;
   bool engaged = false;
   engaged_after_.reserve(script_.keyframes.size());
+  // A command is applied before the first tick at or after its time, but not
+  // before the tick after the release it follows: a release and a command
+  // within one tick would otherwise find the stroke still in progress.
+  long long released_at = -1;
   for (std::size_t k = 0; k < script_.keyframes.size(); ++k) {
     const Keyframe& f = script_.keyframes[k];
+    const long long tick = static_cast<long long>(std::ceil(f.t * rate_ - kTickRounding));
     if (f.event == ScriptEvent::engage) engaged = true;
-    if (f.event == ScriptEvent::release) engaged = false;
+    if (f.event == ScriptEvent::release) {
+      engaged = false;
+      released_at = tick;
+    }
     engaged_after_.push_back(engaged);
     if (f.event == ScriptEvent::undo || f.event == ScriptEvent::redo ||
         f.event == ScriptEvent::tool) {
-      commands_.push_back(
-          {static_cast<long long>(std::ceil(f.t * rate_ - kTickRounding)), f.event, k, f.tool});
+      commands_.push_back({std::max(tick, released_at + 1), f.event, k, f.tool});
     }
   }
   long long first = -1;
@@ -537,13 +546,15 @@ Script record_script(const std::vector<DeviceSample>& samples, const std::string
     // Commands before this tick: their own keyframes midway from the previous
     // tick (the sampler maps them to this one), at the previous tick's pose.
     // Before the first tick there is nothing to undo or redo: none is kept;
-    // a tool taken then is the tool the script starts with.
+    // a tool taken then goes on the first keyframe (the first sample is
+    // released: a tool event cannot follow an engage).
     double gap = 0.5;  // of the tick interval, halved for each further command
+    std::string first_tool;
     for (; next_command < commands.size() && commands[next_command].tick <= s.tick;
          ++next_command, gap *= 0.5) {
       if (i == 0) {
         if (commands[next_command].event == ScriptEvent::tool)
-          script.tool = commands[next_command].tool;
+          first_tool = commands[next_command].tool;
         continue;
       }
       Keyframe c;
@@ -559,6 +570,10 @@ Script record_script(const std::vector<DeviceSample>& samples, const std::string
     f.X_WD.p = s.X_WD.p;
     f.X_WD.R = s.X_WD.R;
     if (s.engaged != engaged) f.event = s.engaged ? ScriptEvent::engage : ScriptEvent::release;
+    if (!first_tool.empty() && f.event == ScriptEvent::none) {
+      f.event = ScriptEvent::tool;
+      f.tool = first_tool;
+    }
     engaged = s.engaged;
     script.keyframes.push_back(f);
   }

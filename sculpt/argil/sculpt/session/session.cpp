@@ -168,9 +168,8 @@ Status Session::switch_tool(const std::string& name) {
   return Status::success();
 }
 
-void Session::forget_tool_changes_after_history() {
-  while (!tool_changes_.empty() && tool_changes_.back().at > history_.size())
-    tool_changes_.pop_back();
+void Session::forget_tool_changes_from(std::size_t at) {
+  while (!tool_changes_.empty() && tool_changes_.back().at >= at) tool_changes_.pop_back();
 }
 
 Status Session::rebuild_world() {
@@ -273,47 +272,67 @@ Result<TickReport> Session::step(const DeviceSample& sample) {
 Status Session::undo() {
   if (engaged_) return Status::error(StatusCode::invalid_argument, "undo: a stroke is in progress");
   if (strokes_.empty()) return Status::error(StatusCode::invalid_argument, "undo: nothing to undo");
+  const int held = tool_index_;
   const StrokeSpan stroke = strokes_.back();
   strokes_.pop_back();
+  // What a redo needs to make the stroke again from the end of the stroke
+  // before it: the samples in between and the stroke, and the tool changes.
   RedoEntry entry;
-  entry.start = stroke.start;
-  entry.samples.assign(history_.begin() + static_cast<std::ptrdiff_t>(stroke.start),
+  entry.from = strokes_.empty() ? 0 : strokes_.back().end;
+  entry.stroke_offset = stroke.start - entry.from;
+  entry.samples.assign(history_.begin() + static_cast<std::ptrdiff_t>(entry.from),
                        history_.begin() + static_cast<std::ptrdiff_t>(stroke.end));
-  entry.tool = tool_at(stroke.start);
+  for (const ToolChange& c : tool_changes_) {
+    if (c.at >= entry.from && c.at <= stroke.start)
+      entry.changes.push_back({c.at - entry.from, c.tool});
+  }
   redo_.push_back(std::move(entry));
   history_.resize(stroke.start);
-  forget_tool_changes_after_history();
+  forget_tool_changes_from(stroke.start + 1);
   engaged_ = false;
   // Exact restore: a fresh world replays the inputs that led to the stroke's start.
-  return replay_history();
+  if (const Status replayed = replay_history(); !replayed.ok()) return replayed;
+  // The tool in hand stays: an undo takes back a stroke, not a tool change.
+  return keep_holding(held);
 }
 
 Status Session::redo() {
   if (engaged_) return Status::error(StatusCode::invalid_argument, "redo: a stroke is in progress");
   if (redo_.empty()) return Status::error(StatusCode::invalid_argument, "redo: nothing to redo");
+  const int held = tool_index_;
   RedoEntry entry = std::move(redo_.back());
   redo_.pop_back();
-  if (history_.size() != entry.start) {
-    // Free moves came after the undo: drop them so the result is exactly the
-    // state the stroke finished with.
-    history_.resize(entry.start);
-    forget_tool_changes_after_history();
-    const Status replayed = replay_history();
-    if (!replayed.ok()) return replayed;
+  // Back to the end of the stroke before it (its redo, if it was undone too,
+  // came first: redo_ is a stack), dropping what came since, then the
+  // original samples and tool changes up to and through the stroke: exactly
+  // the state the stroke finished with.
+  forget_tool_changes_from(entry.from);
+  if (history_.size() != entry.from) {
+    history_.resize(entry.from);
+    if (const Status replayed = replay_history(); !replayed.ok()) return replayed;
+  } else if (const int before = tool_at(entry.from); before != tool_index_) {
+    // Only tool changes at its end were dropped: the world is right, the hand is not.
+    if (const Status h = hold_tool(before); !h.ok()) return h;
   }
-  // The stroke is made again with the tool it was made with.
-  if (entry.tool != tool_index_) {
-    const Status held = hold_tool(entry.tool);
-    if (!held.ok()) return held;
-    tool_changes_.push_back({history_.size(), entry.tool});
-  }
-  for (const DeviceSample& s : entry.samples) {
-    const Result<TickReport> r = advance(s);
+  std::size_t change = 0;
+  for (std::size_t i = 0; i < entry.samples.size(); ++i) {
+    for (; change < entry.changes.size() && entry.changes[change].at == i; ++change) {
+      if (const Status h = hold_tool(entry.changes[change].tool); !h.ok()) return h;
+      tool_changes_.push_back({history_.size(), entry.changes[change].tool});
+    }
+    const Result<TickReport> r = advance(entry.samples[i]);
     if (!r.ok()) return r.status();
-    history_.push_back(s);
+    history_.push_back(entry.samples[i]);
   }
-  strokes_.push_back({entry.start, history_.size()});
+  strokes_.push_back({entry.from + entry.stroke_offset, history_.size()});
   engaged_ = false;
+  return keep_holding(held);
+}
+
+Status Session::keep_holding(int tool) {
+  if (tool == tool_index_) return Status::success();
+  if (const Status h = hold_tool(tool); !h.ok()) return h;
+  tool_changes_.push_back({history_.size(), tool});
   return Status::success();
 }
 

@@ -130,23 +130,30 @@ class Session {
     std::size_t start = 0;  // index in history_ of the stroke's first sample
     std::size_t end = 0;    // one past its release sample
   };
-  struct RedoEntry {
-    std::size_t start = 0;              // history length the stroke started at
-    std::vector<DeviceSample> samples;  // the stroke through its release sample
-    int tool = 0;                       // the tool it was made with
-  };
   /// From history_[at] on (at == history_.size(): from now), tool `tool`.
   struct ToolChange {
     std::size_t at = 0;
     int tool = 0;
+  };
+  /// An undone stroke, as a redo makes it again from the end of the stroke
+  /// before it (`from`, 0 for none): the original samples from there through
+  /// its release (free moves, then the stroke from `stroke_offset`), and the
+  /// tool changes among them (`at` counted from `from`).
+  struct RedoEntry {
+    std::size_t from = 0;
+    std::size_t stroke_offset = 0;
+    std::vector<DeviceSample> samples;
+    std::vector<ToolChange> changes;
   };
   Session() = default;
   Status rebuild_world();
   /// The shape of scene tool `index`, read once.
   Result<ToolShape> shape_of(int index);
   Status hold_tool(int index);
-  /// Drops the tool changes after history_'s end (the history was cut).
-  void forget_tool_changes_after_history();
+  /// Drops the tool changes from history index `at` on (the history was cut).
+  void forget_tool_changes_from(std::size_t at);
+  /// Takes `tool` back in hand if another is held, as a change from now.
+  Status keep_holding(int tool);
   /// The tool held at history_[at].
   int tool_at(std::size_t at) const;
   /// A fresh world stepped through history_.

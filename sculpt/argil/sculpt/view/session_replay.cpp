@@ -130,6 +130,15 @@ class Replayer {
         replay_(replay) {}
 
   Status run(long long every);
+  /// Fails unless the replay reached every state the journal recorded.
+  Status all_checked() const {
+    if (next_checkpoint_ == checkpoints_.size()) return Status::success();
+    return Status::error(StatusCode::failed_precondition,
+                         "it does not reach the state of session.journal's record " +
+                             std::to_string(next_checkpoint_ + 1) + " of " +
+                             std::to_string(checkpoints_.size()) +
+                             " (a changed recording, or another version of argil ran it?)");
+  }
 
  private:
   Status apply_command(const ScriptSampler::Command& command, long long tick);
@@ -245,7 +254,8 @@ Result<SessionReplay> replay_session(const ReplayOptions& options) {
           ? options.every
           : std::max<long long>(1, (sampler.tick_count() + kDefaultFrames - 1) / kDefaultFrames);
   Replayer replayer(session, sampler, checkpoints_of(run.value().journal), replay);
-  const Status stepped = replayer.run(every);
+  Status stepped = replayer.run(every);
+  if (stepped.ok()) stepped = replayer.all_checked();
   if (!stepped.ok()) {
     return Status::error(
         stepped.code, (options.folder / "recorded.csv").string() + ": replay: " + stepped.message);

@@ -160,8 +160,9 @@ Result<json> page_data(const std::vector<PageModel>& models, const std::vector<j
   return data;
 }
 
-/// The HTML page around the data. "</" is escaped in the JSON so the data
-/// cannot close its script element.
+/// The HTML page around the data. Every '<' in the JSON is written \u003c,
+/// so no text in it (a face name, a path) can end or confuse its script
+/// element.
 Result<std::string> page_html(const json& data, const std::string& title) {
   const std::string_view script = detail::viewer_script();
   if (script.empty()) {
@@ -169,16 +170,15 @@ Result<std::string> page_html(const json& data, const std::string& title) {
                          "this argil was built without the viewer script (web/'s packages were "
                          "missing when it was configured: run make, which installs them)");
   }
-  std::string text = data.dump();
+  // Invalid UTF-8 in a name read from a file is replaced, not thrown on.
+  const std::string text = data.dump(-1, ' ', false, json::error_handler_t::replace);
   std::string escaped;
   escaped.reserve(text.size());
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (text[i] == '<' && i + 1 < text.size() && text[i + 1] == '/') {
-      escaped += "<\\/";
-      ++i;
-    } else {
-      escaped += text[i];
-    }
+  for (const char c : text) {
+    if (c == '<')
+      escaped += "\\u003c";  // '<' only inside strings; \u003c reads back the same
+    else
+      escaped += c;
   }
   std::string html_title;
   for (const char c : title) {

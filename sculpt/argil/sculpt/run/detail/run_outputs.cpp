@@ -69,6 +69,7 @@ void write_pictures(const RunInputs& in, const Session& session,
   pictures.forces = state.log.forces();
   pictures.title = in.scene_name;
   pictures.tolerance_mm = in.scene.tolerance;
+  pictures.tool_radius_mm = session.tool().type == ToolType::sphere ? session.tool().radius : 0.0;
   for (const int tool : state.log.tools()) {
     const ToolOptions& held = session.scene().tools[static_cast<std::size_t>(tool)];
     pictures.tool_radii.push_back(held.type == ToolType::sphere ? held.radius : 0.0);
