@@ -24,9 +24,9 @@ const fs::path kWork = fs::path(ARGIL_BINARY_DIR) / "session-replay-test";
 const fs::path kScene = fs::path(ARGIL_SOURCE_DIR) / "tests/data/sculpt/good.json";
 
 /// Two presses of the pin into the plate, the second taken back by an undo.
-fs::path write_script() {
+fs::path write_script(const std::string& name) {
   fs::create_directories(kWork);
-  const fs::path path = kWork / "presses.csv";
+  const fs::path path = kWork / (name + ".csv");
   std::ofstream out(path, std::ios::binary);
   out << "# argil.script version 1\n"
          "t,x,y,z,qw,qx,qy,qz,event\n"
@@ -43,18 +43,16 @@ fs::path write_script() {
   return path;
 }
 
-/// The run, once for every test case.
-const fs::path& finished_run() {
-  static const fs::path out = [] {
-    const fs::path folder = kWork / "run";
-    RunOptions options{.scene = kScene, .script = write_script(), .out = folder, .fresh = true};
-    options.outputs = OutputOptions{.step = false, .iges = false, .pictures = false};
-    const Result<RunReport> report = run_session(options);
-    INFO(report.status().message);
-    REQUIRE(report.ok());
-    return folder;
-  }();
-  return out;
+/// The run, in a folder of its own for each test case: CTest runs the cases
+/// as separate processes side by side.
+fs::path finished_run(const std::string& name) {
+  const fs::path folder = kWork / name;
+  RunOptions options{.scene = kScene, .script = write_script(name), .out = folder, .fresh = true};
+  options.outputs = OutputOptions{.step = false, .iges = false, .pictures = false};
+  const Result<RunReport> report = run_session(options);
+  INFO(report.status().message);
+  REQUIRE(report.ok());
+  return folder;
 }
 
 bool same_bits(const ControlNet& a, const ControlNet& b) {
@@ -103,7 +101,7 @@ nlohmann::json page_json(const std::string& page) {
 
 TEST_CASE("a replay reaches the run's surfaces to the bit, with frames at strokes and undo",
           "[view]") {
-  const fs::path& run = finished_run();
+  const fs::path run = finished_run("frames");
   const Result<SessionReplay> replay = replay_session({.folder = run, .every = 50});
   INFO(replay.status().message);
   REQUIRE(replay.ok());
@@ -139,7 +137,7 @@ TEST_CASE("a replay reaches the run's surfaces to the bit, with frames at stroke
 
 TEST_CASE("the page's frames are the surfaces at the mesh's (u, v); it moved in where pressed",
           "[view]") {
-  const Result<SessionReplay> replay = replay_session({.folder = finished_run()});
+  const Result<SessionReplay> replay = replay_session({.folder = finished_run("page")});
   REQUIRE(replay.ok());
   const Result<std::string> page = session_view_page(replay.value(), {.title = "plate"});
   INFO(page.status().message);
@@ -185,7 +183,7 @@ TEST_CASE("the page's frames are the surfaces at the mesh's (u, v); it moved in 
 
 TEST_CASE("a replay refuses what is not the run: a folder, another scene, a changed recording",
           "[view]") {
-  const fs::path& run = finished_run();
+  const fs::path run = finished_run("refusals");
   SECTION("a folder without a run names summary.json") {
     fs::create_directories(kWork / "empty");
     const Result<SessionReplay> r = replay_session({.folder = kWork / "empty"});
