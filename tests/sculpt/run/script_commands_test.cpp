@@ -10,11 +10,15 @@
 
 #include "argil/io/files/model_files.hpp"
 #include "argil/sculpt/run/session_runner.hpp"
+#include "run_checks.hpp"
 
 namespace argil::sculpt {
 namespace {
 
 namespace fs = std::filesystem;
+using test::poles_of;
+using test::run_ok;
+using test::same_bits;
 
 const fs::path kWork = fs::path(ARGIL_BINARY_DIR) / "script-commands-test";
 const fs::path kScene = fs::path(ARGIL_SOURCE_DIR) / "tests/data/sculpt/good.json";
@@ -40,33 +44,7 @@ fs::path script_with(const std::string& name, const std::string& tail) {
 }
 
 RunOptions options_for(const fs::path& script, const fs::path& out, bool fresh = true) {
-  RunOptions o{.scene = kScene, .script = script, .out = out, .fresh = fresh};
-  o.outputs = OutputOptions{.step = false,
-                            .iges = false,
-                            .json = true,
-                            .forces = false,
-                            .contacts = false,
-                            .timing = false,
-                            .pictures = false};
-  return o;
-}
-
-ControlNet poles_of(const fs::path& file) {
-  const Result<io::Model> model = io::read_model(file);
-  REQUIRE(model.ok());
-  return model.value().faces[0].surface.control_points;
-}
-
-bool same_bits(const ControlNet& a, const ControlNet& b) {
-  return a.size() == b.size() &&
-         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
-}
-
-RunReport run_ok(const RunOptions& options) {
-  Result<RunReport> report = run_session(options);
-  INFO(report.status().message);
-  REQUIRE(report.ok());
-  return std::move(report).value();
+  return test::json_run(kScene, script, out, fresh);
 }
 
 }  // namespace

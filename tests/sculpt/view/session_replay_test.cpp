@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "../run/run_checks.hpp"
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/io/files/model_files.hpp"
 #include "argil/sculpt/run/session_runner.hpp"
@@ -19,6 +20,7 @@ namespace argil::sculpt {
 namespace {
 
 namespace fs = std::filesystem;
+using test::same_bits;
 
 const fs::path kWork = fs::path(ARGIL_BINARY_DIR) / "session-replay-test";
 const fs::path kScene = fs::path(ARGIL_SOURCE_DIR) / "tests/data/sculpt/good.json";
@@ -47,17 +49,8 @@ fs::path write_script(const std::string& name) {
 /// as separate processes side by side.
 fs::path finished_run(const std::string& name) {
   const fs::path folder = kWork / name;
-  RunOptions options{.scene = kScene, .script = write_script(name), .out = folder, .fresh = true};
-  options.outputs = OutputOptions{.step = false, .iges = false, .pictures = false};
-  const Result<RunReport> report = run_session(options);
-  INFO(report.status().message);
-  REQUIRE(report.ok());
+  test::run_ok(test::json_run(kScene, write_script(name), folder));
   return folder;
-}
-
-bool same_bits(const ControlNet& a, const ControlNet& b) {
-  return a.size() == b.size() &&
-         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
 }
 
 std::vector<std::uint8_t> unbase64(const std::string& text) {

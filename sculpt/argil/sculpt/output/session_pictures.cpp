@@ -109,21 +109,30 @@ SurfacePictureOptions signed_colouring(const io::Model& before, const io::Triang
   return options;
 }
 
-/// The box of the vertices that moved by more than a tenth of the largest
-/// movement (and eps): the visible change. Grown by half its size and to at
-/// least three tool radii; none when nothing moved by more than eps or when
-/// it spans more than a third of the model (the whole view shows it).
-std::optional<Box3> moved_region(const io::TriangleMesh& after_mesh,
-                                 const std::vector<Eigen::Vector3d>& moved, double tolerance_mm,
-                                 double tool_radius_mm, const Box3& models) {
+/// The vertices that moved by more than a tenth of the largest movement (and
+/// eps): the visible change; none when nothing moved by more than eps.
+std::vector<Eigen::Index> visibly_moved(const std::vector<Eigen::Vector3d>& moved,
+                                        double tolerance_mm) {
   double largest = 0.0;
   for (const Eigen::Vector3d& m : moved) largest = std::max(largest, m.norm());
-  if (!(largest > tolerance_mm)) return std::nullopt;
+  std::vector<Eigen::Index> out;
+  if (!(largest > tolerance_mm)) return out;
   const double visible = std::max(tolerance_mm, 0.1 * largest);
+  for (std::size_t k = 0; k < moved.size(); ++k)
+    if (moved[k].norm() > visible) out.push_back(static_cast<Eigen::Index>(k));
+  return out;
+}
+
+/// The box of the visible change. Grown by half its size and to at least
+/// three tool radii; none when nothing moved visibly or when it spans more
+/// than a third of the model (the whole view shows it).
+std::optional<Box3> moved_region(const io::TriangleMesh& after_mesh,
+                                 const std::vector<Eigen::Index>& visible, double tool_radius_mm,
+                                 const Box3& models) {
+  if (visible.empty()) return std::nullopt;
   Box3 box{Eigen::Vector3d::Constant(1e300), Eigen::Vector3d::Constant(-1e300)};
-  for (std::size_t k = 0; k < moved.size(); ++k) {
-    if (!(moved[k].norm() > visible)) continue;
-    const Eigen::Vector3d p = after_mesh.positions.row(static_cast<Eigen::Index>(k)).transpose();
+  for (const Eigen::Index k : visible) {
+    const Eigen::Vector3d p = after_mesh.positions.row(k).transpose();
     box.min = box.min.cwiseMin(p);
     box.max = box.max.cwiseMax(p);
   }
@@ -135,20 +144,13 @@ std::optional<Box3> moved_region(const io::TriangleMesh& after_mesh,
 }
 
 /// Where to look at the change from: the mean outward normal of the vertices
-/// that moved visibly (as moved_region counts them), tilted a third of the
-/// way towards the whole view's eye so its relief shows; none when nothing
-/// moved visibly or the normals cancel out.
+/// that moved visibly, tilted a third of the way towards the whole view's eye
+/// so its relief shows; none when the normals cancel out.
 std::optional<Eigen::Vector3d> change_eye(const io::TriangleMesh& after_mesh,
-                                          const std::vector<Eigen::Vector3d>& moved,
-                                          double tolerance_mm, const Eigen::Vector3d& view_eye) {
-  double largest = 0.0;
-  for (const Eigen::Vector3d& m : moved) largest = std::max(largest, m.norm());
-  const double visible = std::max(tolerance_mm, 0.1 * largest);
+                                          const std::vector<Eigen::Index>& visible,
+                                          const Eigen::Vector3d& view_eye) {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < moved.size(); ++k) {
-    if (moved[k].norm() > visible)
-      normal += after_mesh.normals.row(static_cast<Eigen::Index>(k)).transpose();
-  }
+  for (const Eigen::Index k : visible) normal += after_mesh.normals.row(k).transpose();
   if (!(normal.norm() > 1e-9)) return std::nullopt;
   normal.normalize();
   const Eigen::Vector3d tangent = view_eye - view_eye.dot(normal) * normal;
@@ -192,11 +194,11 @@ Status write_session_pictures(const SessionPicturesRequest& request,
       signed_colouring(before, after_mesh.value(), moved, request.tolerance_mm, title);
   after_options.tool_position = before_options.tool_position;
   after_options.tool_radius_mm = before_options.tool_radius_mm;
-  after_options.zoom = moved_region(after_mesh.value(), moved, request.tolerance_mm,
-                                    after_options.tool_radius_mm, models);
+  const std::vector<Eigen::Index> visible = visibly_moved(moved, request.tolerance_mm);
+  after_options.zoom =
+      moved_region(after_mesh.value(), visible, after_options.tool_radius_mm, models);
   if (after_options.zoom) {
-    after_options.zoom_eye =
-        change_eye(after_mesh.value(), moved, request.tolerance_mm, camera.eye_direction);
+    after_options.zoom_eye = change_eye(after_mesh.value(), visible, camera.eye_direction);
   }
   const struct {
     const char* name;

@@ -187,29 +187,26 @@ Status Replayer::apply_command(const ScriptSampler::Command& command, long long 
 }
 
 Status Replayer::run(long long every) {
-  Session& session = session_;
-  SessionReplay& replay = replay_;
-  const ScriptSampler& sampler = sampler_;
-  const std::vector<ScriptSampler::Command>& commands = sampler.commands();
+  const std::vector<ScriptSampler::Command>& commands = sampler_.commands();
   std::size_t next_command = 0;
-  const long long total = sampler.tick_count();
+  const long long total = sampler_.tick_count();
   for (long long k = 0; k < total; ++k) {
     for (; next_command < commands.size() && commands[next_command].tick <= k; ++next_command) {
       const Status applied = apply_command(commands[next_command], k);
       if (!applied.ok()) return applied;
     }
-    const DeviceSample sample = sampler.sample(k);
-    Result<TickReport> stepped = session.step(sample);
+    const DeviceSample sample = sampler_.sample(k);
+    Result<TickReport> stepped = session_.step(sample);
     if (!stepped.ok()) return stepped.status();
     const TickReport& report = stepped.value();
     if (const Status checked = check(k + 1); !checked.ok()) return checked;
-    replay.time.push_back(report.time);
-    replay.device.push_back(sample.X_WD.p);
-    replay.orientation.push_back(sample.X_WD.R);
-    replay.proxy.push_back(report.proxy);
-    replay.engaged.push_back(sample.engaged);
-    replay.force.push_back(report.force);
-    replay.tool_index.push_back(report.tool);
+    replay_.time.push_back(report.time);
+    replay_.device.push_back(sample.X_WD.p);
+    replay_.orientation.push_back(sample.X_WD.R);
+    replay_.proxy.push_back(report.proxy);
+    replay_.engaged.push_back(sample.engaged);
+    replay_.force.push_back(report.force);
+    replay_.tool_index.push_back(report.tool);
     const char* kind = k + 1 == total           ? "end"
                        : report.stroke_finished ? "stroke end"
                        : (k + 1) % every == 0   ? "tick"
@@ -217,7 +214,7 @@ Status Replayer::run(long long every) {
     if (kind == nullptr) continue;
     std::vector<Eigen::Vector3d> contacts;
     for (const ContactRecord& c : report.contacts) contacts.push_back(c.point);
-    add_frame(session, k, report.time, kind, std::move(contacts), replay);
+    add_frame(session_, k, report.time, kind, std::move(contacts), replay_);
   }
   return Status::success();
 }
