@@ -550,7 +550,9 @@ class PairDescent {
         continue;
       }
       // Leaf pair: flat nodes are hierarchy nodes (blocks are never flat).
-      if (examine_leaf_pair(ea, eb) && request_.first_crossing_only) break;
+      if (examine_leaf_pair(ea, eb) &&
+          (request_.first_crossing_only || request_.first_contact_only))
+        break;
     }
   }
 
@@ -607,8 +609,10 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
                               placed_b->p.transpose())
                                  .eval();
   }
+  // The scale bounds refinement only: a pass over every pole, skipped by the
+  // haptic proxies' many unrefined queries.
   const SurfacePair pair{ha.surface(), placed_b && exact_b ? moved_b : hb.surface(),
-                         scale_of(ha.surface(), hb.surface())};
+                         request.refine ? scale_of(ha.surface(), hb.surface()) : 0.0};
   if (request.curves) {
     detail::ChainedCurves chained = detail::chain_segments(descent.segments, request.tolerance);
     result.curves = std::move(chained.curves);
@@ -618,7 +622,7 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
                                          request.tolerance);
     }
     // A yes/no test needs only whether there is a curve.
-    if (!request.first_crossing_only)
+    if (!request.first_crossing_only && !request.first_contact_only)
       result.curves = detail::tidy_curves(
           std::move(result.curves), request.tolerance,
           request.refine ? bridge_for(pair, request.tolerance) : detail::GapBridge{});
@@ -628,7 +632,8 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   for (const PendingContact& p : descent.pending)
     leaves.push_back(finish_contact(pair, p, request.refine));
   // Penetration needs each region's full extent, so trim only after adding it.
-  const bool penetration = request.compute_depth && !request.first_crossing_only;
+  const bool penetration =
+      request.compute_depth && !request.first_crossing_only && !request.first_contact_only;
   ContactRegions regions =
       group_regions(leaves, penetration ? std::numeric_limits<int>::max() : request.max_contacts);
   result.contacts = std::move(regions.contacts);

@@ -20,36 +20,31 @@ double PoleStencilMatrix::diagonal(Eigen::Index pole) const {
 }
 
 Eigen::MatrixXd PoleStencilMatrix::multiply(const Eigen::Ref<const Eigen::MatrixXd>& x) const {
-  Eigen::MatrixXd y = Eigen::MatrixXd::Zero(x.rows(), x.cols());
-  for (int i = 0; i < count_u_; ++i) {
-    for (int j = 0; j < count_v_; ++j) {
-      const Eigen::Index a = static_cast<Eigen::Index>(i) * count_v_ + j;
-      for (int di = std::max(-reach_u_, -i); di <= std::min(reach_u_, count_u_ - 1 - i); ++di) {
-        for (int dj = std::max(-reach_v_, -j); dj <= std::min(reach_v_, count_v_ - 1 - j); ++dj) {
-          const double k = at(i, j, di, dj);
-          if (k == 0.0) continue;
-          const Eigen::Index b = static_cast<Eigen::Index>(i + di) * count_v_ + (j + dj);
-          y.row(a) += k * x.row(b);
-        }
-      }
-    }
-  }
+  Eigen::MatrixXd y(x.rows(), x.cols());
+  multiply_rows(x, 0, count_u_, 0, count_v_, y);
   return y;
 }
 
 void PoleStencilMatrix::multiply_rows(const Eigen::Ref<const Eigen::MatrixXd>& x, int i0, int i1,
                                       int j0, int j1, Eigen::Ref<Eigen::MatrixXd> y) const {
+  // Along dj both a stencil row and a column of x are contiguous: each
+  // (di, column) term is a short dot product.
+  const int width = width_u() * width_v();
   for (int i = std::max(0, i0); i < std::min(i1, count_u_); ++i) {
+    const int di_lo = std::max(-reach_u_, -i), di_hi = std::min(reach_u_, count_u_ - 1 - i);
     for (int j = std::max(0, j0); j < std::min(j1, count_v_); ++j) {
+      const int dj_lo = std::max(-reach_v_, -j), dj_hi = std::min(reach_v_, count_v_ - 1 - j);
       const Eigen::Index a = static_cast<Eigen::Index>(i) * count_v_ + j;
-      y.row(a).setZero();
-      for (int di = std::max(-reach_u_, -i); di <= std::min(reach_u_, count_u_ - 1 - i); ++di) {
-        for (int dj = std::max(-reach_v_, -j); dj <= std::min(reach_v_, count_v_ - 1 - j); ++dj) {
-          const double k = at(i, j, di, dj);
-          if (k == 0.0) continue;
-          const Eigen::Index b = static_cast<Eigen::Index>(i + di) * count_v_ + (j + dj);
-          y.row(a) += k * x.row(b);
+      const double* stencil = values_.data() + static_cast<std::size_t>(a) * width;
+      for (Eigen::Index c = 0; c < x.cols(); ++c) {
+        const double* column = x.col(c).data();
+        double sum = 0.0;
+        for (int di = di_lo; di <= di_hi; ++di) {
+          const double* k = stencil + (di + reach_u_) * width_v() + reach_v_;
+          const double* xb = column + static_cast<Eigen::Index>(i + di) * count_v_ + j;
+          for (int dj = dj_lo; dj <= dj_hi; ++dj) sum += k[dj] * xb[dj];
         }
+        y(a, c) = sum;
       }
     }
   }

@@ -33,7 +33,8 @@ class PoleStencilMatrix {
   /// K x for x with one row per pole (row i * count_v + j), any columns.
   Eigen::MatrixXd multiply(const Eigen::Ref<const Eigen::MatrixXd>& x) const;
   /// Rows (i, j), i0 <= i < i1, j0 <= j < j1, of K x into the same rows of y
-  /// (overwritten; other rows untouched), each summed as multiply() sums it.
+  /// (overwritten; other rows untouched), each summed as multiply() sums it
+  /// (over di, then dj).
   void multiply_rows(const Eigen::Ref<const Eigen::MatrixXd>& x, int i0, int i1, int j0, int j1,
                      Eigen::Ref<Eigen::MatrixXd> y) const;
   /// sum over columns c of x_c^T K x_c.

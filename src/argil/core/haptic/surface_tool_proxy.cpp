@@ -30,8 +30,10 @@ Result<SurfaceToolProxy> SurfaceToolProxy::create(const BSplineSurface& tool, do
   return SurfaceToolProxy(tool, std::move(h).value(), eps);
 }
 
+int g_full_queries = 0, g_cross_queries = 0;
 ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy*>& surfaces,
                                         const Pose& X_WT) {
+  ++g_full_queries;
   const Eigen::Vector3d centre = apply(X_WT, centre_T_);
   ToolContacts out;
   out.per_surface.resize(surfaces.size());
@@ -59,24 +61,38 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
   return out;
 }
 
-SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
-    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT) {
-  // A yes/no test: the descent stops at the first crossing leaf pair.
-  const CollisionRequest request{.tolerance = eps_,
-                                 .max_contacts = 1,
-                                 .refine = false,
-                                 .compute_depth = false,
-                                 .first_crossing_only = true,
-                                 .curves = false};
+SurfaceToolProxy::Probe SurfaceToolProxy::probe(
+    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
+    const CollisionRequest& request) {
   for (const SurfaceHierarchy* surface : surfaces) {
     if (!surface) continue;
     CollisionResult r = collide(*surface, hierarchy_, X_WT, request);
-    // A failed query counts as crossing: the proxy must not move where it
-    // cannot prove it is clear.
     if (!r.status.ok()) return {std::move(r.status), true};
     if (!r.contacts.empty()) return {Status::success(), true};
   }
   return {Status::success(), false};
+}
+
+SurfaceToolProxy::Probe SurfaceToolProxy::crossing(
+    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT) {
+  return probe(surfaces, X_WT,
+               {.tolerance = eps_,
+                .max_contacts = 1,
+                .refine = false,
+                .compute_depth = false,
+                .first_crossing_only = true,
+                .curves = false});
+}
+
+SurfaceToolProxy::Probe SurfaceToolProxy::touching(
+    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT) {
+  return probe(surfaces, X_WT,
+               {.tolerance = eps_,
+                .max_contacts = 1,
+                .refine = false,
+                .compute_depth = false,
+                .first_contact_only = true,
+                .curves = false});
 }
 
 SurfaceToolProxy::Advance SurfaceToolProxy::bisect(
@@ -86,9 +102,9 @@ SurfaceToolProxy::Advance SurfaceToolProxy::bisect(
   const double span = (crossing_pose.p - clear.p).norm();
   for (int i = 0; i < kMaxBisections && (hi - lo) * span > 0.5 * eps_; ++i) {
     const double mid = 0.5 * (lo + hi);
-    Crossing c = crossing(surfaces, interpolate(clear, crossing_pose, mid));
+    Probe c = crossing(surfaces, interpolate(clear, crossing_pose, mid));
     if (!c.status.ok()) return {std::move(c.status), interpolate(clear, crossing_pose, lo), true};
-    (c.crosses ? hi : lo) = mid;
+    (c.found ? hi : lo) = mid;
   }
   return {Status::success(), interpolate(clear, crossing_pose, lo), true};
 }
@@ -101,9 +117,9 @@ SurfaceToolProxy::Advance SurfaceToolProxy::advance(
   Pose good = from;
   for (int k = 1; k <= count; ++k) {
     const Pose next = interpolate(from, to, static_cast<double>(k) / count);
-    Crossing c = crossing(surfaces, next);
+    Probe c = crossing(surfaces, next);
     if (!c.status.ok()) return {std::move(c.status), good, true};
-    if (!c.crosses) {
+    if (!c.found) {
       good = next;
       continue;
     }
@@ -116,8 +132,8 @@ ToolMove SurfaceToolProxy::push_out(const std::vector<const SurfaceHierarchy*>& 
                                     const Pose& from, const Pose& to) {
   Pose start = from;
   // The yes/no test first: most moves start clear of every surface.
-  Crossing clear = crossing(surfaces, start);
-  if (!clear.status.ok() || !clear.crosses) return {std::move(clear.status), start};
+  Probe clear = crossing(surfaces, start);
+  if (!clear.status.ok() || !clear.found) return {std::move(clear.status), start};
   ToolContacts at_start = contacts(surfaces, start);
   // Pushed out along the contact normal by doubling distances when the start crosses.
   for (double push = eps_; at_start.status.ok() && at_start.crosses && push < 4.0 * size_;
@@ -134,10 +150,11 @@ ToolMove SurfaceToolProxy::push_out(const std::vector<const SurfaceHierarchy*>& 
 }
 
 ToolMove SurfaceToolProxy::move(const std::vector<const SurfaceHierarchy*>& surfaces,
-                                const Pose& X_WT_from, const Pose& X_WT_to) {
+                                const Pose& X_WT_from, const Pose& X_WT_to, Start from) {
   // The tool is never re-posed, so its nodes only grow: bound them here.
   hierarchy_.keep_within_node_budget();
-  ToolMove start = push_out(surfaces, X_WT_from, X_WT_to);
+  ToolMove start = from == Start::clear ? ToolMove{Status::success(), X_WT_from}
+                                        : push_out(surfaces, X_WT_from, X_WT_to);
   if (!start.status.ok()) return start;
   Advance stop = advance(surfaces, start.X_WT, X_WT_to);
   if (!stop.status.ok() || !stop.blocked) return {std::move(stop.status), stop.X_WT};

@@ -51,11 +51,29 @@ class SurfaceToolProxy {
   static Result<SurfaceToolProxy> create(const BSplineSurface& tool, double eps,
                                          OperatorCache& cache);
 
+  /// The answer of a yes/no test. A failed query answers yes (with its
+  /// status): the proxy must not move where it cannot prove it is clear.
+  struct [[nodiscard]] Probe {
+    Status status;
+    bool found = false;
+  };
+  /// Whether the tool at X_WT crosses any surface. The descent stops at the
+  /// first crossing leaf pair: many times cheaper than contacts() where the
+  /// tool lies on a surface.
+  Probe crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
+  /// Whether the tool at X_WT touches any surface within eps (crossing or
+  /// not), stopping at the first leaf pair that does.
+  Probe touching(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
   /// The tool posed at X_WT, collided with every surface.
   ToolContacts contacts(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
+  /// What the caller knows of a move's start pose.
+  enum class Start {
+    unknown,  // tested first, and pushed out when it crosses
+    clear,    // the caller has just found it crosses nothing, at these surfaces
+  };
   /// Moves from X_WT_from towards X_WT_to (rotation interpolated by slerp).
   ToolMove move(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT_from,
-                const Pose& X_WT_to);
+                const Pose& X_WT_to, Start start = Start::unknown);
   /// The tool's hierarchy, in its own frame T.
   const SurfaceHierarchy& hierarchy() const { return hierarchy_; }
   /// Diagonal of the tool's control-point box [mm].
@@ -63,11 +81,6 @@ class SurfaceToolProxy {
   static constexpr int kMaxBisections = 12;
 
  private:
-  /// Whether the tool at a pose crosses any surface.
-  struct [[nodiscard]] Crossing {
-    Status status;
-    bool crosses = false;
-  };
   /// The end of one conservative advance.
   struct [[nodiscard]] Advance {
     Status status;
@@ -75,7 +88,9 @@ class SurfaceToolProxy {
     bool blocked = false;
   };
   SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy hierarchy, double eps);
-  Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
+  /// A yes/no query of every surface: whether any returns a contact.
+  Probe probe(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
+              const CollisionRequest& request);
   /// From a pose that does not cross towards `to`: the last pose that does not.
   Advance advance(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from,
                   const Pose& to);
