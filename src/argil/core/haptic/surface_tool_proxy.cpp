@@ -30,10 +30,8 @@ Result<SurfaceToolProxy> SurfaceToolProxy::create(const BSplineSurface& tool, do
   return SurfaceToolProxy(tool, std::move(h).value(), eps);
 }
 
-int g_full_queries = 0, g_cross_queries = 0;
 ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy*>& surfaces,
                                         const Pose& X_WT) {
-  ++g_full_queries;
   const Eigen::Vector3d centre = apply(X_WT, centre_T_);
   ToolContacts out;
   out.per_surface.resize(surfaces.size());
