@@ -28,10 +28,6 @@ struct CollisionRequest {
   /// contact, with depth 0, and its segments); near-touches are not looked for.
   /// An empty result means no crossing.
   bool first_crossing_only = false;
-  /// Surface-surface queries: a yes/no contact test. The descent stops at the
-  /// first leaf pair with a contact, crossing or within eps (the result then
-  /// holds that one contact). An empty result means nothing within eps.
-  bool first_contact_only = false;
   /// Surface-surface queries: chain the crossing segments into curves (then
   /// refined and tidied). False for callers that use only the contacts, like
   /// the haptic tick: curves stay empty, and a crossing still shows as a

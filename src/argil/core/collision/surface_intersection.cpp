@@ -550,9 +550,7 @@ class PairDescent {
         continue;
       }
       // Leaf pair: flat nodes are hierarchy nodes (blocks are never flat).
-      if (examine_leaf_pair(ea, eb) &&
-          (request_.first_crossing_only || request_.first_contact_only))
-        break;
+      if (examine_leaf_pair(ea, eb) && request_.first_crossing_only) break;
     }
   }
 
@@ -622,7 +620,7 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
                                          request.tolerance);
     }
     // A yes/no test needs only whether there is a curve.
-    if (!request.first_crossing_only && !request.first_contact_only)
+    if (!request.first_crossing_only)
       result.curves = detail::tidy_curves(
           std::move(result.curves), request.tolerance,
           request.refine ? bridge_for(pair, request.tolerance) : detail::GapBridge{});
@@ -632,8 +630,7 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   for (const PendingContact& p : descent.pending)
     leaves.push_back(finish_contact(pair, p, request.refine));
   // Penetration needs each region's full extent, so trim only after adding it.
-  const bool penetration =
-      request.compute_depth && !request.first_crossing_only && !request.first_contact_only;
+  const bool penetration = request.compute_depth && !request.first_crossing_only;
   ContactRegions regions =
       group_regions(leaves, penetration ? std::numeric_limits<int>::max() : request.max_contacts);
   result.contacts = std::move(regions.contacts);

@@ -237,9 +237,6 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
   // 3. Contacts and the coupling force; 4. the bodies stepped under it.
   const ContactSummary summary = summarize(move.body_contacts, options_.tolerance);
   next.in_contact = summary.contacts > 0;
-  next.contact_normal = move.outward_normal;
-  for (std::size_t b = 0; b < move.body_contacts.size() && next.touched_body < 0; ++b)
-    if (!move.body_contacts[b].empty()) next.touched_body = static_cast<int>(b);
   const CouplingOptions& coupling = options_.coupling;
   const Eigen::Vector3d spring =
       coupling.stiffness * (device.X_WD.p - next.X_WT.p) + coupling.damping * (v_WD - next.v_WT);

@@ -44,11 +44,6 @@ struct ProxyState {
   Eigen::Vector3d v_WT = Eigen::Vector3d::Zero();  // velocity of T's origin in W [mm/s]
   bool in_contact = false;
   bool stuck = false;  // held by static friction this tick
-  /// Mean unit normal of the contacts at X_WT, from the surfaces towards the
-  /// proxy, as the bodies were before this tick's step (zero without contacts).
-  Eigen::Vector3d contact_normal = Eigen::Vector3d::Zero();
-  /// The first body (by index) with a contact at X_WT; -1 without contacts.
-  int touched_body = -1;
 };
 
 struct [[nodiscard]] TickResult {

@@ -59,38 +59,24 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
   return out;
 }
 
-SurfaceToolProxy::Probe SurfaceToolProxy::probe(
-    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
-    const CollisionRequest& request) {
+SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
+    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT) {
+  // A yes/no test: the descent stops at the first crossing leaf pair.
+  const CollisionRequest request{.tolerance = eps_,
+                                 .max_contacts = 1,
+                                 .refine = false,
+                                 .compute_depth = false,
+                                 .first_crossing_only = true,
+                                 .curves = false};
   for (const SurfaceHierarchy* surface : surfaces) {
     if (!surface) continue;
     CollisionResult r = collide(*surface, hierarchy_, X_WT, request);
+    // A failed query counts as crossing: the proxy must not move where it
+    // cannot prove it is clear.
     if (!r.status.ok()) return {std::move(r.status), true};
     if (!r.contacts.empty()) return {Status::success(), true};
   }
   return {Status::success(), false};
-}
-
-SurfaceToolProxy::Probe SurfaceToolProxy::crossing(
-    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT) {
-  return probe(surfaces, X_WT,
-               {.tolerance = eps_,
-                .max_contacts = 1,
-                .refine = false,
-                .compute_depth = false,
-                .first_crossing_only = true,
-                .curves = false});
-}
-
-SurfaceToolProxy::Probe SurfaceToolProxy::touching(
-    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT) {
-  return probe(surfaces, X_WT,
-               {.tolerance = eps_,
-                .max_contacts = 1,
-                .refine = false,
-                .compute_depth = false,
-                .first_contact_only = true,
-                .curves = false});
 }
 
 SurfaceToolProxy::Advance SurfaceToolProxy::bisect(
@@ -98,13 +84,21 @@ SurfaceToolProxy::Advance SurfaceToolProxy::bisect(
     const Pose& crossing_pose) {
   double lo = 0.0, hi = 1.0;
   const double span = (crossing_pose.p - clear.p).norm();
-  for (int i = 0; i < kMaxBisections && (hi - lo) * span > 0.5 * eps_; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    Probe c = crossing(surfaces, interpolate(clear, crossing_pose, mid));
-    if (!c.status.ok()) return {std::move(c.status), interpolate(clear, crossing_pose, lo), true};
-    (c.found ? hi : lo) = mid;
-  }
-  return {Status::success(), interpolate(clear, crossing_pose, lo), true};
+  const auto test = [&](double t) -> std::optional<Status> {
+    Crossing c = crossing(surfaces, interpolate(clear, crossing_pose, t));
+    if (!c.status.ok()) return std::move(c.status);
+    (c.crosses ? hi : lo) = t;
+    return std::nullopt;
+  };
+  // A tool resting on a surface is blocked within a few eps of where it
+  // starts: eps / 2 ahead first, doubling, before halving the interval.
+  for (double t = 0.5 * eps_ / span; t < hi && (hi - lo) * span > 0.5 * eps_; t *= 2.0)
+    if (std::optional<Status> failed = test(t))
+      return {std::move(*failed), interpolate(clear, crossing_pose, lo), true, std::nullopt};
+  for (int i = 0; i < kMaxBisections && (hi - lo) * span > 0.5 * eps_; ++i)
+    if (std::optional<Status> failed = test(0.5 * (lo + hi)))
+      return {std::move(*failed), interpolate(clear, crossing_pose, lo), true, std::nullopt};
+  return {Status::success(), interpolate(clear, crossing_pose, lo), true, std::nullopt};
 }
 
 SurfaceToolProxy::Advance SurfaceToolProxy::advance(
@@ -113,25 +107,36 @@ SurfaceToolProxy::Advance SurfaceToolProxy::advance(
   const double step = std::max(0.25 * size_, 10.0 * eps_);
   const int count = std::clamp(static_cast<int>(std::ceil(length / step)), 1, 256);
   Pose good = from;
-  for (int k = 1; k <= count; ++k) {
+  for (int k = 1; k < count; ++k) {
     const Pose next = interpolate(from, to, static_cast<double>(k) / count);
-    Probe c = crossing(surfaces, next);
-    if (!c.status.ok()) return {std::move(c.status), good, true};
-    if (!c.found) {
-      good = next;
-      continue;
-    }
-    return bisect(surfaces, good, next);
+    Crossing c = crossing(surfaces, next);
+    if (!c.status.ok()) return {std::move(c.status), good, true, std::nullopt};
+    if (c.crosses) return bisect(surfaces, good, next);
+    good = next;
   }
-  return {Status::success(), good, false};
+  // The last substep: the contact query answers the crossing test too, and
+  // its contacts are the move's when it crosses nothing.
+  const Pose end = interpolate(from, to, 1.0);
+  ToolContacts at = contacts(surfaces, end);
+  if (!at.status.ok()) return {std::move(at.status), good, true, std::nullopt};
+  if (at.crosses) return bisect(surfaces, good, end);
+  return {Status::success(), end, false, std::move(at)};
+}
+
+ToolMove SurfaceToolProxy::arrive(const std::vector<const SurfaceHierarchy*>& surfaces,
+                                  Advance end) {
+  if (!end.status.ok()) return {std::move(end.status), end.X_WT, {}};
+  if (!end.contacts) end.contacts = contacts(surfaces, end.X_WT);
+  Status status = end.contacts->status;
+  return {std::move(status), end.X_WT, std::move(*end.contacts)};
 }
 
 ToolMove SurfaceToolProxy::push_out(const std::vector<const SurfaceHierarchy*>& surfaces,
                                     const Pose& from, const Pose& to) {
   Pose start = from;
   // The yes/no test first: most moves start clear of every surface.
-  Probe clear = crossing(surfaces, start);
-  if (!clear.status.ok() || !clear.found) return {std::move(clear.status), start};
+  Crossing clear = crossing(surfaces, start);
+  if (!clear.status.ok() || !clear.crosses) return {std::move(clear.status), start, {}};
   ToolContacts at_start = contacts(surfaces, start);
   // Pushed out along the contact normal by doubling distances when the start crosses.
   for (double push = eps_; at_start.status.ok() && at_start.crosses && push < 4.0 * size_;
@@ -144,28 +149,30 @@ ToolMove SurfaceToolProxy::push_out(const std::vector<const SurfaceHierarchy*>& 
     at_start = contacts(surfaces, out);
     if (at_start.status.ok() && !at_start.crosses) start = out;
   }
-  return {std::move(at_start.status), start};
+  return {std::move(at_start.status), start, {}};
 }
 
 ToolMove SurfaceToolProxy::move(const std::vector<const SurfaceHierarchy*>& surfaces,
                                 const Pose& X_WT_from, const Pose& X_WT_to, Start from) {
   // The tool is never re-posed, so its nodes only grow: bound them here.
   hierarchy_.keep_within_node_budget();
-  ToolMove start = from == Start::clear ? ToolMove{Status::success(), X_WT_from}
+  ToolMove start = from == Start::clear ? ToolMove{Status::success(), X_WT_from, {}}
                                         : push_out(surfaces, X_WT_from, X_WT_to);
   if (!start.status.ok()) return start;
   Advance stop = advance(surfaces, start.X_WT, X_WT_to);
-  if (!stop.status.ok() || !stop.blocked) return {std::move(stop.status), stop.X_WT};
+  if (!stop.status.ok() || !stop.blocked) return arrive(surfaces, std::move(stop));
   // Slide: the rest of the move without its component into the surface.
   ToolContacts touch = contacts(surfaces, stop.X_WT);
-  if (!touch.status.ok()) return {std::move(touch.status), stop.X_WT};
+  if (!touch.status.ok()) return {std::move(touch.status), stop.X_WT, {}};
   Eigen::Vector3d rest = X_WT_to.p - stop.X_WT.p;
   const double into = rest.dot(touch.outward_normal);
   if (into < 0.0) rest -= into * touch.outward_normal;
+  // A slide shorter than the stop's own resolution (eps / 2) is not tried.
+  if (rest.norm() <= 0.5 * eps_ && stop.X_WT.R.coeffs() == X_WT_to.R.coeffs())
+    return {Status::success(), stop.X_WT, std::move(touch)};
   Pose slide_to = X_WT_to;
   slide_to.p = stop.X_WT.p + rest;
-  Advance slid = advance(surfaces, stop.X_WT, slide_to);
-  return {std::move(slid.status), slid.X_WT};
+  return arrive(surfaces, advance(surfaces, stop.X_WT, slide_to));
 }
 
 }  // namespace argil

@@ -6,6 +6,7 @@
 // along the surface after it stops.
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "argil/core/collision/contact.hpp"
@@ -26,23 +27,29 @@ struct [[nodiscard]] ToolContacts {
   Eigen::Vector3d outward_normal = Eigen::Vector3d::Zero();
 };
 
-/// Where a move stopped. Not ok when a collision query failed: the proxy then
-/// stops at the last pose known not to cross.
+/// Where a move stopped, and the tool's contacts there. Not ok when a
+/// collision query failed: the proxy then stops at the last pose known not to
+/// cross (its contacts are not known).
 struct [[nodiscard]] ToolMove {
   Status status;
   Pose X_WT;
+  ToolContacts contacts;
 };
 
 /// Conservative advancement: a move from a pose that crosses nothing goes in
 /// substeps of at most max(tool size / 4, 10 eps); a substep whose end crosses
-/// a surface is bisected until the last pose that does not cross is within
-/// eps / 2 of one that does, and the proxy stops there; the rest of the move,
+/// a surface is searched (eps / 2 into it, doubling, then bisection) until the
+/// last pose that does not cross is within eps / 2 of one that does, and the
+/// proxy stops there; the rest of the move,
 /// less its component into the surface, is tried once more the same way
 /// (sliding). So after a move the tool crosses no surface (touching within
 /// eps counts as contact, not crossing). A start pose that crosses (the
 /// surface moved into the tool) is first pushed out along the contact normal.
 /// A null surface is out of the tool's reach this tick: every query skips it
-/// (its contacts stay empty).
+/// (its contacts stay empty). Where the tool lies on a surface, the yes/no
+/// crossing test costs about what the full contact query costs (both examine
+/// every leaf pair within eps), so the last substep of a move is tested with
+/// the contact query, whose contacts the move then returns.
 class SurfaceToolProxy {
  public:
   /// `tool` in its own frame T; fails when it does not validate, or with
@@ -51,19 +58,6 @@ class SurfaceToolProxy {
   static Result<SurfaceToolProxy> create(const BSplineSurface& tool, double eps,
                                          OperatorCache& cache);
 
-  /// The answer of a yes/no test. A failed query answers yes (with its
-  /// status): the proxy must not move where it cannot prove it is clear.
-  struct [[nodiscard]] Probe {
-    Status status;
-    bool found = false;
-  };
-  /// Whether the tool at X_WT crosses any surface. The descent stops at the
-  /// first crossing leaf pair: many times cheaper than contacts() where the
-  /// tool lies on a surface.
-  Probe crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
-  /// Whether the tool at X_WT touches any surface within eps (crossing or
-  /// not), stopping at the first leaf pair that does.
-  Probe touching(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
   /// The tool posed at X_WT, collided with every surface.
   ToolContacts contacts(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
   /// What the caller knows of a move's start pose.
@@ -71,7 +65,8 @@ class SurfaceToolProxy {
     unknown,  // tested first, and pushed out when it crosses
     clear,    // the caller has just found it crosses nothing, at these surfaces
   };
-  /// Moves from X_WT_from towards X_WT_to (rotation interpolated by slerp).
+  /// Moves from X_WT_from towards X_WT_to (rotation interpolated by slerp);
+  /// the contacts where it stopped.
   ToolMove move(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT_from,
                 const Pose& X_WT_to, Start start = Start::unknown);
   /// The tool's hierarchy, in its own frame T.
@@ -81,22 +76,29 @@ class SurfaceToolProxy {
   static constexpr int kMaxBisections = 12;
 
  private:
+  /// Whether the tool at a pose crosses any surface.
+  struct [[nodiscard]] Crossing {
+    Status status;
+    bool crosses = false;
+  };
   /// The end of one conservative advance.
   struct [[nodiscard]] Advance {
     Status status;
     Pose X_WT;
     bool blocked = false;
+    std::optional<ToolContacts> contacts;  // at X_WT, when the advance queried them
   };
   SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy hierarchy, double eps);
-  /// A yes/no query of every surface: whether any returns a contact.
-  Probe probe(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
-              const CollisionRequest& request);
-  /// From a pose that does not cross towards `to`: the last pose that does not.
+  Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
+  /// From a pose that does not cross towards `to`: the last pose that does
+  /// not. Its last substep is tested with the contact query.
   Advance advance(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from,
                   const Pose& to);
   /// Bisects between `clear` (no crossing) and `crossing_pose`.
   Advance bisect(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& clear,
                  const Pose& crossing_pose);
+  /// An advance's end with its contacts (queried now when it has none).
+  ToolMove arrive(const std::vector<const SurfaceHierarchy*>& surfaces, Advance end);
   /// A start pose that crosses pushed out along the contact normal.
   ToolMove push_out(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from,
                     const Pose& to);
