@@ -58,6 +58,15 @@ class SurfaceToolProxy {
   static Result<SurfaceToolProxy> create(const BSplineSurface& tool, double eps,
                                          OperatorCache& cache);
 
+  /// Whether the tool at a pose crosses any surface. A failed query counts as
+  /// crossing (with its status): the proxy must not move where it cannot
+  /// prove it is clear.
+  struct [[nodiscard]] Crossing {
+    Status status;
+    bool crosses = false;
+  };
+  /// The yes/no test at X_WT: the descent stops at the first crossing leaf pair.
+  Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
   /// The tool posed at X_WT, collided with every surface.
   ToolContacts contacts(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
   /// What the caller knows of a move's start pose.
@@ -76,11 +85,6 @@ class SurfaceToolProxy {
   static constexpr int kMaxBisections = 12;
 
  private:
-  /// Whether the tool at a pose crosses any surface.
-  struct [[nodiscard]] Crossing {
-    Status status;
-    bool crosses = false;
-  };
   /// The end of one conservative advance.
   struct [[nodiscard]] Advance {
     Status status;
@@ -89,7 +93,6 @@ class SurfaceToolProxy {
     std::optional<ToolContacts> contacts;  // at X_WT, when the advance queried them
   };
   SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy hierarchy, double eps);
-  Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
   /// From a pose that does not cross towards `to`: the last pose that does
   /// not. Its last substep is tested with the contact query.
   Advance advance(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from,
