@@ -74,9 +74,10 @@ void check_contacts_at_end(argil::SurfaceToolProxy& proxy,
 TEST_CASE("a B-spline tool moved onto a floor stops within eps / 2 of crossing it", "[haptic]") {
   Fixture f;
   const std::vector<const argil::SurfaceHierarchy*> floor{&f.flat};
-  // Straight down from 5 mm and from 60 mm above (one substep, then many)
-  // to where the cap would be 0.8 mm into the floor (its lowest point is 1.2
-  // mm above its origin): no slide, so the search's stop is the move's end.
+  // Straight down from 5 mm and from 60 mm above (two substeps of at most
+  // 4.3 mm, then sixteen) to where the cap would be 0.8 mm into the floor
+  // (its lowest point is 1.2 mm above its origin): no slide, so the search's
+  // stop is the move's end.
   for (const double above : {5.0, 60.0}) {
     for (const double x : {20.0, 43.0, 61.5}) {
       const argil::ToolMove m =
@@ -110,7 +111,7 @@ TEST_CASE("a B-spline tool's move returns the contacts where it stopped, free or
     const argil::Pose to = argil::Pose::at({40.0, 40.0, 8.0});
     const argil::ToolMove m = f.proxy.move(floor, argil::Pose::at({20.0, 30.0, 10.0}), to);
     REQUIRE(m.status.ok());
-    CHECK(m.X_WT.p == to.p);
+    CHECK((m.X_WT.p - to.p).norm() <= 1e-12);
     CHECK(m.contacts.per_surface[0].empty());
     CHECK_FALSE(m.contacts.crosses);
   }
@@ -144,17 +145,46 @@ TEST_CASE("a B-spline tool's move returns the contacts where it stopped, free or
   }
 }
 
-TEST_CASE("known gap: a substep longer than the tool's thickness can pass through a surface",
-          "[haptic][!shouldfail]") {
+TEST_CASE("a B-spline tool stops at a crossing in the middle of a move", "[haptic]") {
+  // 5 mm above to 9 mm below: four substeps of 3.5 mm; the cap first crosses
+  // the floor at the second (z = -2) and stops on it, far from the move's end.
+  Fixture f;
+  const std::vector<const argil::SurfaceHierarchy*> floor{&f.flat};
+  const argil::ToolMove m =
+      f.proxy.move(floor, argil::Pose::at({30.0, 40.0, 5.0}), argil::Pose::at({30.0, 40.0, -9.0}));
+  REQUIRE(m.status.ok());
+  CHECK_FALSE(f.proxy.crossing(floor, m.X_WT).crosses);
+  argil::Pose lower = m.X_WT;
+  lower.p.z() -= 0.5 * kEps + 1e-9;
+  CHECK(f.proxy.crossing(floor, lower).crosses);
+  CHECK(m.X_WT.p.z() > -2.0);
+  check_contacts_at_end(f.proxy, floor, m);
+}
+
+TEST_CASE("a B-spline tool's move stops with the status of a failed query", "[haptic]") {
+  // A surface 0.003 mm wide is too small for eps = 0.05 mm: its query fails.
+  Fixture f;
+  const argil::SurfaceHierarchy tiny =
+      argil::SurfaceHierarchy::build(sheet(4, 0.001, 0.0), f.cache).value();
+  const std::vector<const argil::SurfaceHierarchy*> surfaces{&f.flat, &tiny};
+  const argil::ToolMove m = f.proxy.move(surfaces, argil::Pose::at({30.0, 40.0, 5.0}),
+                                         argil::Pose::at({30.0, 40.0, -2.0}));
+  CHECK(m.status.code == argil::StatusCode::invalid_argument);
+  CHECK(m.status.message.find("tolerance") != std::string::npos);
+}
+
+TEST_CASE("known gap: a substep longer than the tool's thickness passes through a surface",
+          "[haptic]") {
   // Crossing is tested at the ends of substeps (at most max(size / 4, 10
   // eps) long): the cap, 2.4 mm tall, moved 10 mm down through the floor in
-  // substeps of 3.3 mm is entirely below it at the last one and crosses at
-  // none. Haptic ticks move far less than this tool's height; a swept test
-  // would close the gap for any move.
+  // three substeps of 3.65 mm is entirely below it at the last one and
+  // crosses at none, so it ends under the floor. Haptic ticks move far less
+  // than this tool's height; a swept test would close the gap, and this test
+  // (which states the gap as it is) fails then, to be turned around.
   Fixture f;
   const std::vector<const argil::SurfaceHierarchy*> floor{&f.flat};
   const argil::ToolMove m =
       f.proxy.move(floor, argil::Pose::at({20.0, 30.0, 6.0}), argil::Pose::at({24.0, 28.0, -4.0}));
   REQUIRE(m.status.ok());
-  CHECK(m.X_WT.p.z() > -1.3);  // stopped on the floor (fails: it ends at z = -4)
+  CHECK(m.X_WT.p.z() == -4.0);  // passed through: the whole cap is under the floor
 }

@@ -610,7 +610,8 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   // The scale bounds refinement only: a pass over every pole, skipped by the
   // haptic proxies' many unrefined queries.
   const SurfacePair pair{ha.surface(), placed_b && exact_b ? moved_b : hb.surface(),
-                         request.refine ? scale_of(ha.surface(), hb.surface()) : 0.0};
+                         request.refine ? scale_of(ha.surface(), hb.surface())
+                                        : std::numeric_limits<double>::quiet_NaN()};
   if (request.curves) {
     detail::ChainedCurves chained = detail::chain_segments(descent.segments, request.tolerance);
     result.curves = std::move(chained.curves);

@@ -1,6 +1,7 @@
 #include "argil/core/deform/pole_stencil_matrix.hpp"
 
 #include <algorithm>
+#include <cassert>
 
 namespace argil {
 
@@ -20,6 +21,7 @@ double PoleStencilMatrix::diagonal(Eigen::Index pole) const {
 }
 
 Eigen::MatrixXd PoleStencilMatrix::multiply(const Eigen::Ref<const Eigen::MatrixXd>& x) const {
+  assert(x.rows() == size());
   Eigen::MatrixXd y(x.rows(), x.cols());
   multiply_rows(x, 0, count_u_, 0, count_v_, y);
   return y;

@@ -32,6 +32,9 @@ Result<SurfaceToolProxy> SurfaceToolProxy::create(const BSplineSurface& tool, do
 
 ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy*>& surfaces,
                                         const Pose& X_WT) {
+  // A proxy that sticks runs this query alone, tick after tick: the tool's
+  // nodes are bounded here as well as in move().
+  hierarchy_.keep_within_node_budget();
   const Eigen::Vector3d centre = apply(X_WT, centre_T_);
   ToolContacts out;
   out.per_surface.resize(surfaces.size());
@@ -167,7 +170,8 @@ ToolMove SurfaceToolProxy::move(const std::vector<const SurfaceHierarchy*>& surf
   Eigen::Vector3d rest = X_WT_to.p - stop.X_WT.p;
   const double into = rest.dot(touch.outward_normal);
   if (into < 0.0) rest -= into * touch.outward_normal;
-  // A slide shorter than the stop's own resolution (eps / 2) is not tried.
+  // A slide shorter than the stop's own resolution (eps / 2) is not tried
+  // (the proxy then lags the hand by at most that much sideways).
   if (rest.norm() <= 0.5 * eps_ && stop.X_WT.R.coeffs() == X_WT_to.R.coeffs())
     return {Status::success(), stop.X_WT, std::move(touch)};
   Pose slide_to = X_WT_to;
