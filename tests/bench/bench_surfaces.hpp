@@ -12,17 +12,11 @@
 
 #include "argil/core.hpp"
 #include "support/occt_surface.hpp"
+#include "support/tool_shapes.hpp"
 
 namespace argil::bench {
 
-/// Uniform clamped knots on [0, 1].
-inline Eigen::VectorXd uniform_knots(int degree, int poles) {
-  Eigen::VectorXd k(poles + degree + 1);
-  for (Eigen::Index i = 0; i < k.size(); ++i) {
-    k[i] = std::clamp(static_cast<double>(i - degree) / (poles - degree), 0.0, 1.0);
-  }
-  return k;
-}
+using test::uniform_knots;
 
 /// A wavy bicubic panel with n x n poles on a 10 mm pitch (n = 32: 310 mm wide).
 inline BSplineSurface bicubic_panel(int n) {

@@ -6,24 +6,11 @@
 
 #include "bench_surfaces.hpp"
 #include "bench_timing.hpp"
+#include "support/tool_shapes.hpp"
 
 namespace argil::bench {
 
 namespace {
-
-/// A bowl-shaped bicubic cap 12 mm wide, lowest near its frame origin.
-BSplineSurface cap_tool() {
-  BSplineSurface tool;
-  tool.degree = {3, 3};
-  tool.knots = {uniform_knots(3, 4), uniform_knots(3, 4)};
-  tool.control_points.resize(16, 3);
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      const double x = -6.0 + 4.0 * i, y = -6.0 + 4.0 * j;
-      tool.control_points.row(tool.pole_index(i, j)) << x, y, 0.05 * (x * x + y * y);
-    }
-  return tool;
-}
 
 double domain_at(const BSplineSurface& s, Direction d, double fraction) {
   return s.domain_start(d) + fraction * (s.domain_end(d) - s.domain_start(d));
@@ -63,7 +50,7 @@ Result<HapticWorld> make_world(const BenchFace& face, const Material& material,
   WorldOptions options;
   options.tolerance = stroke.tolerance;
   options.coupling = {.stiffness = 1.0, .damping = 0.002, .max_force = 8.0};
-  const ToolShape tool = stroke.bspline_tool ? ToolShape{SurfaceToolShape{cap_tool()}}
+  const ToolShape tool = stroke.bspline_tool ? ToolShape{SurfaceToolShape{test::bowl_cap()}}
                                              : ToolShape{SphereToolShape{stroke.radius}};
   Result<HapticWorld> world = HapticWorld::create(tool, options);
   if (!world.ok()) return world;

@@ -258,7 +258,8 @@ TEST_CASE("two exact cylinder patches intersect on both cylinders; refined point
 
 TEST_CASE(
     "random graph pairs: no crossing missed, reported points within eps of both surfaces, gaps "
-    "beyond eps report nothing") {
+    "beyond eps report nothing",
+    "[slow]") {
   std::mt19937_64 rng(2025);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double size = 100.0;

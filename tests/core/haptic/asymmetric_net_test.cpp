@@ -9,6 +9,7 @@
 
 #include "argil/core.hpp"
 #include "support/random_surface.hpp"
+#include "support/tool_shapes.hpp"
 #include "support/transposed_surface.hpp"
 
 namespace {
@@ -89,22 +90,6 @@ bool same_bits(const ControlNet& a, const ControlNet& b) {
          std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
 }
 
-/// A shallow bicubic bowl 12 mm wide, lowest at its frame origin.
-BSplineSurface bowl_tool() {
-  BSplineSurface tool;
-  tool.degree = {3, 3};
-  Eigen::VectorXd k(8);
-  k << 0, 0, 0, 0, 1, 1, 1, 1;
-  tool.knots = {k, k};
-  tool.control_points.resize(16, 3);
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      const double x = -6.0 + 4.0 * i, y = -6.0 + 4.0 * j;
-      tool.control_points.row(tool.pole_index(i, j)) << x, y, 0.05 * (x * x + y * y);
-    }
-  return tool;
-}
-
 /// Checks every tick of a run: finite, and while the tool presses, the
 /// rendered force pushes the hand out of the surface and the body gets the
 /// opposite force.
@@ -164,9 +149,9 @@ TEST_CASE("transposing the net leaves a B-spline tool's force and proxy unchange
           "[haptic][asymmetric]") {
   const BSplineSurface s = argil::test::asymmetric_surface();
   const std::vector<argil::DeviceSample> script = press_script(s, at_fraction(s, 0.45, 0.6));
-  const Run a = run(s, argil::SurfaceToolShape{bowl_tool()}, script, false);
-  const Run b =
-      run(argil::test::transposed(s), argil::SurfaceToolShape{bowl_tool()}, script, false);
+  const Run a = run(s, argil::SurfaceToolShape{argil::test::bowl_cap()}, script, false);
+  const Run b = run(argil::test::transposed(s), argil::SurfaceToolShape{argil::test::bowl_cap()},
+                    script, false);
   REQUIRE(a.ticks.size() == b.ticks.size());
   double force_gap = 0.0, proxy_gap = 0.0;
   for (std::size_t k = 0; k < a.ticks.size(); ++k) {
@@ -209,9 +194,9 @@ TEST_CASE(
     "[haptic][asymmetric]") {
   const BSplineSurface s = argil::test::asymmetric_surface();
   const std::vector<argil::DeviceSample> script = press_script(s, at_fraction(s, 0.45, 0.6));
-  const Run a = run(s, argil::SurfaceToolShape{bowl_tool()}, script);
-  const Run b = run(s, argil::SurfaceToolShape{bowl_tool()}, script);
-  const BSplineSurface tool = bowl_tool();
+  const Run a = run(s, argil::SurfaceToolShape{argil::test::bowl_cap()}, script);
+  const Run b = run(s, argil::SurfaceToolShape{argil::test::bowl_cap()}, script);
+  const BSplineSurface tool = argil::test::bowl_cap();
   check_pushes_out(a, tool.control_points.colwise().mean().transpose());
   for (std::size_t k = 0; k < a.ticks.size(); ++k) {
     CAPTURE(k);

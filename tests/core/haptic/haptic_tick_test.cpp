@@ -6,30 +6,14 @@
 #include <limits>
 
 #include "argil/core.hpp"
+#include "support/tool_shapes.hpp"
 
 namespace {
 
 using argil::ControlNet;
 
-Eigen::VectorXd knots(int degree, int poles) {
-  Eigen::VectorXd k(poles + degree + 1);
-  for (Eigen::Index i = 0; i < k.size(); ++i)
-    k[i] = std::clamp(static_cast<double>(i - degree) / (poles - degree), 0.0, 1.0);
-  return k;
-}
-
-/// n x n bicubic poles `pitch` [mm] apart over (x, y), height wave * sin * cos.
-argil::BSplineSurface sheet(int n, double pitch, double wave) {
-  argil::BSplineSurface s;
-  s.degree = {3, 3};
-  s.knots = {knots(3, n), knots(3, n)};
-  s.control_points.resize(static_cast<Eigen::Index>(n) * n, 3);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      s.control_points.row(s.pole_index(i, j)) << pitch * i, pitch * j,
-          wave * std::sin(0.7 * i) * std::cos(0.5 * j);
-  return s;
-}
+using argil::test::bowl_cap;
+using argil::test::wavy_sheet;
 
 /// Height of a surface over (x, y), found by bisection on its parameters
 /// (the sheets here are graphs over a square with x = f(u), y = g(v) monotone).
@@ -69,7 +53,7 @@ TEST_CASE("friction: a pull below mu N sticks, above it slips to mu N", "[haptic
   for (const double pull : {0.5, 0.9, 1.5, 3.0}) {   // tangential offset [mm] = pull [N] at k = 1
     CAPTURE(pull);
     argil::HapticWorld w = world(argil::SphereToolShape{radius});
-    REQUIRE(w.add_rigid(sheet(10, 10.0, 0.0), mu).ok());
+    REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), mu).ok());
     REQUIRE(w.step(at(45, 45, 20), 1e-3).status.ok());
     for (int t = 0; t < 3; ++t) REQUIRE(w.step(at(45, 45, radius - press), 1e-3).status.ok());
     REQUIRE(w.proxy().in_contact);
@@ -89,7 +73,7 @@ TEST_CASE("friction: a pull below mu N sticks, above it slips to mu N", "[haptic
 
 TEST_CASE("without friction the proxy slides to the device's foot on the surface", "[haptic]") {
   argil::HapticWorld w = world(argil::SphereToolShape{4.0});
-  REQUIRE(w.add_rigid(sheet(10, 10.0, 0.0), 0.0).ok());
+  REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), 0.0).ok());
   REQUIRE(w.step(at(30, 30, 10), 1e-3).status.ok());
   REQUIRE(w.step(at(30, 30, 1), 1e-3).status.ok());
   const argil::TickResult r = w.step(at(37, 31, 1), 1e-3);
@@ -98,7 +82,7 @@ TEST_CASE("without friction the proxy slides to the device's foot on the surface
 }
 
 TEST_CASE("a sphere sweeping at 1 m/s and 10 m/s never sinks deeper than eps", "[haptic]") {
-  const argil::BSplineSurface s = sheet(20, 10.0, 3.0);
+  const argil::BSplineSurface s = wavy_sheet(20, 10.0, 3.0);
   const double eps = 0.01, radius = 3.0;
   for (const double speed : {1.0, 10.0}) {  // [m/s] = [mm per 1 ms tick]
     CAPTURE(speed);
@@ -118,7 +102,7 @@ TEST_CASE("a sphere sweeping at 1 m/s and 10 m/s never sinks deeper than eps", "
 }
 
 TEST_CASE("a device plunging through a sheet in one tick leaves the proxy on top", "[haptic]") {
-  const argil::BSplineSurface s = sheet(10, 10.0, 1.0);
+  const argil::BSplineSurface s = wavy_sheet(10, 10.0, 1.0);
   for (const double radius : {2.0, 0.0}) {  // sphere and point tool
     CAPTURE(radius);
     argil::HapticWorld w = world(argil::SphereToolShape{radius});
@@ -136,7 +120,7 @@ TEST_CASE("a device plunging through a sheet in one tick leaves the proxy on top
 
 TEST_CASE("the device force is clamped to max_force", "[haptic]") {
   argil::HapticWorld w = world(argil::SphereToolShape{5.0}, 0.01, 8.0);
-  REQUIRE(w.add_rigid(sheet(10, 10.0, 0.0), 0.3).ok());
+  REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), 0.3).ok());
   REQUIRE(w.step(at(45, 45, 20), 1e-3).status.ok());
   const argil::TickResult r = w.step(at(45, 45, -100), 1e-3);
   CHECK(r.clamped);
@@ -148,7 +132,7 @@ TEST_CASE("the device force is clamped to max_force", "[haptic]") {
 }
 
 TEST_CASE("a tool dents an elastic panel, which returns to rest after it leaves", "[haptic]") {
-  const argil::BSplineSurface s = sheet(10, 10.0, 0.0);
+  const argil::BSplineSurface s = wavy_sheet(10, 10.0, 0.0);
   for (const double yield : {std::numeric_limits<double>::infinity(), 0.3}) {
     CAPTURE(yield);
     argil::HapticWorld w = world(argil::SphereToolShape{6.0}, 0.01, 20.0);
@@ -196,8 +180,8 @@ TEST_CASE("the same inputs give bit-identical forces and surfaces", "[haptic]") 
     m.youngs_modulus = 2.0;
     m.foundation_stiffness = 1.0;
     m.yield = 0.5;
-    REQUIRE(w.add_deformable(sheet(8, 10.0, 2.0), m, {}, 0.3).ok());
-    REQUIRE(w.add_rigid(sheet(4, 30.0, 0.0), 0.4).ok());  // a floor under it
+    REQUIRE(w.add_deformable(wavy_sheet(8, 10.0, 2.0), m, {}, 0.3).ok());
+    REQUIRE(w.add_rigid(wavy_sheet(4, 30.0, 0.0), 0.4).ok());  // a floor under it
     std::vector<Eigen::Vector3d> forces;
     for (int t = 0; t < 400; ++t) {
       const double a = 0.01 * t;
@@ -215,17 +199,8 @@ TEST_CASE("the same inputs give bit-identical forces and surfaces", "[haptic]") 
 }
 
 TEST_CASE("a B-spline tool stops on a surface without crossing it and slides along", "[haptic]") {
-  // A bowl-shaped bicubic cap, lowest near its frame origin, 12 mm wide.
-  argil::BSplineSurface tool;
-  tool.degree = {3, 3};
-  tool.knots = {knots(3, 4), knots(3, 4)};
-  tool.control_points.resize(16, 3);
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      const double x = -6.0 + 4.0 * i, y = -6.0 + 4.0 * j;
-      tool.control_points.row(tool.pole_index(i, j)) << x, y, 0.05 * (x * x + y * y);
-    }
-  const argil::BSplineSurface floor = sheet(10, 10.0, 1.0);
+  const argil::BSplineSurface tool = bowl_cap();
+  const argil::BSplineSurface floor = wavy_sheet(10, 10.0, 1.0);
   const double eps = 0.05;
   argil::HapticWorld w = world(argil::SurfaceToolShape{tool}, eps, 20.0);
   REQUIRE(w.add_rigid(floor, 0.0).ok());
@@ -250,14 +225,14 @@ TEST_CASE("friction outside [0, kMaxFriction] is refused for deformable and rigi
           "[haptic]") {
   argil::HapticWorld w = world(argil::SphereToolShape{5.0});
   for (const double mu : {-0.1, argil::kMaxFriction * 1.01, std::nan("")}) {
-    const argil::Result<int> rigid = w.add_rigid(sheet(6, 10.0, 0.0), mu);
-    const argil::Result<int> soft = w.add_deformable(sheet(6, 10.0, 0.0), {}, {}, mu);
+    const argil::Result<int> rigid = w.add_rigid(wavy_sheet(6, 10.0, 0.0), mu);
+    const argil::Result<int> soft = w.add_deformable(wavy_sheet(6, 10.0, 0.0), {}, {}, mu);
     CHECK(rigid.status().code == argil::StatusCode::invalid_argument);
     CHECK(soft.status().code == argil::StatusCode::invalid_argument);
     CHECK(soft.status().message.find("friction") != std::string::npos);
   }
   CHECK(w.body_count() == 0);
-  const argil::Result<int> edge = w.add_rigid(sheet(6, 10.0, 0.0), argil::kMaxFriction);
+  const argil::Result<int> edge = w.add_rigid(wavy_sheet(6, 10.0, 0.0), argil::kMaxFriction);
   REQUIRE(edge.ok());
   CHECK(w.friction(edge.value()) == argil::kMaxFriction);
 }
@@ -267,7 +242,7 @@ TEST_CASE("a B-spline tool smaller than the tolerance is refused when the world 
   // The reported case: a tool 0.017 mm across at eps 0.05 mm touched nothing
   // and went through a flat floor to z = -5 with status ok. Now no world is
   // made with it, and the message names the tool's size and the tolerance.
-  const argil::BSplineSurface tool = sheet(4, 0.004, 0.0);
+  const argil::BSplineSurface tool = wavy_sheet(4, 0.004, 0.0);
   REQUIRE(argil::control_point_box(tool).diagonal() == Approx(0.017).epsilon(0.01));
   argil::WorldOptions o;
   o.tolerance = 0.05;
@@ -281,7 +256,7 @@ TEST_CASE("a B-spline tool smaller than the tolerance is refused when the world 
   o.tolerance = 1e-3;
   auto fine = argil::HapticWorld::create(argil::SurfaceToolShape{tool}, o);
   REQUIRE(fine.ok());
-  REQUIRE(fine.value().add_rigid(sheet(10, 10.0, 0.0), 0.0).ok());
+  REQUIRE(fine.value().add_rigid(wavy_sheet(10, 10.0, 0.0), 0.0).ok());
   REQUIRE(fine.value().step(at(30, 40, 1.0), 1e-3).status.ok());
   argil::TickResult r;
   for (int t = 1; t <= 60; ++t) {
@@ -296,12 +271,12 @@ TEST_CASE("a B-spline tool smaller than the tolerance is refused when the world 
 TEST_CASE("a collision query that fails stops the tool's move with its status", "[haptic]") {
   // A model surface 0.01 mm wide: a tolerance of 0.05 mm exceeds its size, so
   // the tool's queries against it are outside the documented range.
-  argil::BSplineSurface tool = sheet(4, 4.0, 0.0);
+  argil::BSplineSurface tool = wavy_sheet(4, 4.0, 0.0);
   argil::OperatorCache cache;
   auto proxy = argil::SurfaceToolProxy::create(tool, 0.05, cache);
   REQUIRE(proxy.ok());
   const argil::SurfaceHierarchy tiny =
-      argil::SurfaceHierarchy::build(sheet(4, 0.003, 0.0), cache).value();
+      argil::SurfaceHierarchy::build(wavy_sheet(4, 0.003, 0.0), cache).value();
   const argil::ToolMove m =
       proxy.value().move({&tiny}, argil::Pose::at({0, 0, 1}), argil::Pose::at({0, 0, -1}));
   CHECK_FALSE(m.status.ok());
@@ -320,7 +295,7 @@ TEST_CASE("world options name the rejected max_contacts value", "[haptic]") {
 TEST_CASE("set_tool changes the tool between strokes only; the new one rides on the surface",
           "[haptic]") {
   argil::HapticWorld w = world(argil::SphereToolShape{0.0});  // a point
-  REQUIRE(w.add_rigid(sheet(10, 10.0, 0.0), 0.0).ok());
+  REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), 0.0).ok());
   REQUIRE(w.step(at(40, 40, 10), 1e-3).status.ok());
   REQUIRE(w.step(at(40, 40, -1), 1e-3).status.ok());  // engaged: a stroke
   const argil::Status refused = w.set_tool(argil::SphereToolShape{4.0});

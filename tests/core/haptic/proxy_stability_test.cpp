@@ -105,7 +105,7 @@ TEST_CASE("push_apart is the smallest move that satisfies every push", "[haptic]
 }
 
 TEST_CASE("a sphere in a groove between two faces stays put, whichever face is nearest",
-          "[haptic][proxy]") {
+          "[haptic][proxy][slow]") {
   for (const double slope : {0.0, 0.2, -0.2}) {
     CAPTURE(slope);
     argil::HapticWorld w = sphere_world(1.0, 1e-3);
@@ -134,7 +134,7 @@ TEST_CASE("a sphere in a groove between two faces stays put, whichever face is n
   }
 }
 
-TEST_CASE("a steady press does not buzz", "[haptic][proxy]") {
+TEST_CASE("a steady press does not buzz", "[haptic][proxy][slow]") {
   for (const char* preset : {"foam", "wax", "clay", "abs"}) {
     CAPTURE(preset);
     argil::HapticWorld w = sphere_world(3.0, 1e-3);

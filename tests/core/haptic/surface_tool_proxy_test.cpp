@@ -5,52 +5,22 @@
 #include <cmath>
 
 #include "argil/core.hpp"
+#include "support/tool_shapes.hpp"
 
 namespace {
 
-Eigen::VectorXd knots(int degree, int poles) {
-  Eigen::VectorXd k(poles + degree + 1);
-  for (Eigen::Index i = 0; i < k.size(); ++i)
-    k[i] = std::clamp(static_cast<double>(i - degree) / (poles - degree), 0.0, 1.0);
-  return k;
-}
-
-/// n x n bicubic poles `pitch` [mm] apart over (x, y), height wave * sin * cos.
-argil::BSplineSurface sheet(int n, double pitch, double wave) {
-  argil::BSplineSurface s;
-  s.degree = {3, 3};
-  s.knots = {knots(3, n), knots(3, n)};
-  s.control_points.resize(static_cast<Eigen::Index>(n) * n, 3);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      s.control_points.row(s.pole_index(i, j)) << pitch * i, pitch * j,
-          wave * std::sin(0.7 * i) * std::cos(0.5 * j);
-  return s;
-}
-
-/// A bowl-shaped bicubic cap 12 mm wide, lowest at its frame origin.
-argil::BSplineSurface cap() {
-  argil::BSplineSurface tool;
-  tool.degree = {3, 3};
-  tool.knots = {knots(3, 4), knots(3, 4)};
-  tool.control_points.resize(16, 3);
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      const double x = -6.0 + 4.0 * i, y = -6.0 + 4.0 * j;
-      tool.control_points.row(tool.pole_index(i, j)) << x, y, 0.05 * (x * x + y * y);
-    }
-  return tool;
-}
+using argil::test::bowl_cap;
+using argil::test::wavy_sheet;
 
 constexpr double kEps = 0.05;
 
 struct Fixture {
   argil::OperatorCache cache;
-  argil::SurfaceToolProxy proxy = argil::SurfaceToolProxy::create(cap(), kEps, cache).value();
+  argil::SurfaceToolProxy proxy = argil::SurfaceToolProxy::create(bowl_cap(), kEps, cache).value();
   argil::SurfaceHierarchy flat =
-      argil::SurfaceHierarchy::build(sheet(10, 10.0, 0.0), cache).value();
+      argil::SurfaceHierarchy::build(wavy_sheet(10, 10.0, 0.0), cache).value();
   argil::SurfaceHierarchy wavy =
-      argil::SurfaceHierarchy::build(sheet(10, 10.0, 1.0), cache).value();
+      argil::SurfaceHierarchy::build(wavy_sheet(10, 10.0, 1.0), cache).value();
 };
 
 /// The move's contacts are the contact query's at its end, contact by contact.
@@ -165,7 +135,7 @@ TEST_CASE("a B-spline tool's move stops with the status of a failed query", "[ha
   // A surface 0.003 mm wide is too small for eps = 0.05 mm: its query fails.
   Fixture f;
   const argil::SurfaceHierarchy tiny =
-      argil::SurfaceHierarchy::build(sheet(4, 0.001, 0.0), f.cache).value();
+      argil::SurfaceHierarchy::build(wavy_sheet(4, 0.001, 0.0), f.cache).value();
   const std::vector<const argil::SurfaceHierarchy*> surfaces{&f.flat, &tiny};
   const argil::ToolMove m = f.proxy.move(surfaces, argil::Pose::at({30.0, 40.0, 5.0}),
                                          argil::Pose::at({30.0, 40.0, -2.0}));

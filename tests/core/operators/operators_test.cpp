@@ -8,6 +8,7 @@
 
 #include "argil/core.hpp"
 #include "support/random_surface.hpp"
+#include "support/tool_shapes.hpp"
 
 using argil::BSplineSurface;
 using argil::Direction;
@@ -21,15 +22,7 @@ double relative_gap(const argil::ControlNet& a, const argil::ControlNet& b, doub
   return (a - b).rowwise().norm().maxCoeff() / scale;
 }
 
-/// Uniform clamped knots with `count` poles of degree p on [0, 1].
-Eigen::VectorXd uniform_knots(int p, int count) {
-  Eigen::VectorXd k(count + p + 1);
-  const int spans = count - p;
-  for (Eigen::Index i = 0; i < k.size(); ++i) {
-    k[i] = std::clamp(static_cast<double>(i - p) / spans, 0.0, 1.0);
-  }
-  return k;
-}
+using argil::test::uniform_knots;
 
 }  // namespace
 

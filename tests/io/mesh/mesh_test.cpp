@@ -97,7 +97,7 @@ ChordReport chord_errors(const Model& model, const TriangleMesh& mesh) {
 
 }  // namespace
 
-TEST_CASE("the tessellation is within the chord tolerance", "[io][mesh]") {
+TEST_CASE("the tessellation is within the chord tolerance", "[io][mesh][slow]") {
   const Model panel = panel_and_trimmed_face();
   const Result<Model> bearing = read_model(test::shared_data("bearing.iges"));
   REQUIRE(bearing.ok());
