@@ -143,18 +143,34 @@ TEST_CASE("a B-spline tool's move stops with the status of a failed query", "[ha
   CHECK(m.status.message.find("tolerance") != std::string::npos);
 }
 
-TEST_CASE("known gap: a substep longer than the tool's thickness passes through a surface",
-          "[haptic]") {
-  // Crossing is tested at the ends of substeps (at most max(size / 4, 10
-  // eps) long): the cap, 2.4 mm tall, moved 10 mm down through the floor in
-  // three substeps of 3.65 mm is entirely below it at the last one and
-  // crosses at none, so it ends under the floor. Haptic ticks move far less
-  // than this tool's height; a swept test would close the gap, and this test
-  // (which states the gap as it is) fails then, to be turned around.
+TEST_CASE("a B-spline tool moved through a surface in one substep stops on it", "[haptic]") {
+  // Substeps are up to max(size / 4, 10 eps) long: the cap, 2.4 mm tall,
+  // moved 14 mm down in substeps of 2.9 mm lies wholly under the floor at the
+  // last, and the flat sheet (no thickness) is clear at every end. The swept
+  // test finds the crossing on the way, and both stop on the floor.
   Fixture f;
+  argil::BSplineSurface sheet = wavy_sheet(4, 2.0, 0.0);
+  sheet.control_points.col(0).array() -= 3.0;
+  sheet.control_points.col(1).array() -= 3.0;
+  argil::SurfaceToolProxy flat_tool = argil::SurfaceToolProxy::create(sheet, kEps, f.cache).value();
   const std::vector<const argil::SurfaceHierarchy*> floor{&f.flat};
-  const argil::ToolMove m =
-      f.proxy.move(floor, argil::Pose::at({20.0, 30.0, 6.0}), argil::Pose::at({24.0, 28.0, -4.0}));
-  REQUIRE(m.status.ok());
-  CHECK(m.X_WT.p.z() == -4.0);  // passed through: the whole cap is under the floor
+  // Straight, and turning by 0.3 rad about a tilted axis on the way.
+  const Eigen::Quaterniond turned(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 0).normalized()));
+  for (argil::SurfaceToolProxy* proxy : {&f.proxy, &flat_tool}) {
+    for (const Eigen::Quaterniond& R_to : {Eigen::Quaterniond::Identity(), turned}) {
+      const argil::Pose from = argil::Pose::at({20.0, 30.0, 6.0});
+      const argil::Pose to{R_to, {24.0, 28.0, -8.0}};
+      CHECK_FALSE(proxy->crossing(floor, to).crosses);  // wholly under the floor
+      const argil::ToolMove m = proxy->move(floor, from, to);
+      REQUIRE(m.status.ok());
+      CHECK_FALSE(proxy->crossing(floor, m.X_WT).crosses);
+      // On the floor: its lowest point within eps of it.
+      CHECK_FALSE(m.contacts.per_surface[0].empty());
+      for (const argil::Contact& c : m.contacts.per_surface[0]) CHECK(c.depth >= -kEps);
+      // On top: the control points' centre above the floor.
+      const argil::BSplineSurface& shape = proxy == &flat_tool ? sheet : bowl_cap();
+      const Eigen::Vector3d centre = shape.control_points.colwise().mean().transpose();
+      CHECK(argil::apply(m.X_WT, centre).z() > 0.0);
+    }
+  }
 }

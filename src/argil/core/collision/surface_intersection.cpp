@@ -14,6 +14,7 @@
 #include "argil/core/collision/detail/curve_tidy.hpp"
 #include "argil/core/collision/detail/segment_chains.hpp"
 #include "argil/core/collision/detail/surface_pair_refine.hpp"
+#include "argil/core/collision/detail/swept_leaves.hpp"
 #include "argil/core/collision/surface_contact.hpp"
 #include "argil/core/collision/surface_penetration.hpp"
 #include "argil/core/collision/triangle_intersection.hpp"
@@ -87,18 +88,32 @@ struct Rigid {
     lo = centre - half;
     hi = centre + half;
   }
+  Rigid inverse() const { return {R.transpose(), -(R.transpose() * p)}; }
+};
+
+/// b's motion in a swept query: its placement at the start and halfway (the
+/// Side's own placement is the end); `reach`, how far any point of b strays
+/// from its halfway position on the way; `sagitta`, how far the corners'
+/// arcs stray from the straight lines the leaf tests assume [mm].
+struct Sweep {
+  Rigid start;
+  Rigid middle;
+  double reach = 0.0;
+  double sagitta = 0.0;
+  double travel = 0.0;  // the farthest any point of b moves [mm]
 };
 
 /// Entries of one side: blocks as -(id + 1), hierarchy nodes as id >= 0.
 class Side {
  public:
   Side(const SurfaceHierarchy& h, double flat_tolerance, int max_level, QueryCounters& counters,
-       std::optional<Rigid> placed = std::nullopt)
+       std::optional<Rigid> placed = std::nullopt, std::optional<Sweep> sweep = std::nullopt)
       : h_(h),
         flat_tolerance_(flat_tolerance),
         max_level_(max_level),
         counters_(counters),
-        placed_(std::move(placed)) {}
+        placed_(std::move(placed)),
+        sweep_(std::move(sweep)) {}
 
   View view(int entry) {
     if (!placed_) return own_view(entry);
@@ -138,6 +153,17 @@ class Side {
     return t;
   }
 
+  /// A leaf's corners in the side's own frame.
+  detail::LeafCorners own_corners(int entry) const { return h_.node(entry).bound.corners; }
+
+  /// A leaf's corners, placed (own corners when the side is not placed).
+  detail::LeafCorners corners(int entry) const {
+    detail::LeafCorners c = own_corners(entry);
+    if (placed_)
+      for (Eigen::Vector3d& x : c) x = (*placed_)(x);
+    return c;
+  }
+
   /// Entry of the block's single element, or the block itself.
   int entry_of_block(int block) {
     const ElementBlock& b = h_.block(block);
@@ -158,10 +184,35 @@ class Side {
   }
 
  private:
-  View placed(View v) const {
-    v.center = (*placed_)(v.center);
-    placed_->box(v.lo, v.hi);
-    for (Eigen::Vector3d& c : v.corners) c = (*placed_)(c);
+  View placed(const View& own) const {
+    View v = placed_by(*placed_, own);
+    if (!sweep_) return v;
+    // Swept: everything on the way. Two bounds, both valid, the tighter kept:
+    // the sphere and box around both ends (which contain the corners'
+    // straight lines), and the halfway bounds grown by how far any point
+    // strays from its halfway position. Only the second keeps corner
+    // triangles (with the flatness grown alike), which separate a flat tool
+    // lying on a surface from it.
+    const View start = placed_by(sweep_->start, own);
+    View middle = placed_by(sweep_->middle, own);
+    const double grow = sweep_->reach;
+    const double travel = (v.center - start.center).norm();
+    if (own.radius + 0.5 * travel < middle.radius + grow) {
+      middle.center = 0.5 * (v.center + start.center);
+      middle.radius = own.radius + 0.5 * travel;
+    } else {
+      middle.radius += grow;
+    }
+    middle.lo = (middle.lo.array() - grow).max(v.lo.cwiseMin(start.lo).array());
+    middle.hi = (middle.hi.array() + grow).min(v.hi.cwiseMax(start.hi).array());
+    middle.flatness += grow;  // +inf stays +inf
+    return middle;
+  }
+
+  static View placed_by(const Rigid& motion, View v) {
+    v.center = motion(v.center);
+    motion.box(v.lo, v.hi);
+    for (Eigen::Vector3d& c : v.corners) c = motion(c);
     return v;
   }
 
@@ -170,6 +221,7 @@ class Side {
   int max_level_;
   QueryCounters& counters_;
   std::optional<Rigid> placed_;
+  std::optional<Sweep> sweep_;  // a swept query's motion
   // Placed views of the entries seen so far: ids index slots (-1: not yet
   // placed), slots index views, so a query pays 4 bytes per id, not a view.
   std::vector<int> node_slots_, block_slots_;
@@ -525,13 +577,19 @@ std::optional<PendingContact> leaf_near_touch(const LeafTriangles& la, const Lea
 class PairDescent {
  public:
   PairDescent(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
-              const std::optional<Rigid>& placed_b, const CollisionRequest& request,
-              QueryCounters& counters)
+              const std::optional<Rigid>& placed_b, const std::optional<Sweep>& sweep,
+              const CollisionRequest& request, QueryCounters& counters)
       : request_(request),
         counters_(counters),
         sa_(ha, request.tolerance / 3.0, request.max_level, counters),
-        sb_(hb, request.tolerance / 3.0, request.max_level, counters, placed_b),
-        on_plane_(on_plane_distance(ha.surface(), hb.surface(), placed_b, request.tolerance)) {}
+        sb_(hb, request.tolerance / 3.0, request.max_level, counters, placed_b, sweep),
+        on_plane_(on_plane_distance(ha.surface(), hb.surface(), placed_b, request.tolerance)),
+        apart_(request.tolerance + (sweep ? sweep->sagitta : 0.0)) {
+    if (sweep) {
+      motion_ =
+          SweptMotion{sweep->start, sweep->start.inverse(), placed_b->inverse(), sweep->travel};
+    }
+  }
 
   void run() {
     std::vector<std::pair<int, int>> stack{{sa_.entry_of_block(0), sb_.entry_of_block(0)}};
@@ -540,7 +598,7 @@ class PairDescent {
       stack.pop_back();
       const View va = sa_.view(ea);
       const View vb = sb_.view(eb);
-      if (pair_apart(va, vb, request_.tolerance)) continue;
+      if (pair_apart(va, vb, apart_)) continue;
       if (!(va.flat && vb.flat)) {
         // Split the side that is not flat; the larger sphere when neither is.
         const bool split_a = !va.flat && (vb.flat || va.radius >= vb.radius);
@@ -552,6 +610,7 @@ class PairDescent {
       // Leaf pair: flat nodes are hierarchy nodes (blocks are never flat).
       if (examine_leaf_pair(ea, eb) && request_.first_crossing_only) break;
     }
+    if (motion_ && !crossed_at_end_) sweep_unswept();
   }
 
   std::vector<detail::Segment> segments;
@@ -568,8 +627,18 @@ class PairDescent {
     LeafPairFindings found = leaf_crossings(la, lb, reach, on_plane_);
     counters_.triangle_tests += found.triangle_tests;
     segments.insert(segments.end(), found.segments.begin(), found.segments.end());
-    if (!found.contact && !request_.first_crossing_only)
-      found.contact = leaf_near_touch(la, lb, eps);
+    const bool crossing = found.contact.has_value();
+    crossed_at_end_ = crossed_at_end_ || crossing;
+    if (!crossing && !request_.first_crossing_only) found.contact = leaf_near_touch(la, lb, eps);
+    // A pair that does not cross at the end is looked at on the way, unless
+    // it ends farther apart than any point of b moved (no near-touch within
+    // eps, or a near-touch's distance): then the two never met.
+    if (!crossing && motion_) {
+      const bool never_met = request_.first_crossing_only ? false
+                             : found.contact ? -found.contact->leaf.contact.depth > motion_->travel
+                                             : eps >= motion_->travel;
+      if (!never_met) unswept_.emplace_back(ea, eb);
+    }
     if (!found.contact) return false;
     found.contact->reach = reach;
     found.contact->leaf.rect = la.rect;
@@ -577,11 +646,61 @@ class PairDescent {
     return true;
   }
 
+  /// Swept queries, when the end crosses nowhere: the first leaf pair that
+  /// meets on the way gives a crossing (one is enough to say so; when the end
+  /// crosses, the way is not looked at).
+  void sweep_unswept() {
+    for (const auto& [ea, eb] : unswept_) {
+      const LeafTriangles la = sa_.leaf(ea);
+      const LeafTriangles lb = sb_.leaf(eb);
+      if (std::optional<PendingContact> c = swept_crossing(ea, eb, la, lb)) {
+        c->reach = 2.0 * (la.radius + lb.radius) + request_.tolerance;
+        c->leaf.rect = la.rect;
+        pending.push_back(*c);
+        return;
+      }
+    }
+  }
+
+  /// A crossing (depth 0) on a's leaf where b's leaf meets it during the
+  /// motion though not at its end.
+  std::optional<PendingContact> swept_crossing(int ea, int eb, const LeafTriangles& la,
+                                               const LeafTriangles& lb) {
+    detail::SweptLeafPair pair;
+    pair.a = sa_.corners(ea);
+    pair.b_own = sb_.own_corners(eb);
+    pair.b_end = sb_.corners(eb);
+    for (std::size_t k = 0; k < 4; ++k) {
+      pair.b_start[k] = motion_->start(pair.b_own[k]);
+      pair.a_in_b_start[k] = motion_->start_inverse(pair.a[k]);
+      pair.a_in_b_end[k] = motion_->end_inverse(pair.a[k]);
+    }
+    const std::optional<detail::SweptHit> hit = detail::swept_leaves_meet(pair);
+    if (!hit) return std::nullopt;
+    PendingContact c;
+    c.leaf.contact.point = hit->point;
+    c.leaf.contact.uv_a = param_of(la.params[static_cast<std::size_t>(hit->triangle)], hit->bary);
+    c.uv_b = lb.rect.centre();
+    c.crossing = true;
+    return c;
+  }
+
+  /// b's motion in a swept query, and its inverse at both ends (a's corners
+  /// seen from b).
+  struct SweptMotion {
+    Rigid start, start_inverse, end_inverse;
+    double travel;  // the farthest any point of b moves [mm]
+  };
+
   const CollisionRequest& request_;
   QueryCounters& counters_;
   Side sa_;
   Side sb_;
   double on_plane_;  // see on_plane_distance
+  double apart_;     // pairs farther apart than this are skipped
+  std::optional<SweptMotion> motion_;
+  bool crossed_at_end_ = false;
+  std::vector<std::pair<int, int>> unswept_;  // leaf pairs not crossing at the end
 };
 
 }  // namespace
@@ -590,13 +709,14 @@ namespace {
 
 CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
                                const std::optional<Rigid>& placed_b,
-                               const CollisionRequest& request) {
+                               const CollisionRequest& request,
+                               const std::optional<Sweep>& sweep = std::nullopt) {
   CollisionResult result;
   // The tolerance must suit both surfaces.
   result.status = check_request(request, ha);
   if (result.status.ok()) result.status = check_request(request, hb);
   if (!result.status.ok()) return result;
-  PairDescent descent(ha, hb, placed_b, request, result.counters);
+  PairDescent descent(ha, hb, placed_b, sweep, request, result.counters);
   descent.run();
   // Refinement and penetration work on b's exact surface in a's frame.
   const bool exact_b = request.refine || request.compute_depth;
@@ -652,6 +772,26 @@ CollisionResult collide(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
 CollisionResult collide(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb, const Pose& X_AB,
                         const CollisionRequest& request) {
   return collide_placed(ha, hb, Rigid{X_AB.R.normalized().toRotationMatrix(), X_AB.p}, request);
+}
+
+CollisionResult collide_swept(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
+                              const Pose& X_AB_from, const Pose& X_AB_to,
+                              const CollisionRequest& request) {
+  const Eigen::Quaterniond from = X_AB_from.R.normalized(), to = X_AB_to.R.normalized();
+  // A point x of b turns on an arc of radius |x| through the angle between
+  // the rotations; the arc strays from its chord by |x| (1 - cos(angle / 2)).
+  const double radius = hb.surface().control_points.rowwise().norm().maxCoeff();
+  const double angle = from.angularDistance(to);
+  const double sagitta = radius * (1.0 - std::cos(0.5 * angle));
+  // On its straight line a point is within half its chord (at most the
+  // translation plus the rotation's chord) of the line's midpoint, which is
+  // within the sagitta of the point's halfway position.
+  const double chord = (X_AB_to.p - X_AB_from.p).norm() + 2.0 * radius * std::sin(0.5 * angle);
+  const Eigen::Quaterniond middle = from.slerp(0.5, to);
+  return collide_placed(ha, hb, Rigid{to.toRotationMatrix(), X_AB_to.p}, request,
+                        Sweep{Rigid{from.toRotationMatrix(), X_AB_from.p},
+                              Rigid{middle.toRotationMatrix(), 0.5 * (X_AB_from.p + X_AB_to.p)},
+                              0.5 * chord + sagitta, sagitta, chord});
 }
 
 }  // namespace argil

@@ -62,4 +62,20 @@ CollisionResult collide(const SurfaceHierarchy& a, const SurfaceHierarchy& b,
 CollisionResult collide(const SurfaceHierarchy& a, const SurfaceHierarchy& b, const Pose& X_AB,
                         const CollisionRequest& request = {});
 
+/// The query at X_AB_to, for b moved there from X_AB_from (rotation by slerp,
+/// translation on a line). When nothing crosses at X_AB_to, a leaf pair that
+/// meets at some time of the motion counts as crossing: the first one found
+/// adds a contact of depth 0 on a, at a point where they met. So a motion that
+/// starts clear and reports no crossing never passed through a, however thin
+/// b is along the motion.
+/// Leaves' corners are taken to move on straight lines between their two
+/// placements (exact for a translation); with a rotation, each corner's arc
+/// strays from its line by up to |x| (1 - cos(angle / 2)) for its distance |x|
+/// from b's origin, and the descent widens eps by that much (callers keep the
+/// rotation of one query small). Contacts that do not cross and curves are
+/// those at X_AB_to.
+CollisionResult collide_swept(const SurfaceHierarchy& a, const SurfaceHierarchy& b,
+                              const Pose& X_AB_from, const Pose& X_AB_to,
+                              const CollisionRequest& request = {});
+
 }  // namespace argil

@@ -14,7 +14,8 @@ SurfaceToolProxy::SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy 
     : hierarchy_(std::move(hierarchy)),
       centre_T_(tool.control_points.colwise().mean().transpose()),
       eps_(eps),
-      size_(control_point_box(tool).diagonal()) {}
+      size_(control_point_box(tool).diagonal()),
+      reach_(tool.control_points.rowwise().norm().maxCoeff()) {}
 
 Result<SurfaceToolProxy> SurfaceToolProxy::create(const BSplineSurface& tool, double eps,
                                                   OperatorCache& cache) {
@@ -32,6 +33,11 @@ Result<SurfaceToolProxy> SurfaceToolProxy::create(const BSplineSurface& tool, do
 
 ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy*>& surfaces,
                                         const Pose& X_WT) {
+  return contacts(surfaces, X_WT, std::nullopt);
+}
+
+ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy*>& surfaces,
+                                        const Pose& X_WT, const std::optional<Pose>& swept_from) {
   // A proxy that sticks runs this query alone, tick after tick: the tool's
   // nodes are bounded here as well as in move().
   hierarchy_.keep_within_node_budget();
@@ -41,12 +47,14 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
     if (!surfaces[b]) continue;  // out of reach
     // Only contacts: a crossing is a contact of depth 0 (no curves chained).
-    CollisionResult r = collide(*surfaces[b], hierarchy_, X_WT,
-                                {.tolerance = eps_,
-                                 .max_contacts = 64,
-                                 .refine = false,
-                                 .compute_depth = false,
-                                 .curves = false});
+    const CollisionRequest request{.tolerance = eps_,
+                                   .max_contacts = 64,
+                                   .refine = false,
+                                   .compute_depth = false,
+                                   .curves = false};
+    CollisionResult r = swept_from
+                            ? collide_swept(*surfaces[b], hierarchy_, *swept_from, X_WT, request)
+                            : collide(*surfaces[b], hierarchy_, X_WT, request);
     if (!r.status.ok()) {
       out.status = std::move(r.status);
       break;
@@ -64,6 +72,12 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
 
 SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
     const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT) {
+  return crossing(surfaces, X_WT, std::nullopt);
+}
+
+SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
+    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
+    const std::optional<Pose>& swept_from) {
   // A yes/no test: the descent stops at the first crossing leaf pair.
   const CollisionRequest request{.tolerance = eps_,
                                  .max_contacts = 1,
@@ -73,7 +87,8 @@ SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
                                  .curves = false};
   for (const SurfaceHierarchy* surface : surfaces) {
     if (!surface) continue;
-    CollisionResult r = collide(*surface, hierarchy_, X_WT, request);
+    CollisionResult r = swept_from ? collide_swept(*surface, hierarchy_, *swept_from, X_WT, request)
+                                   : collide(*surface, hierarchy_, X_WT, request);
     // A failed query counts as crossing: the proxy must not move where it
     // cannot prove it is clear.
     if (!r.status.ok()) return {std::move(r.status), true};
@@ -84,11 +99,15 @@ SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
 
 SurfaceToolProxy::Advance SurfaceToolProxy::bisect(
     const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& clear,
-    const Pose& crossing_pose) {
+    const Pose& crossing_pose, bool swept) {
   double lo = 0.0, hi = 1.0;
   const double span = (crossing_pose.p - clear.p).norm();
+  // Swept, each test sweeps from the last pose found clear, so the stop is
+  // reached without crossing on the way.
   const auto test = [&](double t) -> std::optional<Status> {
-    Crossing c = crossing(surfaces, interpolate(clear, crossing_pose, t));
+    Crossing c =
+        crossing(surfaces, interpolate(clear, crossing_pose, t),
+                 swept ? std::optional<Pose>(interpolate(clear, crossing_pose, lo)) : std::nullopt);
     if (!c.status.ok()) return std::move(c.status);
     (c.crosses ? hi : lo) = t;
     return std::nullopt;
@@ -104,25 +123,47 @@ SurfaceToolProxy::Advance SurfaceToolProxy::bisect(
   return {Status::success(), interpolate(clear, crossing_pose, lo), true, std::nullopt};
 }
 
+SurfaceToolProxy::Advance SurfaceToolProxy::stop_before(
+    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& clear,
+    const Pose& crossing_pose) {
+  // Searched with tests at poses, then confirmed by one swept query from
+  // `clear` (whose contacts are the stop's): only when the way there crosses
+  // (a thin part of the tool passed through a surface between two tested
+  // poses) is the search run again with swept tests.
+  Advance quick = bisect(surfaces, clear, crossing_pose, false);
+  if (!quick.status.ok() || quick.X_WT.p == clear.p) return quick;
+  ToolContacts at = contacts(surfaces, quick.X_WT, clear);
+  if (!at.status.ok()) return {std::move(at.status), clear, true, std::nullopt};
+  if (at.crosses) return bisect(surfaces, clear, quick.X_WT, true);
+  quick.contacts = std::move(at);
+  return quick;
+}
+
 SurfaceToolProxy::Advance SurfaceToolProxy::advance(
     const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from, const Pose& to) {
   const double length = (to.p - from.p).norm();
   const double step = std::max(0.25 * size_, 10.0 * eps_);
-  const int count = std::clamp(static_cast<int>(std::ceil(length / step)), 1, 256);
+  // Substeps also turn the tool little enough that its points' arcs stay
+  // within eps / 4 of the straight lines the swept test assumes:
+  // reach (1 - cos(angle / 2)) <= eps / 4.
+  const double turn = from.R.angularDistance(to.R);
+  const double max_turn = 2.0 * std::acos(std::max(0.0, 1.0 - 0.25 * eps_ / reach_));
+  const double substeps = std::max(std::ceil(length / step), std::ceil(turn / max_turn));
+  const int count = static_cast<int>(std::clamp(substeps, 1.0, 256.0));
   Pose good = from;
   for (int k = 1; k < count; ++k) {
     const Pose next = interpolate(from, to, static_cast<double>(k) / count);
-    Crossing c = crossing(surfaces, next);
+    Crossing c = crossing(surfaces, next, good);
     if (!c.status.ok()) return {std::move(c.status), good, true, std::nullopt};
-    if (c.crosses) return bisect(surfaces, good, next);
+    if (c.crosses) return stop_before(surfaces, good, next);
     good = next;
   }
   // The last substep: the contact query answers the crossing test too, and
   // its contacts are the move's when it crosses nothing.
   const Pose end = interpolate(from, to, 1.0);
-  ToolContacts at = contacts(surfaces, end);
+  ToolContacts at = contacts(surfaces, end, good);
   if (!at.status.ok()) return {std::move(at.status), good, true, std::nullopt};
-  if (at.crosses) return bisect(surfaces, good, end);
+  if (at.crosses) return stop_before(surfaces, good, end);
   return {Status::success(), end, false, std::move(at)};
 }
 

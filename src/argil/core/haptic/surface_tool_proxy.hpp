@@ -97,19 +97,32 @@ class SurfaceToolProxy {
   /// not. Its last substep is tested with the contact query.
   Advance advance(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from,
                   const Pose& to);
-  /// Bisects between `clear` (no crossing) and `crossing_pose`.
+  /// The last pose from `clear` (no crossing) towards `crossing_pose` that
+  /// is reached without crossing, within eps / 2 of one that crosses.
+  Advance stop_before(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& clear,
+                      const Pose& crossing_pose);
+  /// Bisects between `clear` and `crossing_pose`: tests at poses, or swept
+  /// from the last pose found clear.
   Advance bisect(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& clear,
-                 const Pose& crossing_pose);
+                 const Pose& crossing_pose, bool swept);
   /// An advance's end with its contacts (queried now when it has none).
   ToolMove arrive(const std::vector<const SurfaceHierarchy*>& surfaces, Advance end);
   /// A start pose that crosses pushed out along the contact normal.
   ToolMove push_out(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from,
                     const Pose& to);
 
+  /// The queries at X_WT; with `swept_from`, swept from there (collide_swept):
+  /// a crossing anywhere on the way counts.
+  ToolContacts contacts(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
+                        const std::optional<Pose>& swept_from);
+  Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
+                    const std::optional<Pose>& swept_from);
+
   SurfaceHierarchy hierarchy_;  // in T
   Eigen::Vector3d centre_T_;    // mean of the control points, in T
   double eps_;
   double size_;
+  double reach_;  // largest distance of a control point from T's origin [mm]
 };
 
 }  // namespace argil
