@@ -37,19 +37,24 @@ struct [[nodiscard]] ToolMove {
 };
 
 /// Conservative advancement: a move from a pose that crosses nothing goes in
-/// substeps of at most max(tool size / 4, 10 eps); a substep whose end crosses
-/// a surface is searched (eps / 2 into it, doubling, then bisection) until the
-/// last pose that does not cross is within eps / 2 of one that does, and the
-/// proxy stops there; the rest of the move,
-/// less its component into the surface, is tried once more the same way
-/// (sliding). So after a move the tool crosses no surface (touching within
-/// eps counts as contact, not crossing). A start pose that crosses (the
-/// surface moved into the tool) is first pushed out along the contact normal.
-/// A null surface is out of the tool's reach this tick: every query skips it
-/// (its contacts stay empty). Where the tool lies on a surface, the yes/no
-/// crossing test costs about what the full contact query costs (both examine
-/// every leaf pair within eps), so the last substep of a move is tested with
-/// the contact query, whose contacts the move then returns.
+/// substeps of at most max(tool size / 4, 10 eps), each turning the tool
+/// little enough that its points' arcs stay within eps / 4 of straight lines,
+/// and each tested swept (collide_swept: a crossing anywhere on the substep
+/// counts, so a thin tool cannot pass through a surface between two tested
+/// poses). A substep that crosses is searched (eps / 2 into it, doubling,
+/// then bisection, testing poses) until the last pose that does not cross is
+/// within eps / 2 of one that does; one swept query from the substep's start
+/// confirms the way there (the search runs again with swept tests when it
+/// does not), and the proxy stops there. The rest of the move, less its
+/// component into the surface, is tried once more the same way (sliding). So
+/// the tool crosses no surface on its way (touching within eps counts as
+/// contact, not crossing). A start pose that crosses (the surface moved into
+/// the tool) is first pushed out along the contact normal. A null surface is
+/// out of the tool's reach this tick: every query skips it (its contacts stay
+/// empty). Where the tool lies on a surface, the yes/no crossing test costs
+/// about what the full contact query costs (both examine every leaf pair
+/// within eps), so the last substep of a move is tested with the contact
+/// query, whose contacts the move then returns.
 class SurfaceToolProxy {
  public:
   /// `tool` in its own frame T; fails when it does not validate, or with
