@@ -69,11 +69,17 @@ CollisionResult collide(const SurfaceHierarchy& a, const SurfaceHierarchy& b, co
 /// starts clear and reports no crossing never passed through a, however thin
 /// b is along the motion.
 /// Leaves' corners are taken to move on straight lines between their two
-/// placements (exact for a translation); with a rotation, each corner's arc
-/// strays from its line by up to |x| (1 - cos(angle / 2)) for its distance |x|
-/// from b's origin, and the descent widens eps by that much (callers keep the
-/// rotation of one query small). Contacts that do not cross and curves are
-/// those at X_AB_to.
+/// placements. For a translation that is exact. With a rotation, node bounds
+/// stay conservative (widened by the arcs' sagitta |x| (1 - cos(angle / 2))
+/// for a point's distance |x| from b's origin), but the leaf test's model of
+/// the motion strays from the real one: by the sagitta in a's frame, and, for
+/// a's corners seen from b, by about |a - p| (1 - cos(angle / 2)) +
+/// |translation| sin(angle / 4); an edge's swept quad is also twisted by up
+/// to |edge| sin(angle / 2) / 2. The model's path joins the same two
+/// placements within those errors, so a leaf that passes through a farther
+/// than them from a's edges is found; a graze (meeting a and leaving it on the
+/// same side) shallower than them may be missed or reported. Callers keep the rotation of one query
+/// small. Contacts that do not cross and curves are those at X_AB_to.
 CollisionResult collide_swept(const SurfaceHierarchy& a, const SurfaceHierarchy& b,
                               const Pose& X_AB_from, const Pose& X_AB_to,
                               const CollisionRequest& request = {});

@@ -131,7 +131,9 @@ SurfaceToolProxy::Advance SurfaceToolProxy::stop_before(
   // (a thin part of the tool passed through a surface between two tested
   // poses) is the search run again with swept tests.
   Advance quick = bisect(surfaces, clear, crossing_pose, false);
-  if (!quick.status.ok() || quick.X_WT.p == clear.p) return quick;
+  // A failed search stops at `clear`: its last pose was never tested swept.
+  if (!quick.status.ok()) return {std::move(quick.status), clear, true, std::nullopt};
+  if (quick.X_WT.p == clear.p) return quick;
   ToolContacts at = contacts(surfaces, quick.X_WT, clear);
   if (!at.status.ok()) return {std::move(at.status), clear, true, std::nullopt};
   if (at.crosses) return bisect(surfaces, clear, quick.X_WT, true);
@@ -145,7 +147,9 @@ SurfaceToolProxy::Advance SurfaceToolProxy::advance(
   const double step = std::max(0.25 * size_, 10.0 * eps_);
   // Substeps also turn the tool little enough that its points' arcs stay
   // within eps / 4 of the straight lines the swept test assumes:
-  // reach (1 - cos(angle / 2)) <= eps / 4.
+  // reach (1 - cos(angle / 2)) <= eps / 4 (up to 256 substeps: beyond, the
+  // arcs stray further, which the swept bounds still cover; only how deep a
+  // graze the leaf test can miss or report grows, see collide_swept).
   const double turn = from.R.angularDistance(to.R);
   const double max_turn = 2.0 * std::acos(std::max(0.0, 1.0 - 0.25 * eps_ / reach_));
   const double substeps = std::max(std::ceil(length / step), std::ceil(turn / max_turn));
