@@ -10,16 +10,7 @@
 
 namespace argil::bench {
 
-BSplineSurface flat_panel(int n, double pitch) {
-  BSplineSurface s;
-  s.degree = {3, 3};
-  s.knots = {uniform_knots(3, n), uniform_knots(3, n)};
-  s.control_points.resize(static_cast<Eigen::Index>(n) * n, 3);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      s.control_points.row(s.pole_index(i, j)) << pitch * i, pitch * j, 0.0;
-  return s;
-}
+BSplineSurface flat_panel(int n, double pitch) { return test::wavy_sheet(n, pitch, 0.0); }
 
 BSplineSurface c0_plate() {
   return test::flat_plate(

@@ -37,7 +37,7 @@ GraphPair random_graph_pair(int seed) {
 // Pieces of one curve whose refined ends lie a few eps apart (or overlap)
 // where leaves of different sizes meet used to come out as separate curves:
 // 9 for 7 on pair 2, 11 for 9 on pair 4, 8 for 6 on pair 3.
-TEST_CASE("refined curves come out one per true curve on random graph pairs [slow]") {
+TEST_CASE("refined curves come out one per true curve on random graph pairs", "[slow]") {
   const int seed = GENERATE(range(1, 13));
   const GraphPair pair = random_graph_pair(seed);
   const int truth = argil::bench::graph_oracle(pair.a, pair.b, 1000, false).components;

@@ -209,8 +209,9 @@ ToolMove SurfaceToolProxy::move(const std::vector<const SurfaceHierarchy*>& surf
   if (!start.status.ok()) return start;
   Advance stop = advance(surfaces, start.X_WT, X_WT_to);
   if (!stop.status.ok() || !stop.blocked) return arrive(surfaces, std::move(stop));
-  // Slide: the rest of the move without its component into the surface.
-  ToolContacts touch = contacts(surfaces, stop.X_WT);
+  // Slide: the rest of the move without its component into the surface. A
+  // search's stop comes with its contacts (its confirming swept query).
+  ToolContacts touch = stop.contacts ? std::move(*stop.contacts) : contacts(surfaces, stop.X_WT);
   if (!touch.status.ok()) return {std::move(touch.status), stop.X_WT, {}};
   Eigen::Vector3d rest = X_WT_to.p - stop.X_WT.p;
   const double into = rest.dot(touch.outward_normal);
