@@ -2,6 +2,7 @@
 // edge-crossing oracle, analytic intersections (planes, cylinders), and
 // brute force on graph surfaces where crossings are sign changes of z_a - z_b.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -480,6 +481,56 @@ TEST_CASE("the first-crossing test agrees with the full query on crossing and on
   }
   CHECK(crossing >= 40);
   CHECK(clear >= 40);
+}
+
+TEST_CASE("a contact query that stops at the first crossing agrees with the full one") {
+  std::mt19937_64 rng(199);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double size = 100.0, eps = 1e-3 * size;
+  int crossing = 0, clear = 0;
+  long full_leaves = 0, stopped_leaves = 0;  // over the crossing pairs
+  for (int trial = 0; trial < 120; ++trial) {
+    const BSplineSurface a = argil::test::graph_surface(rng, size, 2.0, 0.0, 4, 3);
+    BSplineSurface b = argil::test::graph_surface(rng, size, 2.0, 0.0, 4, 3);
+    b.control_points.col(2).array() += (trial % 3 == 0 ? 4.5 : 8.0 * (unit(rng) - 0.5));
+    auto ha = hierarchy_for(a);
+    auto hb = hierarchy_for(b);
+    argil::CollisionRequest request{.tolerance = eps,
+                                    .max_contacts = 1 << 20,
+                                    .refine = false,
+                                    .compute_depth = false,
+                                    .curves = false};
+    const CollisionResult full = argil::collide(ha, hb, request);
+    request.stop_at_crossing = true;
+    const CollisionResult stopped = argil::collide(ha, hb, request);
+    REQUIRE(full.status.ok());
+    REQUIRE(stopped.status.ok());
+    const auto crosses = [](const CollisionResult& r) {
+      return std::any_of(r.contacts.begin(), r.contacts.end(),
+                         [](const argil::Contact& c) { return c.depth >= 0.0; });
+    };
+    INFO("trial " << trial);
+    REQUIRE(crosses(stopped) == crosses(full));
+    CHECK(stopped.counters.leaf_pairs <= full.counters.leaf_pairs);
+    if (crosses(full)) {
+      ++crossing;
+      full_leaves += full.counters.leaf_pairs;
+      stopped_leaves += stopped.counters.leaf_pairs;
+      continue;
+    }
+    // Nothing crosses: the very same contacts.
+    ++clear;
+    REQUIRE(stopped.contacts.size() == full.contacts.size());
+    for (std::size_t k = 0; k < full.contacts.size(); ++k) {
+      CHECK(stopped.contacts[k].point == full.contacts[k].point);
+      CHECK(stopped.contacts[k].depth == full.contacts[k].depth);
+    }
+  }
+  CAPTURE(crossing, clear, full_leaves, stopped_leaves);
+  CHECK(crossing >= 30);
+  CHECK(clear >= 30);
+  // A crossing costs a part of the full descent.
+  CHECK(4 * stopped_leaves < full_leaves);
 }
 
 TEST_CASE("a query with b placed by a pose finds what the query on b moved by that pose finds") {

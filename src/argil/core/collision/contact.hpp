@@ -33,6 +33,12 @@ struct CollisionRequest {
   /// the haptic tick: curves stay empty, and a crossing still shows as a
   /// contact of depth 0 (the deepest region's deepest contact is always kept).
   bool curves = true;
+  /// Surface-surface queries: the contact query, but the descent stops at the
+  /// first leaf pair whose triangles cross, so the contacts (and curves) are
+  /// then only those found so far, that crossing among them. For callers that
+  /// use the contacts only when nothing crosses: a crossing then costs what
+  /// the yes/no test costs, not a descent over the whole overlap.
+  bool stop_at_crossing = false;
 };
 
 /// A polyline along the intersection of two surfaces: points [mm] and their

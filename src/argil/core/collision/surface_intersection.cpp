@@ -100,7 +100,6 @@ struct Sweep {
   Rigid middle;
   double reach = 0.0;
   double sagitta = 0.0;
-  double travel = 0.0;  // the farthest any point of b moves [mm]
 };
 
 /// Entries of one side: blocks as -(id + 1), hierarchy nodes as id >= 0.
@@ -586,8 +585,7 @@ class PairDescent {
         on_plane_(on_plane_distance(ha.surface(), hb.surface(), placed_b, request.tolerance)),
         apart_(request.tolerance + (sweep ? sweep->sagitta : 0.0)) {
     if (sweep) {
-      motion_ =
-          SweptMotion{sweep->start, sweep->start.inverse(), placed_b->inverse(), sweep->travel};
+      motion_ = SweptMotion{sweep->start, sweep->start.inverse(), placed_b->inverse()};
     }
   }
 
@@ -608,10 +606,16 @@ class PairDescent {
         continue;
       }
       // Leaf pair: flat nodes are hierarchy nodes (blocks are never flat).
-      if (examine_leaf_pair(ea, eb) && request_.first_crossing_only) break;
+      // Swept, only the way is looked at: one pair that meets on it is enough.
+      if (motion_ ? meets_on_the_way(ea, eb) : examine_leaf_pair(ea, eb)) {
+        if (motion_ || request_.first_crossing_only || (request_.stop_at_crossing && crossed_))
+          break;
+      }
     }
-    if (motion_ && !crossed_at_end_) sweep_unswept();
   }
+
+  /// A leaf pair crossed at the placement.
+  bool crossed() const { return crossed_; }
 
   std::vector<detail::Segment> segments;
   std::vector<PendingContact> pending;
@@ -628,17 +632,8 @@ class PairDescent {
     counters_.triangle_tests += found.triangle_tests;
     segments.insert(segments.end(), found.segments.begin(), found.segments.end());
     const bool crossing = found.contact.has_value();
-    crossed_at_end_ = crossed_at_end_ || crossing;
+    crossed_ = crossed_ || crossing;
     if (!crossing && !request_.first_crossing_only) found.contact = leaf_near_touch(la, lb, eps);
-    // A pair that does not cross at the end is looked at on the way, unless
-    // it ends farther apart than any point of b moved (no near-touch within
-    // eps, or a near-touch's distance): then the two never met.
-    if (!crossing && motion_) {
-      const bool never_met = request_.first_crossing_only ? false
-                             : found.contact ? -found.contact->leaf.contact.depth > motion_->travel
-                                             : eps >= motion_->travel;
-      if (!never_met) unswept_.emplace_back(ea, eb);
-    }
     if (!found.contact) return false;
     found.contact->reach = reach;
     found.contact->leaf.rect = la.rect;
@@ -646,20 +641,18 @@ class PairDescent {
     return true;
   }
 
-  /// Swept queries, when the end crosses nowhere: the first leaf pair that
-  /// meets on the way gives a crossing (one is enough to say so; when the end
-  /// crosses, the way is not looked at).
-  void sweep_unswept() {
-    for (const auto& [ea, eb] : unswept_) {
-      const LeafTriangles la = sa_.leaf(ea);
-      const LeafTriangles lb = sb_.leaf(eb);
-      if (std::optional<PendingContact> c = swept_crossing(ea, eb, la, lb)) {
-        c->reach = 2.0 * (la.radius + lb.radius) + request_.tolerance;
-        c->leaf.rect = la.rect;
-        pending.push_back(*c);
-        return;
-      }
-    }
+  /// True when the leaf pair meets somewhere on the motion (the end was
+  /// found clear by a placed descent): the meeting is a crossing on a.
+  bool meets_on_the_way(int ea, int eb) {
+    ++counters_.leaf_pairs;
+    const LeafTriangles la = sa_.leaf(ea);
+    const LeafTriangles lb = sb_.leaf(eb);
+    std::optional<PendingContact> c = swept_crossing(ea, eb, la, lb);
+    if (!c) return false;
+    c->reach = 2.0 * (la.radius + lb.radius) + request_.tolerance;
+    c->leaf.rect = la.rect;
+    pending.push_back(*c);
+    return true;
   }
 
   /// A crossing (depth 0) on a's leaf where b's leaf meets it during the
@@ -689,18 +682,16 @@ class PairDescent {
   /// seen from b).
   struct SweptMotion {
     Rigid start, start_inverse, end_inverse;
-    double travel;  // the farthest any point of b moves [mm]
   };
 
   const CollisionRequest& request_;
   QueryCounters& counters_;
   Side sa_;
   Side sb_;
-  double on_plane_;  // see on_plane_distance
-  double apart_;     // pairs farther apart than this are skipped
-  std::optional<SweptMotion> motion_;
-  bool crossed_at_end_ = false;
-  std::vector<std::pair<int, int>> unswept_;  // leaf pairs not crossing at the end
+  double on_plane_;                    // see on_plane_distance
+  double apart_;                       // pairs farther apart than this are skipped
+  std::optional<SweptMotion> motion_;  // a swept descent's: it looks at the way only
+  bool crossed_ = false;
 };
 
 }  // namespace
@@ -716,8 +707,16 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   result.status = check_request(request, ha);
   if (result.status.ok()) result.status = check_request(request, hb);
   if (!result.status.ok()) return result;
-  PairDescent descent(ha, hb, placed_b, sweep, request, result.counters);
+  PairDescent descent(ha, hb, placed_b, std::nullopt, request, result.counters);
   descent.run();
+  // Swept: the way matters only when the end crosses nowhere. Its bounds
+  // cover the whole motion, so its descent reaches many more pairs: it runs
+  // second, and stops at the first pair that meets.
+  if (sweep && !descent.crossed()) {
+    PairDescent way(ha, hb, placed_b, sweep, request, result.counters);
+    way.run();
+    descent.pending.insert(descent.pending.end(), way.pending.begin(), way.pending.end());
+  }
   // Refinement and penetration work on b's exact surface in a's frame.
   const bool exact_b = request.refine || request.compute_depth;
   BSplineSurface moved_b;
@@ -791,7 +790,7 @@ CollisionResult collide_swept(const SurfaceHierarchy& ha, const SurfaceHierarchy
   return collide_placed(ha, hb, Rigid{to.toRotationMatrix(), X_AB_to.p}, request,
                         Sweep{Rigid{from.toRotationMatrix(), X_AB_from.p},
                               Rigid{middle.toRotationMatrix(), 0.5 * (X_AB_from.p + X_AB_to.p)},
-                              0.5 * chord + sagitta, sagitta, chord});
+                              0.5 * chord + sagitta, sagitta});
 }
 
 }  // namespace argil

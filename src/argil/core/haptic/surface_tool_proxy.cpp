@@ -33,11 +33,12 @@ Result<SurfaceToolProxy> SurfaceToolProxy::create(const BSplineSurface& tool, do
 
 ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy*>& surfaces,
                                         const Pose& X_WT) {
-  return contacts(surfaces, X_WT, std::nullopt);
+  return contacts(surfaces, X_WT, std::nullopt, false);
 }
 
 ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy*>& surfaces,
-                                        const Pose& X_WT, const std::optional<Pose>& swept_from) {
+                                        const Pose& X_WT, const std::optional<Pose>& swept_from,
+                                        bool partial_when_crossing) {
   // A proxy that sticks runs this query alone, tick after tick: the tool's
   // nodes are bounded here as well as in move().
   hierarchy_.keep_within_node_budget();
@@ -51,7 +52,8 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
                                    .max_contacts = 64,
                                    .refine = false,
                                    .compute_depth = false,
-                                   .curves = false};
+                                   .curves = false,
+                                   .stop_at_crossing = partial_when_crossing};
     CollisionResult r = swept_from
                             ? collide_swept(*surfaces[b], hierarchy_, *swept_from, X_WT, request)
                             : collide(*surfaces[b], hierarchy_, X_WT, request);
@@ -134,7 +136,7 @@ SurfaceToolProxy::Advance SurfaceToolProxy::stop_before(
   // A failed search stops at `clear`: its last pose was never tested swept.
   if (!quick.status.ok()) return {std::move(quick.status), clear, true, std::nullopt};
   if (quick.X_WT.p == clear.p) return quick;
-  ToolContacts at = contacts(surfaces, quick.X_WT, clear);
+  ToolContacts at = contacts(surfaces, quick.X_WT, clear, true);
   if (!at.status.ok()) return {std::move(at.status), clear, true, std::nullopt};
   if (at.crosses) return bisect(surfaces, clear, quick.X_WT, true);
   quick.contacts = std::move(at);
@@ -165,7 +167,7 @@ SurfaceToolProxy::Advance SurfaceToolProxy::advance(
   // The last substep: the contact query answers the crossing test too, and
   // its contacts are the move's when it crosses nothing.
   const Pose end = interpolate(from, to, 1.0);
-  ToolContacts at = contacts(surfaces, end, good);
+  ToolContacts at = contacts(surfaces, end, good, true);
   if (!at.status.ok()) return {std::move(at.status), good, true, std::nullopt};
   if (at.crosses) return stop_before(surfaces, good, end);
   return {Status::success(), end, false, std::move(at)};

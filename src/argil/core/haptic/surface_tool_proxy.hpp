@@ -54,7 +54,9 @@ struct [[nodiscard]] ToolMove {
 /// empty). Where the tool lies on a surface, the yes/no crossing test costs
 /// about what the full contact query costs (both examine every leaf pair
 /// within eps), so the last substep of a move is tested with the contact
-/// query, whose contacts the move then returns.
+/// query, whose contacts the move then returns; that query stops at the
+/// first crossing (CollisionRequest::stop_at_crossing), so a substep that
+/// ends deep in a surface costs no more than the yes/no test.
 class SurfaceToolProxy {
  public:
   /// `tool` in its own frame T; fails when it does not validate, or with
@@ -118,8 +120,11 @@ class SurfaceToolProxy {
 
   /// The queries at X_WT; with `swept_from`, swept from there (collide_swept):
   /// a crossing anywhere on the way counts.
+  /// `partial_when_crossing`: the descent stops at the first crossing (the
+  /// contacts are then incomplete), for callers that use them only when
+  /// nothing crosses.
   ToolContacts contacts(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
-                        const std::optional<Pose>& swept_from);
+                        const std::optional<Pose>& swept_from, bool partial_when_crossing);
   Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
                     const std::optional<Pose>& swept_from);
 
