@@ -101,6 +101,15 @@ TEST_CASE("a sheet swept along a floor without reaching it does not cross it",
         {.tolerance = eps, .refine = false, .compute_depth = false, .curves = false});
     CHECK_FALSE(crosses(touch));
     CHECK(touch.contacts.empty() == (height > eps));
+    // Nothing met on the way: the very contacts of the query at the end.
+    const argil::CollisionResult at_end = argil::collide(
+        floor, tool, to,
+        {.tolerance = eps, .refine = false, .compute_depth = false, .curves = false});
+    REQUIRE(touch.contacts.size() == at_end.contacts.size());
+    for (std::size_t k = 0; k < at_end.contacts.size(); ++k) {
+      CHECK(touch.contacts[k].point == at_end.contacts[k].point);
+      CHECK(touch.contacts[k].depth == at_end.contacts[k].depth);
+    }
   }
 }
 

@@ -78,8 +78,11 @@ CollisionResult collide(const SurfaceHierarchy& a, const SurfaceHierarchy& b, co
 /// to |edge| sin(angle / 2) / 2. The model's path joins the same two
 /// placements within those errors, so a leaf that passes through a farther
 /// than them from a's edges is found; a graze (meeting a and leaving it on the
-/// same side) shallower than them may be missed or reported. Callers keep the rotation of one query
-/// small. Contacts that do not cross and curves are those at X_AB_to.
+/// same side) shallower than them may be missed or reported. Callers keep the
+/// rotation of one query small. That descent (bounds over the whole way, so
+/// many more pairs) runs only when collide(a, b, X_AB_to, request), run first,
+/// crosses nowhere: a motion that meets nothing on the way returns exactly
+/// that query's result.
 CollisionResult collide_swept(const SurfaceHierarchy& a, const SurfaceHierarchy& b,
                               const Pose& X_AB_from, const Pose& X_AB_to,
                               const CollisionRequest& request = {});
