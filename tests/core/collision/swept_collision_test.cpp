@@ -83,6 +83,28 @@ TEST_CASE("a sheet swept through a floor in one query crosses it, though neither
   }
 }
 
+TEST_CASE("a sheet moved through a floor by less than eps crosses it", "[collision][swept]") {
+  // Within eps the pairs that can meet on the way are those the end's own
+  // descent reaches: no descent over the motion runs.
+  const double eps = 0.05;
+  const argil::SurfaceHierarchy floor =
+      argil::test::hierarchy_for(argil::test::wavy_sheet(10, 10.0, 0.0));
+  const argil::SurfaceHierarchy tool = argil::test::hierarchy_for(flat_tool(6.0));
+  for (const double drop : {0.04, 0.5 * eps, eps}) {
+    CAPTURE(drop);
+    const Pose from = Pose::at({44.0, 45.0, 0.5 * drop}), to = Pose::at({44.0, 45.0, -0.5 * drop});
+    CHECK_FALSE(crosses(argil::collide(floor, tool, from, crossing_test(eps))));
+    CHECK_FALSE(crosses(argil::collide(floor, tool, to, crossing_test(eps))));
+    CHECK(crosses(argil::collide_swept(floor, tool, from, to, crossing_test(eps))));
+    // The contact query reports it too, and not when the sheet stops short.
+    const CollisionRequest contacts{
+        .tolerance = eps, .refine = false, .compute_depth = false, .curves = false};
+    CHECK(crosses(argil::collide_swept(floor, tool, from, to, contacts)));
+    CHECK_FALSE(crosses(
+        argil::collide_swept(floor, tool, from, Pose::at({44.0, 45.0, 0.1 * drop}), contacts)));
+  }
+}
+
 TEST_CASE("a sheet swept along a floor without reaching it does not cross it",
           "[collision][swept]") {
   const double eps = 0.05;

@@ -100,6 +100,7 @@ struct Sweep {
   Rigid middle;
   double reach = 0.0;
   double sagitta = 0.0;
+  double travel = 0.0;  // the farthest any point of b moves [mm]
 };
 
 /// Entries of one side: blocks as -(id + 1), hierarchy nodes as id >= 0.
@@ -572,20 +573,43 @@ std::optional<PendingContact> leaf_near_touch(const LeafTriangles& la, const Lea
   return out;
 }
 
+/// True when every triangle of one leaf is more than `distance` from every
+/// triangle of the other (cheap bounds only).
+bool leaves_farther_than(const LeafTriangles& la, const LeafTriangles& lb, double distance) {
+  for (const Triangle& x : la.triangles)
+    for (const Triangle& y : lb.triangles)
+      if (!farther_than(x, y, distance)) return false;
+  return true;
+}
+
 /// The simultaneous descent of collide(a, b) over node pairs (see the header).
+/// A swept query runs it at the end placement first; only when nothing
+/// crosses there is the way looked at: a pair that met on it ends no farther
+/// apart than b moved, so for a motion within eps the end's descent has
+/// already reached every such pair (it keeps them), and a longer one needs a
+/// descent of its own with bounds over the whole motion.
 class PairDescent {
  public:
+  enum class Pass {
+    end,  // the placement at the end (the only one of an unswept query)
+    way,  // a swept query's motion: stops at the first leaf pair that meets on it
+  };
+
   PairDescent(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
-              const std::optional<Rigid>& placed_b, const std::optional<Sweep>& sweep,
+              const std::optional<Rigid>& placed_b, const std::optional<Sweep>& sweep, Pass pass,
               const CollisionRequest& request, QueryCounters& counters)
       : request_(request),
         counters_(counters),
         sa_(ha, request.tolerance / 3.0, request.max_level, counters),
-        sb_(hb, request.tolerance / 3.0, request.max_level, counters, placed_b, sweep),
+        sb_(hb, request.tolerance / 3.0, request.max_level, counters, placed_b,
+            pass == Pass::way ? sweep : std::nullopt),
         on_plane_(on_plane_distance(ha.surface(), hb.surface(), placed_b, request.tolerance)),
-        apart_(request.tolerance + (sweep ? sweep->sagitta : 0.0)) {
+        apart_(request.tolerance + (pass == Pass::way ? sweep->sagitta : 0.0)),
+        way_(pass == Pass::way) {
     if (sweep) {
-      motion_ = SweptMotion{sweep->start, sweep->start.inverse(), placed_b->inverse()};
+      motion_ =
+          SweptMotion{sweep->start, sweep->start.inverse(), placed_b->inverse(), sweep->travel};
+      keep_near_ = pass == Pass::end && sweep->travel <= request.tolerance;
     }
   }
 
@@ -606,10 +630,9 @@ class PairDescent {
         continue;
       }
       // Leaf pair: flat nodes are hierarchy nodes (blocks are never flat).
-      // Swept, only the way is looked at: one pair that meets on it is enough.
-      if (motion_ ? meets_on_the_way(ea, eb) : examine_leaf_pair(ea, eb)) {
-        if (motion_ || request_.first_crossing_only || (request_.stop_at_crossing && crossed_))
-          break;
+      ++counters_.leaf_pairs;
+      if (way_ ? meets_on_the_way(ea, eb) : examine_leaf_pair(ea, eb)) {
+        if (way_ || request_.first_crossing_only || (request_.stop_at_crossing && crossed_)) break;
       }
     }
   }
@@ -617,13 +640,23 @@ class PairDescent {
   /// A leaf pair crossed at the placement.
   bool crossed() const { return crossed_; }
 
+  /// Whether the end's descent reached every leaf pair that could have met on
+  /// the way (a motion within eps), and kept them for meet_kept_pairs_on_the_way.
+  bool kept_the_way() const { return keep_near_; }
+
+  /// The end's descent: the first pair it kept that meets on the way gives a
+  /// crossing.
+  void meet_kept_pairs_on_the_way() {
+    for (const auto& [ea, eb] : near_)
+      if (meets_on_the_way(ea, eb)) return;
+  }
+
   std::vector<detail::Segment> segments;
   std::vector<PendingContact> pending;
 
  private:
   /// True when the pair gave a contact.
   bool examine_leaf_pair(int ea, int eb) {
-    ++counters_.leaf_pairs;
     const LeafTriangles la = sa_.leaf(ea);
     const LeafTriangles lb = sb_.leaf(eb);
     const double eps = request_.tolerance;
@@ -634,6 +667,16 @@ class PairDescent {
     const bool crossing = found.contact.has_value();
     crossed_ = crossed_ || crossing;
     if (!crossing && !request_.first_crossing_only) found.contact = leaf_near_touch(la, lb, eps);
+    // Kept for the way unless the pair ends farther apart than any point of b
+    // moved: then the two never met (a pair without a near-touch is more than
+    // eps apart, which is at least that far here).
+    if (keep_near_ && !crossing) {
+      const bool never_met = found.contact ? -found.contact->leaf.contact.depth > motion_->travel
+                             : request_.first_crossing_only
+                                 ? leaves_farther_than(la, lb, motion_->travel)
+                                 : true;
+      if (!never_met) near_.emplace_back(ea, eb);
+    }
     if (!found.contact) return false;
     found.contact->reach = reach;
     found.contact->leaf.rect = la.rect;
@@ -644,9 +687,10 @@ class PairDescent {
   /// True when the leaf pair meets somewhere on the motion (the end was
   /// found clear by a placed descent): the meeting is a crossing on a.
   bool meets_on_the_way(int ea, int eb) {
-    ++counters_.leaf_pairs;
     const LeafTriangles la = sa_.leaf(ea);
     const LeafTriangles lb = sb_.leaf(eb);
+    // Placed at the end: farther apart than any point of b moved, never met.
+    if (leaves_farther_than(la, lb, motion_->travel)) return false;
     std::optional<PendingContact> c = swept_crossing(ea, eb, la, lb);
     if (!c) return false;
     c->reach = 2.0 * (la.radius + lb.radius) + request_.tolerance;
@@ -682,6 +726,7 @@ class PairDescent {
   /// seen from b).
   struct SweptMotion {
     Rigid start, start_inverse, end_inverse;
+    double travel;  // the farthest any point of b moves [mm]
   };
 
   const CollisionRequest& request_;
@@ -690,8 +735,11 @@ class PairDescent {
   Side sb_;
   double on_plane_;                    // see on_plane_distance
   double apart_;                       // pairs farther apart than this are skipped
-  std::optional<SweptMotion> motion_;  // a swept descent's: it looks at the way only
+  bool way_;                           // Pass::way
+  std::optional<SweptMotion> motion_;  // a swept query's
+  bool keep_near_ = false;             // the end's descent keeps near_ for the way
   bool crossed_ = false;
+  std::vector<std::pair<int, int>> near_;  // leaf pairs that may have met on the way
 };
 
 }  // namespace
@@ -707,15 +755,19 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   result.status = check_request(request, ha);
   if (result.status.ok()) result.status = check_request(request, hb);
   if (!result.status.ok()) return result;
-  PairDescent descent(ha, hb, placed_b, std::nullopt, request, result.counters);
+  PairDescent descent(ha, hb, placed_b, sweep, PairDescent::Pass::end, request, result.counters);
   descent.run();
-  // Swept: the way matters only when the end crosses nowhere. Its bounds
-  // cover the whole motion, so its descent reaches many more pairs: it runs
-  // second, and stops at the first pair that meets.
+  // Swept: the way matters only when the end crosses nowhere. Bounds over the
+  // whole motion reach many more pairs, so a motion longer than eps gets its
+  // own descent, second, which stops at the first pair that meets.
   if (sweep && !descent.crossed()) {
-    PairDescent way(ha, hb, placed_b, sweep, request, result.counters);
-    way.run();
-    descent.pending.insert(descent.pending.end(), way.pending.begin(), way.pending.end());
+    if (descent.kept_the_way()) {
+      descent.meet_kept_pairs_on_the_way();
+    } else {
+      PairDescent way(ha, hb, placed_b, sweep, PairDescent::Pass::way, request, result.counters);
+      way.run();
+      descent.pending.insert(descent.pending.end(), way.pending.begin(), way.pending.end());
+    }
   }
   // Refinement and penetration work on b's exact surface in a's frame.
   const bool exact_b = request.refine || request.compute_depth;
@@ -790,7 +842,7 @@ CollisionResult collide_swept(const SurfaceHierarchy& ha, const SurfaceHierarchy
   return collide_placed(ha, hb, Rigid{to.toRotationMatrix(), X_AB_to.p}, request,
                         Sweep{Rigid{from.toRotationMatrix(), X_AB_from.p},
                               Rigid{middle.toRotationMatrix(), 0.5 * (X_AB_from.p + X_AB_to.p)},
-                              0.5 * chord + sagitta, sagitta});
+                              0.5 * chord + sagitta, sagitta, chord});
 }
 
 }  // namespace argil
