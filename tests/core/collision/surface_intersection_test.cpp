@@ -1,8 +1,8 @@
 // Surface against surface: the triangle-triangle test against an
 // edge-crossing oracle, analytic intersections (planes, cylinders), and
 // brute force on graph surfaces where crossings are sign changes of z_a - z_b.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 
