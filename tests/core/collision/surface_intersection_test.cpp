@@ -451,14 +451,10 @@ TEST_CASE("conforming contact: leaf pairs stop growing with depth once the flatn
 
 TEST_CASE("the first-crossing test agrees with the full query on crossing and on near pairs") {
   std::mt19937_64 rng(99);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double size = 100.0, eps = 1e-3 * size;
+  const double eps = 0.1;
   int crossing = 0, clear = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const BSplineSurface a = argil::test::graph_surface(rng, size, 2.0, 0.0, 4, 3);
-    BSplineSurface b = argil::test::graph_surface(rng, size, 2.0, 0.0, 4, 3);
-    // Offsets from crossing to a gap near eps to clearly apart.
-    b.control_points.col(2).array() += (trial % 3 == 0 ? 4.5 : 8.0 * (unit(rng) - 0.5));
+    const auto [a, b] = argil::test::random_offset_pair(rng, trial);
     auto ha = hierarchy_for(a);
     auto hb = hierarchy_for(b);
     const CollisionResult full = argil::collide(
@@ -485,14 +481,11 @@ TEST_CASE("the first-crossing test agrees with the full query on crossing and on
 
 TEST_CASE("a contact query that stops at the first crossing agrees with the full one") {
   std::mt19937_64 rng(199);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double size = 100.0, eps = 1e-3 * size;
+  const double eps = 0.1;
   int crossing = 0, clear = 0;
   long full_leaves = 0, stopped_leaves = 0;  // over the crossing pairs
   for (int trial = 0; trial < 120; ++trial) {
-    const BSplineSurface a = argil::test::graph_surface(rng, size, 2.0, 0.0, 4, 3);
-    BSplineSurface b = argil::test::graph_surface(rng, size, 2.0, 0.0, 4, 3);
-    b.control_points.col(2).array() += (trial % 3 == 0 ? 4.5 : 8.0 * (unit(rng) - 0.5));
+    const auto [a, b] = argil::test::random_offset_pair(rng, trial);
     auto ha = hierarchy_for(a);
     auto hb = hierarchy_for(b);
     argil::CollisionRequest request{.tolerance = eps,
@@ -520,11 +513,7 @@ TEST_CASE("a contact query that stops at the first crossing agrees with the full
     }
     // Nothing crosses: the very same contacts.
     ++clear;
-    REQUIRE(stopped.contacts.size() == full.contacts.size());
-    for (std::size_t k = 0; k < full.contacts.size(); ++k) {
-      CHECK(stopped.contacts[k].point == full.contacts[k].point);
-      CHECK(stopped.contacts[k].depth == full.contacts[k].depth);
-    }
+    CHECK(argil::test::same_contacts(stopped, full));
   }
   CAPTURE(crossing, clear, full_leaves, stopped_leaves);
   CHECK(crossing >= 30);

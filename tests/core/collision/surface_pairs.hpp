@@ -142,6 +142,28 @@ inline std::pair<BSplineSurface, BSplineSurface> wavy_pair() {
                [](double x, double y) { return 0.25 * (x - 0.5) + 0.02 * std::cos(3 * kPi * y); })};
 }
 
+/// Two random graph surfaces over [0, 100]^2 (amplitude 2, degree up to 4),
+/// b lifted by an offset that ranges from crossing to a gap near eps = 0.1 to
+/// clearly apart: a fixed 4.5 for every third trial, random in [-4, 4] else.
+inline std::pair<BSplineSurface, BSplineSurface> random_offset_pair(std::mt19937_64& rng,
+                                                                    int trial) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  BSplineSurface a = graph_surface(rng, 100.0, 2.0, 0.0, 4, 3);
+  BSplineSurface b = graph_surface(rng, 100.0, 2.0, 0.0, 4, 3);
+  b.control_points.col(2).array() += (trial % 3 == 0 ? 4.5 : 8.0 * (unit(rng) - 0.5));
+  return {std::move(a), std::move(b)};
+}
+
+/// True when the two results list the very same contacts (points and depths,
+/// in order).
+inline bool same_contacts(const CollisionResult& x, const CollisionResult& y) {
+  if (x.contacts.size() != y.contacts.size()) return false;
+  for (std::size_t k = 0; k < x.contacts.size(); ++k)
+    if (x.contacts[k].point != y.contacts[k].point || x.contacts[k].depth != y.contacts[k].depth)
+      return false;
+  return true;
+}
+
 inline SurfaceHierarchy hierarchy_for(const BSplineSurface& s) {
   static OperatorCache cache;
   auto h = SurfaceHierarchy::build(s, cache);

@@ -127,11 +127,7 @@ TEST_CASE("a sheet swept along a floor without reaching it does not cross it",
     const argil::CollisionResult at_end = argil::collide(
         floor, tool, to,
         {.tolerance = eps, .refine = false, .compute_depth = false, .curves = false});
-    REQUIRE(touch.contacts.size() == at_end.contacts.size());
-    for (std::size_t k = 0; k < at_end.contacts.size(); ++k) {
-      CHECK(touch.contacts[k].point == at_end.contacts[k].point);
-      CHECK(touch.contacts[k].depth == at_end.contacts[k].depth);
-    }
+    CHECK(argil::test::same_contacts(touch, at_end));
   }
 }
 

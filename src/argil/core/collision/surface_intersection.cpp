@@ -631,7 +631,7 @@ class PairDescent {
       }
       // Leaf pair: flat nodes are hierarchy nodes (blocks are never flat).
       ++counters_.leaf_pairs;
-      if (way_ ? meets_on_the_way(ea, eb) : examine_leaf_pair(ea, eb)) {
+      if (way_ ? way_leaf_pair(ea, eb) : examine_leaf_pair(ea, eb)) {
         if (way_ || request_.first_crossing_only || (request_.stop_at_crossing && crossed_)) break;
       }
     }
@@ -648,7 +648,7 @@ class PairDescent {
   /// crossing.
   void meet_kept_pairs_on_the_way() {
     for (const auto& [ea, eb] : near_)
-      if (meets_on_the_way(ea, eb)) return;
+      if (meets_on_the_way(ea, eb, sa_.leaf(ea), sb_.leaf(eb))) return;
   }
 
   std::vector<detail::Segment> segments;
@@ -684,13 +684,19 @@ class PairDescent {
     return true;
   }
 
-  /// True when the leaf pair meets somewhere on the motion (the end was
-  /// found clear by a placed descent): the meeting is a crossing on a.
-  bool meets_on_the_way(int ea, int eb) {
+  /// The way's descent reached a leaf pair: true when it meets on the motion.
+  bool way_leaf_pair(int ea, int eb) {
     const LeafTriangles la = sa_.leaf(ea);
     const LeafTriangles lb = sb_.leaf(eb);
     // Placed at the end: farther apart than any point of b moved, never met.
+    // (The pairs the end's descent kept passed this or a stricter test.)
     if (leaves_farther_than(la, lb, motion_->travel)) return false;
+    return meets_on_the_way(ea, eb, la, lb);
+  }
+
+  /// True when the leaf pair meets somewhere on the motion (the end was
+  /// found clear by a placed descent): the meeting is a crossing on a.
+  bool meets_on_the_way(int ea, int eb, const LeafTriangles& la, const LeafTriangles& lb) {
     std::optional<PendingContact> c = swept_crossing(ea, eb, la, lb);
     if (!c) return false;
     c->reach = 2.0 * (la.radius + lb.radius) + request_.tolerance;

@@ -79,10 +79,15 @@ CollisionResult collide(const SurfaceHierarchy& a, const SurfaceHierarchy& b, co
 /// placements within those errors, so a leaf that passes through a farther
 /// than them from a's edges is found; a graze (meeting a and leaving it on the
 /// same side) shallower than them may be missed or reported. Callers keep the
-/// rotation of one query small. That descent (bounds over the whole way, so
-/// many more pairs) runs only when collide(a, b, X_AB_to, request), run first,
-/// crosses nowhere: a motion that meets nothing on the way returns exactly
-/// that query's result.
+/// rotation of one query small.
+/// The way is looked at only when collide(a, b, X_AB_to, request), run first,
+/// crosses nowhere, so a motion that meets nothing on the way returns exactly
+/// that query's result. A leaf pair whose end triangles are farther apart than
+/// any point of b moved never met and is skipped (this also drops the model's
+/// false grazes beyond that distance). For a motion within the tolerance the
+/// end's descent has already reached every other pair and the leaf test runs
+/// on those alone; a longer motion gets a second descent with bounds over the
+/// whole way (many more pairs), stopping at the first pair that meets.
 CollisionResult collide_swept(const SurfaceHierarchy& a, const SurfaceHierarchy& b,
                               const Pose& X_AB_from, const Pose& X_AB_to,
                               const CollisionRequest& request = {});
