@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include "argil/core.hpp"
 #include "argil/core/geometry/triangle_distance.hpp"
@@ -152,6 +154,56 @@ TEST_CASE(
   }
   CHECK(crossing > 1000);
   CHECK(apart > 1000);
+}
+
+TEST_CASE(
+    "triangle distance of disjoint triangles lies between the true one and a dense sampling's, "
+    "at points its barycentric coordinates give") {
+  // Its points lie on the triangles, so it is at least the true distance; a
+  // sampling's nearest pair is at most the true distance plus the spacing.
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  static constexpr int kSteps = 24;
+  const auto samples = [](const Triangle& t) {
+    std::vector<Eigen::Vector3d> out;
+    for (int i = 0; i <= kSteps; ++i)
+      for (int j = 0; i + j <= kSteps; ++j)
+        out.push_back(on_triangle(t, Eigen::Vector3d(kSteps - i - j, i, j) / kSteps));
+    return out;
+  };
+  int disjoint = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Triangle a{random_point(rng, 1.0), random_point(rng, 1.0), random_point(rng, 1.0)};
+    Triangle b{random_point(rng, 1.0), random_point(rng, 1.0), random_point(rng, 1.0)};
+    if (trial % 2 == 0) {
+      // Nearly parallel: a lifted along its normal by up to 0.1, corners jittered.
+      const Eigen::Vector3d n = (a[1] - a[0]).cross(a[2] - a[0]).normalized();
+      for (std::size_t k = 0; k < 3; ++k)
+        b[k] = a[k] + 0.1 * unit(rng) * n + 0.01 * random_point(rng, 1.0);
+    }
+    // Meant for disjoint triangles (crossing ones are found by intersect_triangles).
+    if (argil::intersect_triangles(a, b).kind != argil::TriangleIntersection::Kind::none) continue;
+    ++disjoint;
+    const argil::TriangleDistance d = argil::triangle_distance(a, b);
+    INFO("trial " << trial);
+    for (const Eigen::Vector3d& w : {d.bary_a, d.bary_b}) {
+      CHECK(w.minCoeff() >= 0.0);
+      CHECK(std::abs(w.sum() - 1.0) < 1e-15);
+    }
+    CHECK((on_triangle(a, d.bary_a) - d.point_a).norm() < 1e-12);
+    CHECK((on_triangle(b, d.bary_b) - d.point_b).norm() < 1e-12);
+    CHECK(std::abs((d.point_a - d.point_b).norm() - d.distance) < 1e-15);
+    double sampled = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& p : samples(a))
+      for (const Eigen::Vector3d& q : samples(b)) sampled = std::min(sampled, (p - q).norm());
+    CHECK(d.distance <= sampled + 1e-12);
+    // A point of a triangle is within its longest edge / kSteps of a sample.
+    const auto longest_edge = [](const Triangle& t) {
+      return std::max({(t[1] - t[0]).norm(), (t[2] - t[1]).norm(), (t[0] - t[2]).norm()});
+    };
+    CHECK(d.distance >= sampled - (longest_edge(a) + longest_edge(b)) / kSteps);
+  }
+  CHECK(disjoint > 150);
 }
 
 TEST_CASE("triangle intersection handles touching and coplanar triangles deterministically") {

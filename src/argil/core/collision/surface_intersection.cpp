@@ -558,7 +558,8 @@ std::optional<PendingContact> leaf_near_touch(const LeafTriangles& la, const Lea
   double nearest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < 2; ++i) {
     for (std::size_t j = 0; j < 2; ++j) {
-      if (farther_than(la.triangles[i], lb.triangles[j], eps)) continue;
+      // No nearer than the nearest pair so far: no need to measure it.
+      if (farther_than(la.triangles[i], lb.triangles[j], std::min(eps, nearest))) continue;
       const TriangleDistance d = triangle_distance(la.triangles[i], lb.triangles[j]);
       if (!(d.distance <= eps && d.distance < nearest)) continue;
       nearest = d.distance;

@@ -276,20 +276,29 @@ Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Triangle& t) {
 }
 
 TriangleDistance triangle_distance(const Triangle& a, const Triangle& b) {
+  // Candidates compare by squared distance; a corner's foot on the other
+  // triangle gets its barycentric coordinates only if it wins (they cost a
+  // second closest-point search).
+  enum class Foot { none, on_a, on_b };
   TriangleDistance best;
-  best.distance = std::numeric_limits<double>::infinity();
-  const auto consider = [&best](const Eigen::Vector3d& pa, const Eigen::Vector3d& pb,
-                                const Eigen::Vector3d& wa, const Eigen::Vector3d& wb) {
-    const double d = (pa - pb).norm();
-    if (d < best.distance) best = {d, pa, pb, wa, wb};
+  double best_squared = std::numeric_limits<double>::infinity();
+  Foot foot = Foot::none;
+  const auto consider = [&](const Eigen::Vector3d& pa, const Eigen::Vector3d& pb,
+                            const Eigen::Vector3d& wa, const Eigen::Vector3d& wb, Foot f) {
+    const double d = (pa - pb).squaredNorm();
+    if (!(d < best_squared)) return;
+    best_squared = d;
+    best = {0.0, pa, pb, wa, wb};
+    foot = f;
   };
+  const Eigen::Vector3d unknown = Eigen::Vector3d::Zero();
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d& pa = a[static_cast<std::size_t>(k)];
-    const Eigen::Vector3d qb = closest_point_on_triangle(pa, b[0], b[1], b[2]);
-    consider(pa, qb, Eigen::Vector3d::Unit(k), barycentric(qb, b));
+    consider(pa, closest_point_on_triangle(pa, b[0], b[1], b[2]), Eigen::Vector3d::Unit(k), unknown,
+             Foot::on_b);
     const Eigen::Vector3d& pb = b[static_cast<std::size_t>(k)];
-    const Eigen::Vector3d qa = closest_point_on_triangle(pb, a[0], a[1], a[2]);
-    consider(qa, pb, barycentric(qa, a), Eigen::Vector3d::Unit(k));
+    consider(closest_point_on_triangle(pb, a[0], a[1], a[2]), pb, unknown, Eigen::Vector3d::Unit(k),
+             Foot::on_a);
   }
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3;
@@ -305,9 +314,12 @@ TriangleDistance triangle_distance(const Triangle& a, const Triangle& b) {
       wa[i1] = s;
       wb[j] = 1.0 - t;
       wb[j1] = t;
-      consider(p0 + s * (p1 - p0), q0 + t * (q1 - q0), wa, wb);
+      consider(p0 + s * (p1 - p0), q0 + t * (q1 - q0), wa, wb, Foot::none);
     }
   }
+  best.distance = std::sqrt(best_squared);
+  if (foot == Foot::on_a) best.bary_a = barycentric(best.point_a, a);
+  if (foot == Foot::on_b) best.bary_b = barycentric(best.point_b, b);
   return best;
 }
 

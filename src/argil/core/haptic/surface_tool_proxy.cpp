@@ -67,6 +67,8 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
       out.outward_normal += sign * c.normal;
     }
     out.per_surface[b] = std::move(r.contacts);
+    // The caller uses partial contacts only when nothing crosses.
+    if (partial_when_crossing && out.crosses) break;
   }
   if (out.outward_normal.squaredNorm() > 0.0) out.outward_normal.normalize();
   return out;

@@ -120,9 +120,9 @@ class SurfaceToolProxy {
 
   /// The queries at X_WT; with `swept_from`, swept from there (collide_swept):
   /// a crossing anywhere on the way counts.
-  /// `partial_when_crossing`: the descent stops at the first crossing (the
-  /// contacts are then incomplete), for callers that use them only when
-  /// nothing crosses.
+  /// `partial_when_crossing`: the descent stops at the first crossing, and
+  /// the surfaces after it are not queried (the contacts are then
+  /// incomplete), for callers that use them only when nothing crosses.
   ToolContacts contacts(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
                         const std::optional<Pose>& swept_from, bool partial_when_crossing);
   Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
