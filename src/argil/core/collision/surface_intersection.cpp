@@ -482,11 +482,13 @@ bool pair_apart(const View& va, const View& vb, double eps) {
   if ((va.center - vb.center).norm() > va.radius + vb.radius + eps) return true;
   if (((va.lo - vb.hi).array() > eps).any() || ((vb.lo - va.hi).array() > eps).any()) return true;
   // A nearly flat side bounds by its triangles (worth it when flatness is
-  // well below its radius).
+  // well below its radius). Each test is conservative on its own, so their
+  // order is only cost: the cheap bounds of two thin sides' triangles first,
+  // then the exact distances of a sphere to a flat side's triangles.
   const bool thin_a = va.flatness < 0.5 * va.radius, thin_b = vb.flatness < 0.5 * vb.radius;
+  if (thin_a && thin_b && triangles_farther_than(va, vb, eps)) return true;
   if (thin_a && gap_to_flat_patch(va, vb) > eps) return true;
-  if (thin_b && gap_to_flat_patch(vb, va) > eps) return true;
-  return thin_a && thin_b && triangles_farther_than(va, vb, eps);
+  return thin_b && gap_to_flat_patch(vb, va) > eps;
 }
 
 /// What one flat leaf pair gives: crossing segments and at most one contact.
