@@ -115,18 +115,18 @@ class Side {
         placed_(std::move(placed)),
         sweep_(std::move(sweep)) {}
 
-  View view(int entry) {
-    if (!placed_) return own_view(entry);
-    // A placed entry is moved once per query: the descent views each node
-    // of one side against many of the other's.
+  /// The entry's bounds, placed. Valid until the next view() of this side.
+  const View& view(int entry) {
+    // An entry is read (and placed) once per query: the descent views each
+    // node of one side against many of the other's.
     std::vector<int>& slots = entry < 0 ? block_slots_ : node_slots_;
     const auto id = static_cast<std::size_t>(entry < 0 ? -entry - 1 : entry);
     if (id >= slots.size()) slots.resize(std::max(id + 1, 2 * slots.size()), -1);
     if (slots[id] < 0) {
-      slots[id] = static_cast<int>(placed_views_.size());
-      placed_views_.push_back(placed(own_view(entry)));
+      slots[id] = static_cast<int>(views_.size());
+      views_.push_back(placed_ ? placed(own_view(entry)) : own_view(entry));
     }
-    return placed_views_[static_cast<std::size_t>(slots[id])];
+    return views_[static_cast<std::size_t>(slots[id])];
   }
 
   /// The entry's bounds in its own frame.
@@ -170,16 +170,23 @@ class Side {
     return b.element_node >= 0 ? b.element_node : -(block + 1);
   }
 
-  std::vector<int> children(int entry) {
-    std::vector<int> out;
+  /// Up to four child entries (no allocation: the descent splits often).
+  struct Children {
+    std::array<int, 4> entries{};
+    int count = 0;
+  };
+
+  Children children(int entry) {
+    Children out;
     if (entry < 0) {
       const std::array<int, 4> kids = h_.block(-entry - 1).children;
       for (int c : kids)
-        if (c >= 0) out.push_back(entry_of_block(c));
+        if (c >= 0) out.entries[static_cast<std::size_t>(out.count++)] = entry_of_block(c);
       return out;
     }
     for (int hu = 0; hu < 2; ++hu)
-      for (int hv = 0; hv < 2; ++hv) out.push_back(h_.child(entry, hu, hv));
+      for (int hv = 0; hv < 2; ++hv)
+        out.entries[static_cast<std::size_t>(out.count++)] = h_.child(entry, hu, hv);
     return out;
   }
 
@@ -222,10 +229,10 @@ class Side {
   QueryCounters& counters_;
   std::optional<Rigid> placed_;
   std::optional<Sweep> sweep_;  // a swept query's motion
-  // Placed views of the entries seen so far: ids index slots (-1: not yet
-  // placed), slots index views, so a query pays 4 bytes per id, not a view.
+  // Views of the entries seen so far: ids index slots (-1: not yet seen),
+  // slots index views, so a query pays 4 bytes per id, not a view.
   std::vector<int> node_slots_, block_slots_;
-  std::vector<View> placed_views_;
+  std::vector<View> views_;
 };
 
 /// True when a cheap lower bound on the distance between the triangles
@@ -621,15 +628,17 @@ class PairDescent {
     while (!stack.empty()) {
       const auto [ea, eb] = stack.back();
       stack.pop_back();
-      const View va = sa_.view(ea);
-      const View vb = sb_.view(eb);
+      const View& va = sa_.view(ea);  // two sides: neither view() moves the other's
+      const View& vb = sb_.view(eb);
       if (pair_apart(va, vb, apart_)) continue;
       if (!(va.flat && vb.flat)) {
         // Split the side that is not flat; the larger sphere when neither is.
         const bool split_a = !va.flat && (vb.flat || va.radius >= vb.radius);
-        const std::vector<int> kids = split_a ? sa_.children(ea) : sb_.children(eb);
-        for (auto it = kids.rbegin(); it != kids.rend(); ++it)
-          stack.emplace_back(split_a ? *it : ea, split_a ? eb : *it);
+        const Side::Children kids = split_a ? sa_.children(ea) : sb_.children(eb);
+        for (int k = kids.count - 1; k >= 0; --k) {
+          const int kid = kids.entries[static_cast<std::size_t>(k)];
+          stack.emplace_back(split_a ? kid : ea, split_a ? eb : kid);
+        }
         continue;
       }
       // Leaf pair: flat nodes are hierarchy nodes (blocks are never flat).

@@ -47,7 +47,7 @@ struct ElementBlock {
 
 /// Work a query did, for benchmarks and the speed/accuracy trade.
 struct QueryCounters {
-  long nodes_visited = 0;    // node bounds tested
+  long nodes_visited = 0;    // node bounds read (surface pairs: each node once per query)
   long nodes_refreshed = 0;  // nodes whose Bezier net was (re)computed
   long leaf_pairs = 0;       // leaves (or leaf pairs) examined exactly
   long triangle_tests = 0;   // triangle-triangle or triangle-tool tests
