@@ -194,8 +194,9 @@ TEST_CASE(
     CHECK((on_triangle(b, d.bary_b) - d.point_b).norm() < 1e-12);
     CHECK(std::abs((d.point_a - d.point_b).norm() - d.distance) < 1e-15);
     double sampled = std::numeric_limits<double>::infinity();
+    const std::vector<Eigen::Vector3d> on_b = samples(b);
     for (const Eigen::Vector3d& p : samples(a))
-      for (const Eigen::Vector3d& q : samples(b)) sampled = std::min(sampled, (p - q).norm());
+      for (const Eigen::Vector3d& q : on_b) sampled = std::min(sampled, (p - q).norm());
     CHECK(d.distance <= sampled + 1e-12);
     // A point of a triangle is within its longest edge / kSteps of a sample.
     const auto longest_edge = [](const Triangle& t) {

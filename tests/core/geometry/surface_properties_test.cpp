@@ -158,6 +158,12 @@ TEST_CASE("subdivision matrices split a Bezier patch into halves of the same sur
     for (int hv = 0; hv < 2; ++hv) {
       const argil::BezierPatch child = argil::subdivide(parent, su, sv, {hu, hv});
       const argil::BezierPatch strip = argil::subdivide(parent, su, sv, {std::nullopt, hv});
+      // Into a patch that holds another net (as a refreshed node does): the same net.
+      argil::BezierPatch reused{1, 1, argil::PatchNet::Constant(4, 4, 7.0)};
+      argil::subdivide_into(parent, su, sv, {hu, hv}, reused);
+      CHECK(reused.degree_u == child.degree_u);
+      CHECK(reused.degree_v == child.degree_v);
+      CHECK(reused.points == child.points);
       for (double a : {0.0, 0.2, 0.7, 1.0}) {
         for (double b : {0.0, 0.45, 1.0}) {
           CHECK((argil::evaluate(child, a, b) -

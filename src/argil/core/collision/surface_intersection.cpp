@@ -25,6 +25,21 @@ namespace argil {
 
 namespace {
 
+/// A triangle with what the cheap distance bounds read: its box, and its
+/// plane's normal (not normalised) with that normal's length.
+struct TriangleBound {
+  Triangle t;
+  Eigen::Vector3d lo, hi, normal;
+  double length = 0.0;
+};
+
+TriangleBound bound_triangle(const Triangle& t) {
+  TriangleBound b{t, t[0].cwiseMin(t[1]).cwiseMin(t[2]), t[0].cwiseMax(t[1]).cwiseMax(t[2]),
+                  (t[1] - t[0]).cross(t[2] - t[0])};
+  b.length = b.normal.norm();
+  return b;
+}
+
 /// A node or a block of elements, copied out of its hierarchy (the node pool
 /// may reallocate when children are created).
 struct View {
@@ -36,20 +51,41 @@ struct View {
   /// triangles (c00, c10, c11), (c00, c11, c01); +inf for blocks.
   double flatness = std::numeric_limits<double>::infinity();
   std::array<Eigen::Vector3d, 4> corners{};
+  /// The corner triangles' cheap bounds, placed: filled by corner_triangles()
+  /// on first use (most views never need them).
+  mutable std::optional<std::array<TriangleBound, 2>> triangles{};
 };
 
-/// A lower bound on the distance from anything in `sphere` to the patch of
-/// `node`: the sphere centre's distance to the node's corner triangles, less
-/// the sphere radius and the node's flatness. Far tighter than the node's own
-/// sphere when the patch is nearly flat and wide (a plane against a small
-/// tool), where sphere and box tests cannot separate what lies near its plane.
-double gap_to_flat_patch(const View& node, const View& sphere) {
-  if (!std::isfinite(node.flatness)) return -std::numeric_limits<double>::infinity();
-  const auto& c = node.corners;
-  const double to_triangles =
-      std::min((closest_point_on_triangle(sphere.center, c[0], c[1], c[3]) - sphere.center).norm(),
-               (closest_point_on_triangle(sphere.center, c[0], c[3], c[2]) - sphere.center).norm());
-  return to_triangles - sphere.radius - node.flatness;
+/// A node view's two corner triangles with their cheap bounds, computed once.
+const std::array<TriangleBound, 2>& corner_triangles(const View& v) {
+  if (!v.triangles) {
+    const auto& c = v.corners;
+    v.triangles = {bound_triangle({c[0], c[1], c[3]}), bound_triangle({c[0], c[3], c[2]})};
+  }
+  return *v.triangles;
+}
+
+/// Whether a node is flat enough, for its size, that its corner triangles
+/// bound it better than its sphere and box (false for blocks: flatness +inf).
+bool is_thin(const View& v) { return v.flatness < 0.5 * v.radius; }
+
+/// True when anything in `sphere` is more than eps from the patch of `node`
+/// (a thin node): the sphere centre's distance to each corner triangle, less
+/// the sphere radius and the node's flatness, exceeds eps. Far tighter than
+/// the node's own sphere when the patch is nearly flat and wide (a plane
+/// against a small tool), where sphere and box tests cannot separate what
+/// lies near its plane. A triangle's plane is tried before the triangle
+/// itself: its distance is a lower bound, and usually the same one.
+bool sphere_apart_from_flat_patch(const View& node, const View& sphere, double eps) {
+  for (const TriangleBound& t : corner_triangles(node)) {
+    const Eigen::Vector3d to_centre = sphere.center - t.t[0];
+    if (t.length > 0.0 &&
+        std::abs(t.normal.dot(to_centre)) / t.length - sphere.radius - node.flatness > eps)
+      continue;
+    const Eigen::Vector3d foot = closest_point_on_triangle(sphere.center, t.t[0], t.t[1], t.t[2]);
+    if (!((foot - sphere.center).norm() - sphere.radius - node.flatness > eps)) return false;
+  }
+  return true;
 }
 
 /// The two corner triangles of a flat node and their parameter corners.
@@ -235,6 +271,18 @@ class Side {
   std::vector<View> views_;
 };
 
+/// True when every point of `other` lies more than eps beyond the plane
+/// through `origin` with normal n (length |n|), on either side.
+bool beyond_plane(const Eigen::Vector3d& n, double length, const Eigen::Vector3d& origin,
+                  const Triangle& other, double eps) {
+  if (!(length > 0.0)) return false;
+  const double limit = eps * length;
+  const double d0 = n.dot(other[0] - origin);
+  const double d1 = n.dot(other[1] - origin);
+  const double d2 = n.dot(other[2] - origin);
+  return std::min({d0, d1, d2}) > limit || std::max({d0, d1, d2}) < -limit;
+}
+
 /// True when a cheap lower bound on the distance between the triangles
 /// exceeds eps: a gap between their boxes, or one triangle entirely beyond eps
 /// on one side of the other's plane.
@@ -247,31 +295,29 @@ bool farther_than(const Triangle& a, const Triangle& b, double eps) {
     return std::max(b_lo - a_hi, a_lo - b_hi);
   };
   if (box_gap(0) > eps || box_gap(1) > eps || box_gap(2) > eps) return true;
-  const auto beyond_plane = [eps](const Triangle& t, const Triangle& other) {
+  const auto beyond = [eps](const Triangle& t, const Triangle& other) {
     const Eigen::Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
-    const double length = n.norm();
-    if (!(length > 0.0)) return false;
-    const double limit = eps * length;
-    const double d0 = n.dot(other[0] - t[0]);
-    const double d1 = n.dot(other[1] - t[0]);
-    const double d2 = n.dot(other[2] - t[0]);
-    return std::min({d0, d1, d2}) > limit || std::max({d0, d1, d2}) < -limit;
+    return beyond_plane(n, n.norm(), t[0], other, eps);
   };
-  return beyond_plane(a, b) || beyond_plane(b, a);
+  return beyond(a, b) || beyond(b, a);
+}
+
+/// The same test from bounds computed once per node (the descent tests each
+/// node's triangles against many of the other side's): the same arithmetic.
+bool farther_than(const TriangleBound& a, const TriangleBound& b, double eps) {
+  if (((b.lo - a.hi).cwiseMax(a.lo - b.hi).array() > eps).any()) return true;
+  return beyond_plane(a.normal, a.length, a.t[0], b.t, eps) ||
+         beyond_plane(b.normal, b.length, b.t[0], a.t, eps);
 }
 
 /// True when every corner triangle of node a is more than eps + both
 /// flatness bounds from every corner triangle of node b (cheap tests only),
 /// so the patches are more than eps apart. Separates tilted thin patches
-/// that sphere and axis-aligned box tests cannot.
+/// that sphere and axis-aligned box tests cannot. Both nodes thin.
 bool triangles_farther_than(const View& a, const View& b, double eps) {
   const double margin = eps + a.flatness + b.flatness;
-  const auto& p = a.corners;
-  const auto& q = b.corners;
-  const std::array<Triangle, 2> ta{Triangle{p[0], p[1], p[3]}, Triangle{p[0], p[3], p[2]}};
-  const std::array<Triangle, 2> tb{Triangle{q[0], q[1], q[3]}, Triangle{q[0], q[3], q[2]}};
-  for (const Triangle& x : ta)
-    for (const Triangle& y : tb)
+  for (const TriangleBound& x : corner_triangles(a))
+    for (const TriangleBound& y : corner_triangles(b))
       if (!farther_than(x, y, margin)) return false;
   return true;
 }
@@ -492,10 +538,10 @@ bool pair_apart(const View& va, const View& vb, double eps) {
   // well below its radius). Each test is conservative on its own, so their
   // order is only cost: the cheap bounds of two thin sides' triangles first,
   // then the exact distances of a sphere to a flat side's triangles.
-  const bool thin_a = va.flatness < 0.5 * va.radius, thin_b = vb.flatness < 0.5 * vb.radius;
+  const bool thin_a = is_thin(va), thin_b = is_thin(vb);
   if (thin_a && thin_b && triangles_farther_than(va, vb, eps)) return true;
-  if (thin_a && gap_to_flat_patch(va, vb) > eps) return true;
-  return thin_b && gap_to_flat_patch(vb, va) > eps;
+  if (thin_a && sphere_apart_from_flat_patch(va, vb, eps)) return true;
+  return thin_b && sphere_apart_from_flat_patch(vb, va, eps);
 }
 
 /// What one flat leaf pair gives: crossing segments and at most one contact.

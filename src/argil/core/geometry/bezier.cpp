@@ -153,40 +153,79 @@ SurfaceDerivatives evaluate_derivatives(const BezierPatch& patch, double s, doub
   return detail::cartesian(h, order);
 }
 
-BezierPatch map_along(const BezierPatch& patch, Direction d, const Eigen::MatrixXd& m) {
-  // Row of pole (a, b) is a * (q + 1) + b: a line of the net along d steps by
-  // `along`, its neighbour line by `across`.
-  const int q1 = patch.degree_v + 1;
+namespace {
+
+/// Rows (line * across + k * along) of `out` = sum over i of m(k, i) times
+/// row (line * across + i * along) of `in`: each line of the net along d
+/// mapped by m. Each row of m is read once for its nonzero range (the de
+/// Casteljau halves are triangular), not once per line; the sum runs in
+/// increasing i, so every caller rounds alike.
+void map_lines(const double* in, double* out, int degree_u, int degree_v, Direction d,
+               const Eigen::MatrixXd& m) {
+  const int q1 = degree_v + 1;
   const bool in_u = d == Direction::u;
-  const int count_along = in_u ? patch.degree_u + 1 : q1;
-  const int count_across = in_u ? q1 : patch.degree_u + 1;
+  const int count_along = in_u ? degree_u + 1 : q1;
+  const int count_across = in_u ? q1 : degree_u + 1;
   const int along = in_u ? q1 : 1;
   const int across = in_u ? 1 : q1;
-  BezierPatch out{patch.degree_u, patch.degree_v, Eigen::MatrixX4d(patch.points.rows(), 4)};
+  std::array<int, kMaxDegree + 1> first{}, last{};  // nonzero range of row k, inclusive
+  for (int k = 0; k < count_along; ++k) {
+    int lo = 0, hi = count_along - 1;
+    while (lo < hi && m(k, lo) == 0.0) ++lo;
+    while (hi > lo && m(k, hi) == 0.0) --hi;
+    first[static_cast<std::size_t>(k)] = lo;
+    last[static_cast<std::size_t>(k)] = hi;
+  }
   for (int line = 0; line < count_across; ++line) {
+    const double* line_in = in + 4 * line * across;
+    double* line_out = out + 4 * line * across;
     for (int k = 0; k < count_along; ++k) {
-      Eigen::RowVector4d sum = Eigen::RowVector4d::Zero();
-      for (int i = 0; i < count_along; ++i) {
-        if (m(k, i) != 0.0) sum += m(k, i) * patch.points.row(line * across + i * along);
-      }
-      out.points.row(line * across + k * along) = sum;
+      Eigen::Vector4d sum = Eigen::Vector4d::Zero();
+      for (int i = first[static_cast<std::size_t>(k)]; i <= last[static_cast<std::size_t>(k)]; ++i)
+        sum += m(k, i) * Eigen::Map<const Eigen::Vector4d>(line_in + 4 * i * along);
+      Eigen::Map<Eigen::Vector4d>(line_out + 4 * k * along) = sum;
     }
   }
+}
+
+}  // namespace
+
+BezierPatch map_along(const BezierPatch& patch, Direction d, const Eigen::MatrixXd& m) {
+  BezierPatch out{patch.degree_u, patch.degree_v, PatchNet(patch.points.rows(), 4)};
+  map_lines(patch.points.data(), out.points.data(), patch.degree_u, patch.degree_v, d, m);
   return out;
+}
+
+void subdivide_into(const BezierPatch& patch, const SubdivisionMatrices& su,
+                    const SubdivisionMatrices& sv, const PatchHalves& which, BezierPatch& child) {
+  const auto half = [](const SubdivisionMatrices& s, int h) -> const Eigen::MatrixXd& {
+    return h == 0 ? s.left : s.right;
+  };
+  const int p = patch.degree_u, q = patch.degree_v;
+  child.degree_u = p;
+  child.degree_v = q;
+  child.points.resize(patch.points.rows(), 4);
+  if (which.u && which.v) {
+    // The u split into a buffer on the stack, the v split from it.
+    using Buffer = Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor,
+                                 (kMaxDegree + 1) * (kMaxDegree + 1), 4>;
+    Buffer split_u(patch.points.rows(), 4);
+    map_lines(patch.points.data(), split_u.data(), p, q, Direction::u, half(su, *which.u));
+    map_lines(split_u.data(), child.points.data(), p, q, Direction::v, half(sv, *which.v));
+  } else if (which.u) {
+    map_lines(patch.points.data(), child.points.data(), p, q, Direction::u, half(su, *which.u));
+  } else if (which.v) {
+    map_lines(patch.points.data(), child.points.data(), p, q, Direction::v, half(sv, *which.v));
+  } else {
+    child.points = patch.points;
+  }
 }
 
 BezierPatch subdivide(const BezierPatch& patch, const SubdivisionMatrices& su,
                       const SubdivisionMatrices& sv, const PatchHalves& which) {
-  const auto half = [](const SubdivisionMatrices& s, int h) -> const Eigen::MatrixXd& {
-    return h == 0 ? s.left : s.right;
-  };
-  if (which.u && which.v) {
-    return map_along(map_along(patch, Direction::u, half(su, *which.u)), Direction::v,
-                     half(sv, *which.v));
-  }
-  if (which.u) return map_along(patch, Direction::u, half(su, *which.u));
-  if (which.v) return map_along(patch, Direction::v, half(sv, *which.v));
-  return patch;
+  BezierPatch child;
+  subdivide_into(patch, su, sv, which, child);
+  return child;
 }
 
 }  // namespace argil

@@ -27,12 +27,16 @@ struct SubdivisionMatrices {
 };
 SubdivisionMatrices subdivision_matrices(int degree);
 
+/// Homogeneous control points of a patch, one per row; rows are contiguous,
+/// so mapping a net touches memory in order.
+using PatchNet = Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor>;
+
 /// A tensor-product Bezier patch in homogeneous coordinates (w x, w y, w z, w),
 /// row a * (degree_v + 1) + b, over its own domain [0, 1]^2.
 struct BezierPatch {
   int degree_u = 1;
   int degree_v = 1;
-  Eigen::MatrixX4d points;
+  PatchNet points;
 };
 
 /// Point of the patch at local (s, t) in [0, 1]^2.
@@ -60,5 +64,9 @@ struct PatchHalves {
 /// the de Casteljau matrices `su` (degree_u) and `sv` (degree_v).
 BezierPatch subdivide(const BezierPatch& patch, const SubdivisionMatrices& su,
                       const SubdivisionMatrices& sv, const PatchHalves& which);
+/// The same into `child`, reusing its storage (a node refreshed every tick
+/// allocates nothing). `child` must not be `patch`.
+void subdivide_into(const BezierPatch& patch, const SubdivisionMatrices& su,
+                    const SubdivisionMatrices& sv, const PatchHalves& which, BezierPatch& child);
 
 }  // namespace argil

@@ -236,8 +236,8 @@ void SurfaceHierarchy::refresh(int id, QueryCounters* counters) const {
   } else {
     refresh(self.parent, counters);  // creates no nodes, so `self` stays valid
     const HierarchyNode& parent = nodes_[static_cast<std::size_t>(self.parent)];
-    self.patch = subdivide(parent.patch, ops_.u->subdivision(), ops_.v->subdivision(),
-                           {self.half_u, self.half_v});
+    subdivide_into(parent.patch, ops_.u->subdivision(), ops_.v->subdivision(),
+                   {self.half_u, self.half_v}, self.patch);
   }
   self.bound = bound_patch(self.patch);
   self.version = version_;

@@ -158,7 +158,7 @@ BezierPatch bezier_patch(const BSplineSurface& s, const SurfaceOperators& ops, i
   const bool rational = s.is_rational();
 
   // B = E_u * P_local * E_v^T on the span's homogeneous poles.
-  Eigen::MatrixX4d local((p + 1) * (q + 1), 4);
+  PatchNet local((p + 1) * (q + 1), 4);
   for (int a = 0; a <= p; ++a) {
     for (int b = 0; b <= q; ++b) {
       const Eigen::Index k = s.pole_index(fu + a, fv + b);
