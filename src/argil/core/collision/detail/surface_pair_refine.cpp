@@ -19,7 +19,8 @@ struct CurveConstraint {
   Eigen::Vector3d plane_point = Eigen::Vector3d::Zero();
 };
 
-CurveConstraint curve_constraint(const BSplineSurface& a, const BSplineSurface& b,
+/// From the surfaces' derivatives at the start x.
+CurveConstraint curve_constraint(const SurfaceDerivatives& da, const SurfaceDerivatives& db,
                                  const Eigen::Vector4d& x, const Eigen::Vector4d& lo,
                                  const Eigen::Vector4d& hi) {
   CurveConstraint c;
@@ -30,8 +31,6 @@ CurveConstraint curve_constraint(const BSplineSurface& a, const BSplineSurface& 
     }
   }
   if (c.fixed_count > 0) return c;
-  const SurfaceDerivatives da = evaluate_derivatives(a, x[0], x[1], 1);
-  const SurfaceDerivatives db = evaluate_derivatives(b, x[2], x[3], 1);
   const Eigen::Vector3d t = unit_normal(da).cross(unit_normal(db));
   // Tangent surfaces have no curve direction: fall back to closest points.
   if (t.norm() > 1e-8) c.plane_normal = t.normalized();
@@ -69,9 +68,13 @@ Eigen::Vector4d gauss_newton_step(const SurfaceDerivatives& da, const SurfaceDer
     const double n = m.col(k).head(rows).norm();
     col_scale[k] = n > 0 ? 1.0 / n : 1.0;
   }
-  const Eigen::MatrixXd ms = m.topRows(rows) * col_scale.asDiagonal();
+  // At most 4 x 4, on the stack: a curve refines thousands of points, and a
+  // heap-sized solve spent more on allocation than on arithmetic.
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::ColMajor, 4, 4>;
+  const Small ms = m.topRows(rows) * col_scale.asDiagonal();
+  const Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1> r = rhs.head(rows);
   return col_scale.cwiseProduct(
-      Eigen::Vector4d(ms.completeOrthogonalDecomposition().solve(rhs.head(rows))));
+      Eigen::Vector4d(Eigen::CompleteOrthogonalDecomposition<Small>(ms).solve(r)));
 }
 
 }  // namespace
@@ -83,15 +86,23 @@ RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b
                            b.domain_start(Direction::u), b.domain_start(Direction::v));
   const Eigen::Vector4d hi(a.domain_end(Direction::u), a.domain_end(Direction::v),
                            b.domain_end(Direction::u), b.domain_end(Direction::v));
+  // The surfaces at x: the start's derivatives serve the constraint and the
+  // first iteration, and the last iteration's points the result.
+  SurfaceDerivatives da = evaluate_derivatives(a, x[0], x[1], 1);
+  SurfaceDerivatives db = evaluate_derivatives(b, x[2], x[3], 1);
+  bool evaluated = true;
   const CurveConstraint constraint =
-      request.on_curve ? curve_constraint(a, b, x, lo, hi) : CurveConstraint{};
+      request.on_curve ? curve_constraint(da, db, x, lo, hi) : CurveConstraint{};
   RefinedPair out;
   const double stop = 1e-14 * request.scale;
   constexpr int kMaxIterations = 40;
   double previous = std::numeric_limits<double>::infinity();
   for (int it = 0; it < kMaxIterations; ++it) {
-    const SurfaceDerivatives da = evaluate_derivatives(a, x[0], x[1], 1);
-    const SurfaceDerivatives db = evaluate_derivatives(b, x[2], x[3], 1);
+    if (!evaluated) {
+      da = evaluate_derivatives(a, x[0], x[1], 1);
+      db = evaluate_derivatives(b, x[2], x[3], 1);
+      evaluated = true;
+    }
     out.iterations = it;
     const double residual = (da.point - db.point).norm();
     if (residual <= stop) break;
@@ -102,9 +113,10 @@ RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b
         (x + gauss_newton_step(da, db, constraint)).cwiseMax(lo).cwiseMin(hi);
     if (next == x) break;
     x = next;
+    evaluated = false;
   }
-  const Eigen::Vector3d pa = evaluate(a, x[0], x[1]);
-  const Eigen::Vector3d pb = evaluate(b, x[2], x[3]);
+  const Eigen::Vector3d pa = evaluated ? da.point : evaluate(a, x[0], x[1]);
+  const Eigen::Vector3d pb = evaluated ? db.point : evaluate(b, x[2], x[3]);
   out.uv_a = x.head<2>();
   out.uv_b = x.tail<2>();
   out.point = 0.5 * (pa + pb);
