@@ -201,7 +201,7 @@ TEST_CASE("a curve through leaf corners and along leaf edges comes out as one cu
   CHECK(c.length() >= (diagonal ? std::sqrt(2.0) : 1.0) - 1e-12);
 }
 
-TEST_CASE("curve tidying drops covered short pieces, keeps isolated ones, joins and closes") {
+TEST_CASE("curve tidying drops short pieces, opens out-and-back loops, joins and closes") {
   const double eps = 1e-3;
   const auto curve = [](std::vector<Eigen::Vector3d> points) {
     IntersectionCurve c;
@@ -212,27 +212,37 @@ TEST_CASE("curve tidying drops covered short pieces, keeps isolated ones, joins 
     }
     return c;
   };
-  SECTION("a zero-length piece on a curve is dropped; an isolated one is kept") {
+  SECTION("pieces no longer than eps are dropped, on a curve or alone; longer ones stay") {
+    // Alone, a piece no longer than eps is where the surfaces touch (the
+    // query reports its leaf pair's contact instead).
     const auto out = argil::detail::tidy_curves(
         {curve({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}), curve({{0.5, 0, 0}, {0.5, 0, 0}}),
-         curve({{5, 5, 5}, {5, 5, 5}})},
+         curve({{5, 5, 5}, {5, 5, 5}}), curve({{7, 0, 0}, {7 + 0.99 * eps, 0, 0}}),
+         curve({{9, 0, 0}, {9 + 1.01 * eps, 0, 0}})},
         eps);
     REQUIRE(out.size() == 2);
     CHECK(out[0].points.size() == 3);
-    CHECK(out[1].points.front() == Eigen::Vector3d(5, 5, 5));
+    CHECK(out[1].points.front() == Eigen::Vector3d(9, 0, 0));
+  }
+  SECTION("a closed curve out to one point and back is the open curve out") {
+    const auto out = argil::detail::tidy_curves({curve({{0, 0, 0}, {0.01, 0, 0}, {0, 0, 0}})}, eps);
+    REQUIRE(out.size() == 1);
+    CHECK_FALSE(out[0].closed());
+    REQUIRE(out[0].points.size() == 2);
+    CHECK(out[0].points.back() == Eigen::Vector3d(0.01, 0, 0));
   }
   SECTION("a piece longer than eps stays even on another curve; covering pieces stay") {
     // b (longer than eps) lies on a: kept. d (zero length) and e lie within
     // eps/2 of c: dropped, and c, which covers them, stays.
     const auto out = argil::detail::tidy_curves(
         {curve({{0, 0, 0}, {1, 0, 0}}), curve({{0.2, 0, 0}, {0.2011, 0, 0}}),
-         curve({{5, 0, 0}, {5, 0.0008, 0}}), curve({{5, 0.0004, 0}, {5, 0.0004, 0}}),
+         curve({{5, 0, 0}, {5, 0.0016, 0}}), curve({{5, 0.0004, 0}, {5, 0.0004, 0}}),
          curve({{5, 0.00045, 0}, {5, 0.0012, 0}})},
         eps);
     REQUIRE(out.size() == 3);
     CHECK(out[1].points.front() == Eigen::Vector3d(0.2, 0, 0));
     CHECK(out[2].points.front() == Eigen::Vector3d(5, 0, 0));
-    CHECK(out[2].points.back() == Eigen::Vector3d(5, 0.0008, 0));
+    CHECK(out[2].points.back() == Eigen::Vector3d(5, 0.0016, 0));
   }
   SECTION("pieces whose ends meet within eps and run on are joined, in any orientation") {
     const auto out = argil::detail::tidy_curves(

@@ -203,6 +203,17 @@ void drop_repeated_points(IntersectionCurve& c, double tiny) {
   c.uv_b.resize(kept + 1);
 }
 
+/// A closed curve of three points goes out to one point and back: two
+/// segments chained end to end at both ends (pieces of one curve found from
+/// either side of a leaf edge and refined onto the same points). It encloses
+/// nothing: it is the open curve out.
+void open_out_and_back(IntersectionCurve& c) {
+  if (!c.closed() || c.points.size() != 3) return;
+  c.points.pop_back();
+  c.uv_a.pop_back();
+  c.uv_b.pop_back();
+}
+
 /// How squarely a free end must face the end it is bridged to: the gap within
 /// 60 degrees of the direction each end leaves by. Pieces of one curve leave a
 /// gap along the curve; two branches side by side leave one across it.
@@ -347,20 +358,30 @@ void close_if_loop(IntersectionCurve& c, double eps, BridgeAsker* asker) {
   }
 }
 
+/// A curve no longer than eps: a place where the surfaces meet within eps
+/// (open, or a loop less than eps/2 across), not a branch of their
+/// intersection.
+bool is_touch(const IntersectionCurve& c, double eps) { return !(c.length() > eps); }
+
 }  // namespace
 
 std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps,
                                            const GapBridge& bridge) {
-  for (IntersectionCurve& c : curves) drop_repeated_points(c, 1e-6 * eps);
+  for (IntersectionCurve& c : curves) {
+    drop_repeated_points(c, 1e-6 * eps);
+    open_out_and_back(c);
+  }
   curves = drop_covered(std::move(curves), eps);
   while (join_one(curves, eps, nullptr)) {
   }
   for (IntersectionCurve& c : curves) close_if_loop(c, eps, nullptr);
-  if (!bridge) return curves;
-  BridgeAsker asker(bridge);
-  while (join_one(curves, eps, &asker)) {
+  if (bridge) {
+    BridgeAsker asker(bridge);
+    while (join_one(curves, eps, &asker)) {
+    }
+    for (IntersectionCurve& c : curves) close_if_loop(c, eps, &asker);
   }
-  for (IntersectionCurve& c : curves) close_if_loop(c, eps, &asker);
+  std::erase_if(curves, [eps](const IntersectionCurve& c) { return is_touch(c, eps); });
   return curves;
 }
 
