@@ -3,6 +3,7 @@
 // on the sweep's sizes (a tool's few hundred leaves) and on the grid's (a face
 // lying on another over thousands of leaves that all overlap in u).
 #include <catch2/catch.hpp>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <random>
