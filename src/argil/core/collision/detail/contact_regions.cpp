@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <numeric>
 #include <span>
@@ -103,10 +101,8 @@ class LeafGrid {
       heights.push_back(l.rect.v1 - l.rect.v0);
     }
     const double cap = 4.0 * static_cast<double>(leaves.size());
-    const double sc =
-        std::getenv("ARGIL_GRID_SCALE") ? std::atof(std::getenv("ARGIL_GRID_SCALE")) : 1.0;
-    double nu = cells_across(u_hi_ - u_lo_, median(widths) / sc, cap);
-    double nv = cells_across(v_hi_ - v_lo_, median(heights) / sc, cap);
+    double nu = cells_across(u_hi_ - u_lo_, median(widths), cap);
+    double nv = cells_across(v_hi_ - v_lo_, median(heights), cap);
     if (nu * nv > cap) {
       const double shrink = std::sqrt(nu * nv / cap);
       nu = std::max(1.0, std::floor(nu / shrink));
@@ -126,7 +122,6 @@ class LeafGrid {
   }
 
   int cell_count() const { return nu_ * nv_; }
-  std::size_t listed() const { return leaf_of_.size(); }
   std::span<const int> leaves_in(int cell) const {
     const auto c = static_cast<std::size_t>(cell);
     return {leaf_of_.data() + start_[c], leaf_of_.data() + start_[c + 1]};
@@ -172,11 +167,10 @@ class LeafGrid {
   std::vector<int> leaf_of_;
 };
 
-/// Joins (union-find) every two leaves whose closed rectangles touch, by
-/// cells of a grid. Two that touch share the point (max u0, max v0), so both are listed in its
-/// cell, whose column and row are the larger of theirs (the cell index is
-/// monotone): each pair is joined in that cell only. Which pairs are joined
-/// first does not change the components, and region numbers depend only on them.
+/// Joins (union-find) every two leaves whose closed rectangles touch, cell by
+/// cell of the grid. Two that touch share the point (max u0, max v0), so both
+/// are listed in its cell, whose column and row are the larger of theirs (the
+/// cell index is monotone): each pair is joined in that cell only.
 void join_in_grid(const std::vector<LeafContact>& leaves, std::vector<int>& parent) {
   const LeafGrid grid(leaves);
   std::vector<std::pair<int, int>> low_cell(leaves.size());  // the cell of (u0, v0)
@@ -226,9 +220,8 @@ void join_touching(const std::vector<LeafContact>& leaves, std::vector<int>& par
   double tests = 0.0;
   for (std::size_t x = 0; x < n; ++x) {
     const double u1 = leaves[static_cast<std::size_t>(by_u0[x])].rect.u1;
-    tests +=
-        static_cast<double>(std::upper_bound(u0.begin() + static_cast<long>(x) + 1, u0.end(), u1) -
-                            (u0.begin() + static_cast<long>(x) + 1));
+    const auto after = u0.begin() + static_cast<long>(x) + 1;
+    tests += static_cast<double>(std::upper_bound(after, u0.end(), u1) - after);
   }
   if (tests > kSweepTestsPerLeaf * static_cast<double>(n)) {
     join_in_grid(leaves, parent);
