@@ -2,6 +2,7 @@
 // intersection curves and contact regions between one face of each model.
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,14 +41,20 @@ Options options_from(const Arguments& a) {
           .json = a.flag("--json")};
 }
 
-/// Reads `path` and copies face `index` out of it; prints the error.
-bool load_face(const std::string& path, long index, const char* side, BSplineSurface& out) {
-  const Result<io::Model> read = io::read_model(path);
+/// Reads `path`; prints the error.
+std::optional<io::Model> read_file(const std::string& path) {
+  Result<io::Model> read = io::read_model(path);
   if (!read.ok()) {
     std::fprintf(stderr, "argil collide: %s\n", read.status().message.c_str());
-    return false;
+    return std::nullopt;
   }
-  const auto& faces = read.value().faces;
+  return std::move(read).value();
+}
+
+/// Copies face `index` out of the model read from `path`; prints the error.
+bool copy_face(const io::Model& model, const std::string& path, long index, const char* side,
+               BSplineSurface& out) {
+  const auto& faces = model.faces;
   if (index >= static_cast<long>(faces.size())) {
     std::fprintf(stderr, "argil collide: --face-%s %ld is out of range: %s has %zu faces\n", side,
                  index, path.c_str(), faces.size());
@@ -55,6 +62,16 @@ bool load_face(const std::string& path, long index, const char* side, BSplineSur
   }
   out = faces[static_cast<std::size_t>(index)].surface;
   return true;
+}
+
+/// Faces a and b; a file named twice is read once (a large model takes
+/// seconds to read).
+bool load_faces(const Options& o, BSplineSurface& a, BSplineSurface& b) {
+  const std::optional<io::Model> model_a = read_file(o.path_a);
+  if (!model_a || !copy_face(*model_a, o.path_a, o.face_a, "a", a)) return false;
+  if (o.path_b == o.path_a) return copy_face(*model_a, o.path_b, o.face_b, "b", b);
+  const std::optional<io::Model> model_b = read_file(o.path_b);
+  return model_b && copy_face(*model_b, o.path_b, o.face_b, "b", b);
 }
 
 /// One region of contacts: contacts are grouped by region, deepest first, so
@@ -216,8 +233,7 @@ int run_collide(const std::vector<std::string>& args) {
   if (!parsed.arguments) return parsed.exit_status;
   const Options o = options_from(*parsed.arguments);
   BSplineSurface a, b;
-  if (!load_face(o.path_a, o.face_a, "a", a) || !load_face(o.path_b, o.face_b, "b", b))
-    return kExitFailure;
+  if (!load_faces(o, a, b)) return kExitFailure;
   OperatorCache cache;
   Result<SurfaceHierarchy> ha = SurfaceHierarchy::build(a, cache);
   Result<SurfaceHierarchy> hb = SurfaceHierarchy::build(b, cache);

@@ -571,12 +571,61 @@ double on_plane_distance(const BSplineSurface& a, const BSplineSurface& b,
   return std::min(1e-6 * eps, kRoundingUlps * std::numeric_limits<double>::epsilon() * magnitude);
 }
 
+/// Whether two crossing triangles lie where their surfaces coincide to within
+/// eps (faces lying on each other: a face against itself, or coincident faces
+/// of an assembly). Their leaves' triangles then cross wherever rounding or
+/// the surfaces' small turn over a leaf puts them, along leaf edges and
+/// across leaves, and such a crossing is no curve piece: the leaf pair's
+/// contact reports the overlap instead.
+class CoincidenceTest {
+ public:
+  /// b's normals turn by R when b is placed.
+  CoincidenceTest(const BSplineSurface& a, const BSplineSurface& b, const Eigen::Matrix3d& R,
+                  double eps)
+      : a_(a), b_(b), R_(R), eps_(eps) {}
+
+  /// True when two crossing triangles meet at an angle past any turn of a
+  /// flat leaf: their surfaces cross there, whatever the exact normals say.
+  bool steep(const Triangle& ta, const Triangle& tb) const {
+    const Eigen::Vector3d ta_n = (ta[1] - ta[0]).cross(ta[2] - ta[0]);
+    const Eigen::Vector3d tb_n = (tb[1] - tb[0]).cross(tb[2] - tb[0]);
+    return ta_n.cross(tb_n).norm() > kSteep * ta_n.norm() * tb_n.norm();
+  }
+
+  /// True when the surfaces' exact normals at the segment's middle are so
+  /// nearly parallel that across the larger leaf (`diameter` [mm]) they turn
+  /// apart by at most eps: the surfaces are tangent there and stay within
+  /// eps of each other over the leaf pair.
+  bool tangent_at(const detail::Segment& s, double diameter) const {
+    const Eigen::Vector2d uv_a = 0.5 * (s.uv_a[0] + s.uv_a[1]);
+    const Eigen::Vector2d uv_b = 0.5 * (s.uv_b[0] + s.uv_b[1]);
+    const Eigen::Vector3d na = unit_normal(a_, uv_a[0], uv_a[1]);
+    const Eigen::Vector3d nb = R_ * unit_normal(b_, uv_b[0], uv_b[1]);
+    // No normal at a pole or a collapsed corner: not known to coincide.
+    if (na.isZero() || nb.isZero()) return false;
+    return na.cross(nb).norm() * diameter <= eps_;
+  }
+
+ private:
+  /// A flat leaf's triangles turn from its surface by about the surface's turn
+  /// over the leaf, small at any eps a user asks for: past this sine of the
+  /// triangles' angle, the surfaces cross at an angle.
+  static constexpr double kSteep = 0.7;
+  const BSplineSurface& a_;
+  const BSplineSurface& b_;
+  Eigen::Matrix3d R_;
+  double eps_;
+};
+
 /// Intersects the leaves' four triangle pairs; the contact sits on the
-/// longest crossing segment's midpoint (depth 0).
+/// longest crossing segment's midpoint (depth 0). A crossing where the
+/// surfaces coincide (`coincide`, given only when curves are asked for) is a
+/// contact, not a curve piece.
 LeafPairFindings leaf_crossings(const LeafTriangles& la, const LeafTriangles& lb, double reach,
-                                double on_plane) {
+                                double on_plane, const CoincidenceTest* coincide) {
   LeafPairFindings out;
   double longest = -1.0;
+  std::optional<bool> tangent;  // the exact normals' answer, read once per leaf pair
   for (std::size_t i = 0; i < 2; ++i) {
     for (std::size_t j = 0; j < 2; ++j) {
       ++out.triangle_tests;
@@ -599,7 +648,12 @@ LeafPairFindings leaf_crossings(const LeafTriangles& la, const LeafTriangles& lb
         out.contact = c;
       }
       // Point touches and coplanar overlaps are contacts, not curve pieces.
-      if (x.kind == TriangleIntersection::Kind::segment && length > 0.0) out.segments.push_back(s);
+      if (x.kind != TriangleIntersection::Kind::segment || !(length > 0.0)) continue;
+      if (coincide && !coincide->steep(la.triangles[i], lb.triangles[j])) {
+        if (!tangent) tangent = coincide->tangent_at(s, 2.0 * std::max(la.radius, lb.radius));
+        if (*tangent) continue;
+      }
+      out.segments.push_back(s);
     }
   }
   return out;
@@ -667,6 +721,9 @@ class PairDescent {
           SweptMotion{sweep->start, sweep->start.inverse(), placed_b->inverse(), sweep->travel};
       keep_near_ = pass == Pass::end && sweep->travel <= request.tolerance;
     }
+    if (request.curves && pass == Pass::end)
+      coincide_.emplace(ha.surface(), hb.surface(),
+                        placed_b ? placed_b->R : Eigen::Matrix3d::Identity(), request.tolerance);
   }
 
   void run() {
@@ -719,7 +776,9 @@ class PairDescent {
     const LeafTriangles lb = sb_.leaf(eb);
     const double eps = request_.tolerance;
     const double reach = 2.0 * (la.radius + lb.radius) + eps;
-    LeafPairFindings found = leaf_crossings(la, lb, reach, on_plane_);
+    // Only curves need the overlap told apart (the haptic tick asks for none).
+    LeafPairFindings found =
+        leaf_crossings(la, lb, reach, on_plane_, coincide_ ? &*coincide_ : nullptr);
     counters_.triangle_tests += found.triangle_tests;
     segments.insert(segments.end(), found.segments.begin(), found.segments.end());
     const bool crossing = found.contact.has_value();
@@ -803,7 +862,8 @@ class PairDescent {
   std::optional<SweptMotion> motion_;  // a swept query's
   bool keep_near_ = false;             // the end's descent keeps near_ for the way
   bool crossed_ = false;
-  std::vector<std::pair<int, int>> near_;  // leaf pairs that may have met on the way
+  std::optional<CoincidenceTest> coincide_;  // curves only: crossings where faces coincide
+  std::vector<std::pair<int, int>> near_;    // leaf pairs that may have met on the way
 };
 
 }  // namespace
