@@ -15,13 +15,6 @@ namespace {
 
 double model_size(const BSplineSurface& s) { return argil::control_point_box(s).diagonal(); }
 
-argil::SurfaceHierarchy hierarchy_of(const BSplineSurface& s) {
-  static argil::OperatorCache cache;
-  auto h = argil::SurfaceHierarchy::build(s, cache);
-  REQUIRE(h.ok());
-  return std::move(h).value();
-}
-
 /// The asymmetric surface flattened onto z = 0 (same knots, weights, layout).
 BSplineSurface flat_surface() {
   BSplineSurface s = argil::test::asymmetric_surface(true);
@@ -54,7 +47,7 @@ TEST_CASE(
     options.rational = trial % 2 == 0;
     options.max_weight = trial % 4 == 0 ? 10.0 : 3.0;
     const BSplineSurface s = argil::test::random_surface(rng, options);
-    argil::SurfaceHierarchy h = hierarchy_of(s);
+    argil::SurfaceHierarchy h = argil::test::hierarchy_for(s);
     std::vector<int> ids = h.roots();
     for (int level = 0; level < 3; ++level) {
       std::vector<int> next;
@@ -87,7 +80,7 @@ TEST_CASE(
 
 TEST_CASE("a sphere tool pressing into a plane gives the exact depth, point and normal") {
   const BSplineSurface s = flat_surface();
-  argil::SurfaceHierarchy h = hierarchy_of(s);
+  argil::SurfaceHierarchy h = argil::test::hierarchy_for(s);
   const Eigen::Vector3d p = argil::evaluate(s, 0.41, 0.73);
   for (double depth : {0.0, 1e-6, 0.01, 0.5, 2.0}) {
     const double radius = 3.0;
@@ -112,7 +105,7 @@ TEST_CASE("a sphere tool pressing into a plane gives the exact depth, point and 
 TEST_CASE("a plane tool against an exact cylinder patch gives the exact depth") {
   // Quarter cylinder of radius 10 around the x axis: rational quadratic arc in u.
   const BSplineSurface s = argil::test::cylinder_x(10.0, 0.0, 40.0);
-  argil::SurfaceHierarchy h = hierarchy_of(s);
+  argil::SurfaceHierarchy h = argil::test::hierarchy_for(s);
   // The arc goes from (y, z) = (0, -10) to (10, 0); a plane with normal (0, 1, 1)/sqrt2
   // touches it at 45 degrees: the lowest value of n.x on the arc is -10.
   const Eigen::Vector3d n = Eigen::Vector3d(0, -1, 1).normalized();
@@ -148,7 +141,7 @@ TEST_CASE(
     options.max_degree = 4;
     options.max_extra_poles = 4;
     const BSplineSurface s = argil::test::random_surface(rng, options);
-    argil::SurfaceHierarchy h = hierarchy_of(s);
+    argil::SurfaceHierarchy h = argil::test::hierarchy_for(s);
     const double size = model_size(s);
     const double eps = 1e-4 * size;
     // A tool centred near a random surface point, offset along z.
@@ -221,7 +214,7 @@ TEST_CASE("after control points move, queries match a freshly built hierarchy (n
   std::mt19937_64 rng(5);
   std::normal_distribution<double> jitter(0.0, 1.0);
   BSplineSurface s = argil::test::asymmetric_surface(true);
-  argil::SurfaceHierarchy persistent = hierarchy_of(s);
+  argil::SurfaceHierarchy persistent = argil::test::hierarchy_for(s);
   const auto tool =
       argil::make_sphere(argil::evaluate(s, 0.5, 0.5) + Eigen::Vector3d(0, 0, 4.0), 5.0);
   for (int move = 0; move < 15; ++move) {
@@ -232,7 +225,7 @@ TEST_CASE("after control points move, queries match a freshly built hierarchy (n
       s.control_points.row(row) += 2.0 * Eigen::RowVector3d(jitter(rng), jitter(rng), jitter(rng));
     }
     persistent.set_control_points(s.control_points, s.weights);
-    argil::SurfaceHierarchy fresh = hierarchy_of(s);
+    argil::SurfaceHierarchy fresh = argil::test::hierarchy_for(s);
     const auto a = argil::collide(persistent, *tool, {.tolerance = 1e-4});
     const auto b = argil::collide(fresh, *tool, {.tolerance = 1e-4});
     INFO("move " << move);
@@ -251,8 +244,8 @@ TEST_CASE("a node budget keeps memory bounded without changing any result") {
   std::mt19937_64 rng(8);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   BSplineSurface s = argil::test::asymmetric_surface(true);
-  argil::SurfaceHierarchy bounded = hierarchy_of(s);
-  argil::SurfaceHierarchy grown = hierarchy_of(s);
+  argil::SurfaceHierarchy bounded = argil::test::hierarchy_for(s);
+  argil::SurfaceHierarchy grown = argil::test::hierarchy_for(s);
   bounded.set_node_budget(40);
   grown.set_node_budget(std::size_t{1} << 30);
   std::size_t largest = 0;
@@ -293,8 +286,8 @@ TEST_CASE("a rigid motion of surface and tool moves the contacts with it") {
   const Eigen::Vector3d t(120.0, -45.0, 300.0);
   BSplineSurface moved = s;
   moved.control_points = ((s.control_points * R.transpose()).rowwise() + t.transpose()).eval();
-  argil::SurfaceHierarchy a = hierarchy_of(s);
-  argil::SurfaceHierarchy b = hierarchy_of(moved);
+  argil::SurfaceHierarchy a = argil::test::hierarchy_for(s);
+  argil::SurfaceHierarchy b = argil::test::hierarchy_for(moved);
   const double eps = 1e-5;
   const auto ra = argil::collide(a, *argil::make_sphere(centre, 3.0), {.tolerance = eps});
   const auto rb = argil::collide(b, *argil::make_sphere(R * centre + t, 3.0), {.tolerance = eps});
@@ -312,7 +305,7 @@ TEST_CASE("nodes are built only where the query reaches") {
   std::mt19937_64 rng(9);
   const BSplineSurface s =
       argil::test::random_surface(rng, {.min_degree = 3, .max_degree = 3, .max_extra_poles = 12});
-  argil::SurfaceHierarchy h = hierarchy_of(s);
+  argil::SurfaceHierarchy h = argil::test::hierarchy_for(s);
   const std::size_t roots = h.node_count();
   const auto corner =
       argil::evaluate(s, s.domain_start(Direction::u), s.domain_start(Direction::v));
@@ -327,7 +320,7 @@ TEST_CASE("nodes are built only where the query reaches") {
 
 TEST_CASE("two separate touches give two contact regions") {
   const BSplineSurface s = flat_surface();
-  argil::SurfaceHierarchy h = hierarchy_of(s);
+  argil::SurfaceHierarchy h = argil::test::hierarchy_for(s);
   // A capsule lying across the plane, dipping in at both ends (a bent tool
   // modelled as two spheres through a user SDF).
   const Eigen::Vector3d a = argil::evaluate(s, 0.2, 0.0) + Eigen::Vector3d(0, 0, 0.9);
@@ -355,7 +348,7 @@ TEST_CASE("the closest point agrees with brute force on a dense sampling") {
     options.rational = trial % 2 == 0;
     options.max_degree = 4;
     const BSplineSurface s = argil::test::random_surface(rng, options);
-    argil::SurfaceHierarchy h = hierarchy_of(s);
+    argil::SurfaceHierarchy h = argil::test::hierarchy_for(s);
     const double size = model_size(s);
     const Eigen::Vector3d q = argil::control_point_box(s).min +
                               Eigen::Vector3d(size * 0.5, size * 0.4, 0) +

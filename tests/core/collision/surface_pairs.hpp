@@ -10,11 +10,11 @@
 #include <functional>
 #include <limits>
 #include <random>
-#include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "argil/core.hpp"
+#include "support/built_hierarchy.hpp"
 
 namespace argil::test {
 
@@ -162,13 +162,6 @@ inline bool same_contacts(const CollisionResult& x, const CollisionResult& y) {
     if (x.contacts[k].point != y.contacts[k].point || x.contacts[k].depth != y.contacts[k].depth)
       return false;
   return true;
-}
-
-inline SurfaceHierarchy hierarchy_for(const BSplineSurface& s) {
-  static OperatorCache cache;
-  auto h = SurfaceHierarchy::build(s, cache);
-  if (!h.ok()) throw std::runtime_error(h.status().message);
-  return std::move(h).value();
 }
 
 }  // namespace argil::test

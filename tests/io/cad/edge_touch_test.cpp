@@ -13,18 +13,12 @@
 
 #include "argil/core.hpp"
 #include "argil/io.hpp"
+#include "support/built_hierarchy.hpp"
 #include "support/occt_surface.hpp"
 #include "test_files.hpp"
 
 namespace argil::io {
 namespace {
-
-SurfaceHierarchy hierarchy_of(const BSplineSurface& s, OperatorCache& cache) {
-  Result<SurfaceHierarchy> h = SurfaceHierarchy::build(s, cache);
-  INFO(h.status().message);
-  REQUIRE(h.ok());
-  return std::move(h).value();
-}
 
 /// Points of a's four boundary curves (`per_side` each) that lie within
 /// `within` of b by OpenCASCADE's projection onto b: the shared edge.
@@ -88,11 +82,10 @@ TEST_CASE("faces that meet edge to edge touch along the edge, with no curve shor
   REQUIRE(read.ok());
   const Model& model = read.value();
   REQUIRE(model.faces.size() == 10);
-  OperatorCache cache;
-  const SurfaceHierarchy h6 = hierarchy_of(model.faces[6].surface, cache);
+  const SurfaceHierarchy h6 = test::hierarchy_for(model.faces[6].surface);
   for (const int face : {3, 4, 5}) {
     const BSplineSurface& a = model.faces[static_cast<std::size_t>(face)].surface;
-    const SurfaceHierarchy ha = hierarchy_of(a, cache);
+    const SurfaceHierarchy ha = test::hierarchy_for(a);
     const double eps = 1e-4 * std::max(control_point_box(a).diagonal(),
                                        control_point_box(model.faces[6].surface).diagonal());
     const std::vector<Eigen::Vector3d> edge =

@@ -6,17 +6,11 @@
 
 #include "argil/core.hpp"
 #include "argil/io.hpp"
+#include "support/built_hierarchy.hpp"
 #include "test_files.hpp"
 
 namespace argil::io {
 namespace {
-
-SurfaceHierarchy hierarchy_of(const BSplineSurface& s, OperatorCache& cache) {
-  Result<SurfaceHierarchy> h = SurfaceHierarchy::build(s, cache);
-  INFO(h.status().message);
-  REQUIRE(h.ok());
-  return std::move(h).value();
-}
 
 /// Collides screw.step's cone (face 8) with the bottom plane (face 9), whose
 /// trim is the cone's boundary circle v = v1: the corner points of the cone's
@@ -28,9 +22,8 @@ void check_cone_meets_plane(double eps, bool refine) {
   REQUIRE(model.faces.size() == 10);
   const BSplineSurface& cone = model.faces[8].surface;
   const BSplineSurface& plane = model.faces[9].surface;
-  OperatorCache cache;
-  const SurfaceHierarchy hc = hierarchy_of(cone, cache);
-  const SurfaceHierarchy hp = hierarchy_of(plane, cache);
+  const SurfaceHierarchy hc = test::hierarchy_for(cone);
+  const SurfaceHierarchy hp = test::hierarchy_for(plane);
   INFO("eps " << eps << (refine ? " refined" : ""));
   const CollisionResult r = collide(hc, hp, {.tolerance = eps, .refine = refine});
   REQUIRE(r.status.ok());
