@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -65,11 +66,13 @@ bool copy_face(const io::Model& model, const std::string& path, long index, cons
 }
 
 /// Faces a and b; a file named twice is read once (a large model takes
-/// seconds to read).
+/// seconds to read), and only one model is held at a time.
 bool load_faces(const Options& o, BSplineSurface& a, BSplineSurface& b) {
-  const std::optional<io::Model> model_a = read_file(o.path_a);
-  if (!model_a || !copy_face(*model_a, o.path_a, o.face_a, "a", a)) return false;
-  if (o.path_b == o.path_a) return copy_face(*model_a, o.path_b, o.face_b, "b", b);
+  {
+    const std::optional<io::Model> model_a = read_file(o.path_a);
+    if (!model_a || !copy_face(*model_a, o.path_a, o.face_a, "a", a)) return false;
+    if (o.path_b == o.path_a) return copy_face(*model_a, o.path_b, o.face_b, "b", b);
+  }
   const std::optional<io::Model> model_b = read_file(o.path_b);
   return model_b && copy_face(*model_b, o.path_b, o.face_b, "b", b);
 }

@@ -1,6 +1,6 @@
 #pragma once
-// A surface's hierarchy for a test, built once per call with a shared operator
-// cache; a surface the builder refuses fails the test with its message.
+// A surface's hierarchy for a test, built with an operator cache shared by all
+// calls; a surface the builder refuses fails the test with its message.
 
 #include <stdexcept>
 #include <utility>

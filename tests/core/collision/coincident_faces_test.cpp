@@ -8,6 +8,7 @@
 
 #include "argil/core.hpp"
 #include "core/collision/surface_pairs.hpp"
+#include "support/random_surface.hpp"
 
 using argil::BSplineSurface;
 using argil::CollisionResult;
@@ -18,23 +19,25 @@ using argil::test::unit_net;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+/// The wavy pair's first surface: a uniform bicubic 16x16 net, polynomial.
+BSplineSurface wavy() { return argil::test::wavy_pair().first; }
 
-/// The wavy pair's first surface: a bicubic 16x16 net over the unit square.
-BSplineSurface wavy() {
-  return unit_net(
-      16, [](double x, double y) { return 0.08 * std::sin(2 * kPi * x) * std::cos(2 * kPi * y); });
-}
-
-/// The same surface with a knot inserted off the knot grid in u and in v:
-/// other elements, so other leaves, whose triangles cross the original's.
+/// The same surface with knots inserted off its knot grid in u (once) and v
+/// (twice): other elements, so other leaves, whose triangles cross the original's.
 BSplineSurface with_extra_knots(const BSplineSurface& s) {
-  argil::Result<BSplineSurface> u = argil::insert_knot(s, Direction::u, 0.4321, 1);
+  const auto at = [&](Direction d, double share) {
+    return s.domain_start(d) + share * (s.domain_end(d) - s.domain_start(d));
+  };
+  argil::Result<BSplineSurface> u =
+      argil::insert_knot(s, Direction::u, at(Direction::u, 0.4321), 1);
   REQUIRE(u.ok());
-  argil::Result<BSplineSurface> uv = argil::insert_knot(u.value(), Direction::v, 0.6789, 2);
+  argil::Result<BSplineSurface> uv =
+      argil::insert_knot(u.value(), Direction::v, at(Direction::v, 0.6789), 2);
   REQUIRE(uv.ok());
   return std::move(uv).value();
 }
+
+double size_of(const BSplineSurface& s) { return argil::control_point_box(s).diagonal(); }
 
 /// Every contact lies within `within` of a at its parameters, and of b but for
 /// a penetration's depth (that contact is a's point deepest behind b).
@@ -50,14 +53,20 @@ void check_contacts_on_both(const BSplineSurface& a, const BSplineSurface& b,
 }  // namespace
 
 TEST_CASE("a face against itself or a re-knotted copy is one contact region and no curve") {
-  const BSplineSurface a = wavy();
+  // The wavy net, and the rational asymmetric surface (uneven knots, weights,
+  // uneven parameter speed: the two ends of a crossing segment map to
+  // different points of the two copies).
+  const bool rational = GENERATE(false, true);
+  const BSplineSurface a = rational ? argil::test::asymmetric_surface(true) : wavy();
   const bool same = GENERATE(true, false);
   const BSplineSurface b = same ? a : with_extra_knots(a);
   const auto ha = hierarchy_for(a);
   const auto hb = hierarchy_for(b);
-  const double eps = GENERATE(1e-3, 1e-4);
+  const double eps = GENERATE(1e-3, 1e-4) * size_of(a);
   const bool refine = GENERATE(false, true);
-  INFO((same ? "itself" : "re-knotted copy") << ", eps " << eps << (refine ? " refined" : ""));
+  INFO((rational ? "asymmetric rational" : "wavy")
+       << (same ? ", itself" : ", re-knotted copy") << ", eps " << eps
+       << (refine ? " refined" : ""));
   const CollisionResult r = argil::collide(ha, hb, {.tolerance = eps, .refine = refine});
   REQUIRE(r.status.ok());
   CHECK(r.curves.empty());
@@ -66,11 +75,33 @@ TEST_CASE("a face against itself or a re-knotted copy is one contact region and 
   check_contacts_on_both(a, b, r, eps);
 }
 
+TEST_CASE("a face against a copy a rigid pose places onto it is one contact region and no curve") {
+  // b is a held in its own frame: the query's pose X_AB puts it back onto a,
+  // so b's normals must turn with the pose to be found parallel to a's.
+  const BSplineSurface a = wavy();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+  const Eigen::Vector3d p(0.3, -0.2, 0.5);
+  const BSplineSurface b =
+      argil::test::moved(with_extra_knots(a), R.transpose(), -(R.transpose() * p));
+  const auto ha = hierarchy_for(a);
+  const auto hb = hierarchy_for(b);
+  const double eps = 1e-4 * size_of(a);
+  const bool refine = GENERATE(false, true);
+  INFO((refine ? "refined" : "unrefined"));
+  const argil::Pose X_AB{Eigen::Quaterniond(R), p};
+  const CollisionResult r = argil::collide(ha, hb, X_AB, {.tolerance = eps, .refine = refine});
+  REQUIRE(r.status.ok());
+  CHECK(r.curves.empty());
+  CHECK(r.region_count == 1);
+  REQUIRE_FALSE(r.contacts.empty());
+}
+
 TEST_CASE("a face lying on another over part of it still gives the curve where they cross") {
   // b is a re-knotted copy of a with the poles of columns 8 to 15 moved by
   // 0.05 (i - 10.3) in z: it lies on a below the support of column 8 (u below
   // knot 5/13), dips under a, and crosses back up through it near column
-  // 10, steeply (slope about 0.75), in one line from v = 0 to 1. (Off the
+  // 10 at about 37 degrees (slope 0.75), in one line from v = 0 to 1. (Off the
   // knot u = 9/13, where 0.05 (i - 10) would cross along the leaf edges.)
   const BSplineSurface a = wavy();
   BSplineSurface b = a;
@@ -97,6 +128,8 @@ TEST_CASE("a face lying on another over part of it still gives the curve where t
   }
   if (refine) {
     const argil::IntersectionCurve& c = r.curves.front();
+    // Its ends are refined onto the domain edges v = 0 and v = 1 (to rounding
+    // of the edge-constrained Gauss-Newton step).
     const auto [lo, hi] = std::minmax(c.uv_a.front()[1], c.uv_a.back()[1]);
     CHECK(lo <= 1e-9);
     CHECK(hi >= 1.0 - 1e-9);

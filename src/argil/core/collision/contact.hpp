@@ -25,7 +25,8 @@ struct CollisionRequest {
   int max_level = SurfaceHierarchy::kMaxLevel;
   /// Surface-surface queries: a yes/no crossing test. The descent stops at the
   /// first leaf pair whose triangles cross (the result then holds that one
-  /// contact, with depth 0, and its segments); near-touches are not looked for.
+  /// contact, with depth 0, and its segments unless the surfaces are tangent
+  /// there); near-touches are not looked for.
   /// An empty result means no crossing.
   bool first_crossing_only = false;
   /// Surface-surface queries: chain the crossing segments into curves (then

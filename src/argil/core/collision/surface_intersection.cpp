@@ -579,10 +579,10 @@ double on_plane_distance(const BSplineSurface& a, const BSplineSurface& b,
 /// contact reports the overlap instead.
 class CoincidenceTest {
  public:
-  /// b's normals turn by R when b is placed.
-  CoincidenceTest(const BSplineSurface& a, const BSplineSurface& b, const Eigen::Matrix3d& R,
+  /// b's normals turn by R_AB when b is placed in a's frame.
+  CoincidenceTest(const BSplineSurface& a, const BSplineSurface& b, const Eigen::Matrix3d& R_AB,
                   double eps)
-      : a_(a), b_(b), R_(R), eps_(eps) {}
+      : a_(a), b_(b), R_AB_(R_AB), eps_(eps) {}
 
   /// True when two crossing triangles meet at an angle past any turn of a
   /// flat leaf: their surfaces cross there, whatever the exact normals say.
@@ -593,14 +593,16 @@ class CoincidenceTest {
   }
 
   /// True when the surfaces' exact normals at the segment's middle are so
-  /// nearly parallel that across the larger leaf (`diameter` [mm]) they turn
-  /// apart by at most eps: the surfaces are tangent there and stay within
-  /// eps of each other over the leaf pair.
+  /// nearly parallel that across the larger leaf (`diameter` [mm]) their
+  /// tangent planes part by at most eps: the surfaces are tangent there. (Each
+  /// also bends from its tangent plane across a leaf, a few eps at most for a
+  /// flat leaf; surfaces that touch with different curvature come out as
+  /// contacts too, as a touch should.)
   bool tangent_at(const detail::Segment& s, double diameter) const {
     const Eigen::Vector2d uv_a = 0.5 * (s.uv_a[0] + s.uv_a[1]);
     const Eigen::Vector2d uv_b = 0.5 * (s.uv_b[0] + s.uv_b[1]);
     const Eigen::Vector3d na = unit_normal(a_, uv_a[0], uv_a[1]);
-    const Eigen::Vector3d nb = R_ * unit_normal(b_, uv_b[0], uv_b[1]);
+    const Eigen::Vector3d nb = R_AB_ * unit_normal(b_, uv_b[0], uv_b[1]);
     // No normal at a pole or a collapsed corner: not known to coincide.
     if (na.isZero() || nb.isZero()) return false;
     return na.cross(nb).norm() * diameter <= eps_;
@@ -613,7 +615,7 @@ class CoincidenceTest {
   static constexpr double kSteep = 0.7;
   const BSplineSurface& a_;
   const BSplineSurface& b_;
-  Eigen::Matrix3d R_;
+  Eigen::Matrix3d R_AB_;
   double eps_;
 };
 
@@ -625,7 +627,10 @@ LeafPairFindings leaf_crossings(const LeafTriangles& la, const LeafTriangles& lb
                                 double on_plane, const CoincidenceTest* coincide) {
   LeafPairFindings out;
   double longest = -1.0;
-  std::optional<bool> tangent;  // the exact normals' answer, read once per leaf pair
+  // The exact normals' answer, read at the first gentle segment and kept for
+  // the leaf pair's others: within a flat leaf it changes only for a crossing
+  // right at the threshold, which then goes one way for the whole pair.
+  std::optional<bool> tangent;
   for (std::size_t i = 0; i < 2; ++i) {
     for (std::size_t j = 0; j < 2; ++j) {
       ++out.triangle_tests;

@@ -35,7 +35,10 @@ namespace argil {
 /// Results: `curves` are the triangle intersection segments chained where
 /// their end points coincide (3D distance at most eps and parameters within
 /// half a leaf on both surfaces); each point carries (u, v) on a and b by
-/// barycentric interpolation of the leaf's parameter corners. `contacts` has
+/// barycentric interpolation of the leaf's parameter corners. A segment where
+/// the surfaces are tangent over its leaf pair (exact normals parallel to
+/// within eps over the larger leaf: faces lying on each other) is no curve
+/// piece; its leaf pair's contact reports it. `contacts` has
 /// one record per leaf pair in contact: on its longest crossing segment's
 /// midpoint (depth 0), or halfway between the closest triangle points
 /// (depth = -their distance, just apart). Normal and tangents are a's, from
