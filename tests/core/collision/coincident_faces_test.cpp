@@ -15,7 +15,6 @@ using argil::CollisionResult;
 using argil::Contact;
 using argil::Direction;
 using argil::test::hierarchy_for;
-using argil::test::unit_net;
 
 namespace {
 
