@@ -201,6 +201,38 @@ TEST_CASE("a curve through leaf corners and along leaf edges comes out as one cu
   CHECK(c.length() >= (diagonal ? std::sqrt(2.0) : 1.0) - 1e-12);
 }
 
+TEST_CASE("a crossing along a knot line of both surfaces comes out refined as one curve") {
+  // b is the wavy net with its poles raised by 0.05 (i - shift) and knots
+  // inserted in v: b - a = 0.05 (sum of N_i(u) i - shift), zero exactly on the
+  // knot line u = (shift - 1)/13 (the three cubic basis functions there are
+  // 1/6, 2/3, 1/6), where b crosses a at about 33 degrees. The curve runs
+  // along both surfaces' leaf edges, where leaves of different sizes meet:
+  // their segments repeat one another and pass through the cracks between them.
+  const BSplineSurface a = argil::test::wavy_pair().first;
+  const int shift = GENERATE(4, 6, 10);
+  BSplineSurface b = a;
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j) b.control_points(b.pole_index(i, j), 2) += 0.05 * (i - shift);
+  argil::Result<BSplineSurface> reknotted = argil::insert_knot(b, argil::Direction::v, 0.6789, 2);
+  REQUIRE(reknotted.ok());
+  b = std::move(reknotted).value();
+  const auto ha = hierarchy_for(a);
+  const auto hb = hierarchy_for(b);
+  const double eps = GENERATE(1e-3, 1e-4, 1e-5);
+  INFO("knot line u = " << shift - 1 << "/13, eps " << eps);
+  const CollisionResult r = argil::collide(ha, hb, {.tolerance = eps, .refine = true});
+  REQUIRE(r.curves.size() == 1);
+  check_curves(a, b, r, eps, 1e-12);
+  const IntersectionCurve& c = r.curves.front();
+  check_runs_across_v(c, 1e-9);
+  // On the knot line, and one way along it (no stretch out and back).
+  const double dv = c.uv_a.back()[1] - c.uv_a.front()[1];
+  for (std::size_t k = 0; k < c.points.size(); ++k) {
+    CHECK(std::abs(c.uv_a[k][0] - (shift - 1) / 13.0) <= 1e-9);
+    if (k > 0) CHECK((c.uv_a[k][1] - c.uv_a[k - 1][1]) * dv > 0.0);
+  }
+}
+
 TEST_CASE("curve tidying drops short pieces, opens out-and-back loops, joins and closes") {
   const double eps = 1e-3;
   const auto curve = [](std::vector<Eigen::Vector3d> points) {
@@ -229,20 +261,68 @@ TEST_CASE("curve tidying drops short pieces, opens out-and-back loops, joins and
     REQUIRE(out.size() == 1);
     CHECK_FALSE(out[0].closed());
     REQUIRE(out[0].points.size() == 2);
-    CHECK(out[0].points.back() == Eigen::Vector3d(0.01, 0, 0));
+    CHECK((out[0].points.back() - out[0].points.front()).norm() == 0.01);
   }
-  SECTION("a piece longer than eps stays even on another curve; covering pieces stay") {
-    // b (longer than eps) lies on a: kept. d (zero length) and e lie within
-    // eps/2 of c: dropped, and c, which covers them, stays.
+  SECTION("a piece lying on another curve is dropped, but not before the joins") {
+    // b (longer than eps) lies on a: dropped, once nothing is left to join.
+    // d (zero length) and e lie within eps/2 of c: dropped, and c, which
+    // covers them, stays.
     const auto out = argil::detail::tidy_curves(
         {curve({{0, 0, 0}, {1, 0, 0}}), curve({{0.2, 0, 0}, {0.2011, 0, 0}}),
          curve({{5, 0, 0}, {5, 0.0016, 0}}), curve({{5, 0.0004, 0}, {5, 0.0004, 0}}),
          curve({{5, 0.00045, 0}, {5, 0.0012, 0}})},
         eps);
-    REQUIRE(out.size() == 3);
-    CHECK(out[1].points.front() == Eigen::Vector3d(0.2, 0, 0));
-    CHECK(out[2].points.front() == Eigen::Vector3d(5, 0, 0));
-    CHECK(out[2].points.back() == Eigen::Vector3d(5, 0.0016, 0));
+    REQUIRE(out.size() == 2);
+    CHECK(out[0].points.front() == Eigen::Vector3d(0, 0, 0));
+    CHECK(out[1].points.front() == Eigen::Vector3d(5, 0, 0));
+    CHECK(out[1].points.back() == Eigen::Vector3d(5, 0.0016, 0));
+  }
+  SECTION("a branch crossing another at a small angle stays whole") {
+    // The second branch's middle piece runs within eps/2 of the first: it
+    // joins its neighbours first, and the whole branch is not covered.
+    const auto out = argil::detail::tidy_curves(
+        {curve({{0, 0, 0}, {1, 0, 0}}), curve({{0.1, -0.01, 0}, {0.3, -0.0003, 0}}),
+         curve({{0.3, -0.0003, 0}, {0.35, 0.0003, 0}}), curve({{0.35, 0.0003, 0}, {0.6, 0.01, 0}})},
+        eps);
+    REQUIRE(out.size() == 2);
+    CHECK(out[1].points.size() == 4);
+    // Partly within eps/2 of the first: stays.
+    CHECK(argil::detail::tidy_curves(
+              {curve({{0, 0, 0}, {1, 0, 0}}), curve({{0.2, -0.0004, 0}, {0.22, 0.0012, 0}})}, eps)
+              .size() == 2);
+  }
+  SECTION("a curve that starts out and back over itself starts at its turn") {
+    // Its first chord runs back over its next two (a larger leaf's segment
+    // beside its smaller neighbours'): left out, so the piece before it joins.
+    const auto out = argil::detail::tidy_curves(
+        {curve({{0.02, 0, 0}, {0, 0, 0}, {0.01, 0, 0}, {0.02, 0, 0}, {1, 0, 0}}),
+         curve({{-1, 0, 0}, {0, 0, 0}})},
+        eps);
+    REQUIRE(out.size() == 1);
+    const std::vector<Eigen::Vector3d>& p = out[0].points;
+    CHECK(p.size() == 5);
+    for (std::size_t k = 0; k + 1 < p.size(); ++k)  // one way, either way
+      CHECK((p[k + 1].x() - p[k].x()) * (p.back().x() - p.front().x()) > 0.0);
+    CHECK(std::abs(p.back().x() - p.front().x()) == 2.0);
+    // A turn back that does not retrace the curve stays.
+    CHECK(argil::detail::tidy_curves({curve({{0.02, 0.01, 0}, {0, 0, 0}, {1, 0, 0}})}, eps)
+              .front()
+              .points.size() == 3);
+  }
+  SECTION("pieces that overlap, each end lying on the other, are joined without the overlap") {
+    const auto out = argil::detail::tidy_curves({curve({{0, 0, 0}, {0.5, 0, 0}, {0.6, 0, 0}}),
+                                                 curve({{0.55, 0, 0}, {0.65, 0, 0}, {1, 0, 0}})},
+                                                eps);
+    REQUIRE(out.size() == 1);
+    const std::vector<Eigen::Vector3d>& p = out[0].points;
+    CHECK(p.size() == 5);
+    for (std::size_t k = 0; k + 1 < p.size(); ++k)
+      CHECK((p[k + 1].x() - p[k].x()) * (p.back().x() - p.front().x()) > 0.0);
+    // The chord past the first's end passes it farther than eps/2: not one curve.
+    CHECK(argil::detail::tidy_curves({curve({{0, 0, 0}, {0.6, 0, 0}}),
+                                      curve({{0.55, 0, 0}, {0.7, 0.01, 0}, {1, 0.01, 0}})},
+                                     eps)
+              .size() == 2);
   }
   SECTION("pieces whose ends meet within eps and run on are joined, in any orientation") {
     const auto out = argil::detail::tidy_curves(

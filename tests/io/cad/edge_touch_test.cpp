@@ -74,6 +74,30 @@ double distance_to_reported(const Eigen::Vector3d& p, const CollisionResult& r) 
   return best;
 }
 
+/// The distance from p to a polyline.
+double distance_to_polyline(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& line) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+    const Eigen::Vector3d d = line[k + 1] - line[k];
+    const double t =
+        d.squaredNorm() > 0.0 ? std::clamp((p - line[k]).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    best = std::min(best, (line[k] + t * d - p).norm());
+  }
+  return best;
+}
+
+/// How many points of curve i lie within `within` of another curve.
+int points_beside_other_curves(const CollisionResult& r, std::size_t i, double within) {
+  int beside = 0;
+  for (const Eigen::Vector3d& p : r.curves[i].points)
+    for (std::size_t j = 0; j < r.curves.size(); ++j)
+      if (j != i && distance_to_polyline(p, r.curves[j].points) <= within) {
+        ++beside;
+        break;
+      }
+  return beside;
+}
+
 }  // namespace
 
 TEST_CASE("faces that meet edge to edge touch along the edge, with no curve shorter than eps",
@@ -97,6 +121,10 @@ TEST_CASE("faces that meet edge to edge touch along the edge, with no curve shor
           {.tolerance = eps, .max_contacts = std::numeric_limits<int>::max(), .refine = refine});
       REQUIRE(r.status.ok());
       for (const IntersectionCurve& c : r.curves) CHECK(c.length() > eps);
+      // No stretch of the edge comes out twice, as pieces side by side (a
+      // piece's end may touch its neighbour's).
+      for (std::size_t i = 0; i < r.curves.size(); ++i)
+        CHECK(points_beside_other_curves(r, i, eps / 2.0) <= 2);
       // The edge is a stretch, not a point, and the query found it.
       REQUIRE(edge.size() >= 100);
       REQUIRE_FALSE(r.contacts.empty());

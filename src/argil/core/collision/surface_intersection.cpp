@@ -481,11 +481,33 @@ IntersectionCurve refine_curve(const SurfacePair& pair, IntersectionCurve c,
   return Densifier(pair, eps / 3.0).run(c, refined);
 }
 
+/// True when parameters lie inside the surface's domain, off its edges by
+/// more than rounding (1e-9 of the domain's size).
+bool inside_domain(const BSplineSurface& s, const Eigen::Vector2d& uv) {
+  for (const Direction d : {Direction::u, Direction::v}) {
+    const double lo = s.domain_start(d), hi = s.domain_end(d);
+    const double margin = 1e-9 * (hi - lo);
+    const double x = uv[d == Direction::u ? 0 : 1];
+    if (!(x > lo + margin && x < hi - margin)) return false;
+  }
+  return true;
+}
+
 /// Refined pieces of one curve can end up to about 1.6 eps apart (where
-/// leaves of different sizes meet): the bridge fills such a gap with refined
-/// points when one branch runs across it.
+/// leaves of different sizes meet), or a leaf's edge apart along a knot line
+/// of both surfaces: the bridge fills such a gap with refined points when one
+/// branch runs across it. A gap longer than kBridgeReach eps is crossed only
+/// between ends inside both domains: along a face's edge (faces that meet
+/// edge to edge) the leaves' triangles touch rather than cross, their
+/// segments are scattered, and bridging them gives pieces side by side.
 detail::GapBridge bridge_for(const SurfacePair& pair, double eps) {
   return [&pair, eps](const detail::CurvePoint& from, const detail::CurvePoint& to) {
+    const auto inside = [&pair](const detail::CurvePoint& p) {
+      return inside_domain(pair.a, p.uv_a) && inside_domain(pair.b, p.uv_b);
+    };
+    if ((to.point - from.point).norm() > detail::kBridgeReach * eps &&
+        !(inside(from) && inside(to)))
+      return std::optional<IntersectionCurve>();
     return Densifier(pair, eps / 3.0)
         .between({from.point, from.uv_a, from.uv_b}, {to.point, to.uv_a, to.uv_b});
   };
@@ -915,16 +937,22 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   if (request.curves) {
     detail::ChainedCurves chained = detail::chain_segments(descent.segments, request.tolerance);
     result.curves = std::move(chained.curves);
+    // Refinement keeps each curve's end points, so the bridge may reach as
+    // far from them as refinement may move them.
+    std::vector<detail::EndReaches> end_reaches;
     if (request.refine) {
-      for (std::size_t ci = 0; ci < result.curves.size(); ++ci)
+      for (std::size_t ci = 0; ci < result.curves.size(); ++ci) {
+        end_reaches.push_back({chained.reaches[ci].front(), chained.reaches[ci].back()});
         result.curves[ci] = refine_curve(pair, std::move(result.curves[ci]), chained.reaches[ci],
                                          request.tolerance);
+      }
     }
     // A yes/no test needs only whether there is a curve.
     if (!request.first_crossing_only)
       result.curves = detail::tidy_curves(
           std::move(result.curves), request.tolerance,
-          request.refine ? bridge_for(pair, request.tolerance) : detail::GapBridge{});
+          request.refine ? bridge_for(pair, request.tolerance) : detail::GapBridge{},
+          std::move(end_reaches));
   }
   std::vector<LeafContact> leaves;
   leaves.reserve(descent.pending.size());

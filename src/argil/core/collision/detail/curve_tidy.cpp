@@ -128,7 +128,10 @@ std::vector<std::size_t> covering(const std::vector<IntersectionCurve>& curves,
   return out;
 }
 
-std::vector<IntersectionCurve> drop_covered(std::vector<IntersectionCurve> curves, double eps) {
+/// Drops, shortest first, curves no longer than `longest` whose points and
+/// chords lie within eps/2 of other kept curves (see tidy_curves()).
+void drop_covered(std::vector<IntersectionCurve>& curves, std::vector<EndReaches>& reaches,
+                  double eps, double longest) {
   std::vector<double> lengths(curves.size());
   for (std::size_t i = 0; i < curves.size(); ++i) lengths[i] = curves[i].length();
   // Shortest first, so of two duplicate pieces the longer one stays.
@@ -148,9 +151,7 @@ std::vector<IntersectionCurve> drop_covered(std::vector<IntersectionCurve> curve
       dropped[i] = true;
       continue;
     }
-    // Only short pieces: a longer stretch of a branch that runs within eps/2
-    // of another (a crossing at a small angle) must stay, or the branch splits.
-    if (anchored[i] || !(lengths[i] <= eps)) continue;
+    if (anchored[i] || !(lengths[i] <= longest)) continue;
     // Its points, and its chords every eps/4, within eps/2 of kept curves:
     // every point of it lies within eps of them.
     const std::vector<std::size_t> by = covering(curves, bounds, i, dropped, 0.5 * eps);
@@ -158,10 +159,17 @@ std::vector<IntersectionCurve> drop_covered(std::vector<IntersectionCurve> curve
     dropped[i] = true;
     for (const std::size_t j : by) anchored[j] = true;
   }
-  std::vector<IntersectionCurve> kept;
-  for (std::size_t i = 0; i < curves.size(); ++i)
-    if (!dropped[i]) kept.push_back(std::move(curves[i]));
-  return kept;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    if (dropped[i]) continue;
+    if (kept != i) {  // a vector moved onto itself would come out empty
+      curves[kept] = std::move(curves[i]);
+      reaches[kept] = reaches[i];
+    }
+    ++kept;
+  }
+  curves.resize(kept);
+  reaches.resize(kept);
 }
 
 /// One free end of an open curve: where it is and the direction the curve
@@ -203,15 +211,87 @@ void drop_repeated_points(IntersectionCurve& c, double tiny) {
   c.uv_b.resize(kept + 1);
 }
 
-/// A closed curve of three points goes out to one point and back: two
-/// segments chained end to end at both ends (pieces of one curve found from
-/// either side of a leaf edge and refined onto the same points). It encloses
-/// nothing: it is the open curve out.
-void open_out_and_back(IntersectionCurve& c) {
-  if (!c.closed() || c.points.size() != 3) return;
-  c.points.pop_back();
-  c.uv_a.pop_back();
-  c.uv_b.pop_back();
+/// The first inner point where a curve turns back by more than a right angle
+/// (0 when it never does).
+std::size_t first_turn_back(const IntersectionCurve& c) {
+  for (std::size_t k = 1; k + 1 < c.points.size(); ++k) {
+    const Eigen::Vector3d in = c.points[k] - c.points[k - 1], out = c.points[k + 1] - c.points[k];
+    if (in.dot(out) < kJoinTurnCosine * in.norm() * out.norm()) return k;
+  }
+  return 0;
+}
+
+/// Leaves out the points before a curve's first turn back when they,
+/// and their chords every eps/4, lie within eps/2 of the curve after it: the
+/// chain ran out and back along one stretch. (Where a curve runs along a leaf
+/// edge that one larger leaf shares with two smaller ones, the larger leaf's
+/// segment and the smaller ones' both lie on it, and the chain can start with
+/// the first and come back along the others, leaving its neighbour piece a
+/// free end at the spike's tip.) Every point left out stays within eps/2 of
+/// the curve. Repeats while the new start turns back too.
+bool trim_retraced_start(IntersectionCurve& c, double eps) {
+  bool trimmed = false;
+  while (true) {
+    const std::size_t k = first_turn_back(c);
+    if (k == 0) return trimmed;
+    IntersectionCurve after;
+    after.points.assign(c.points.begin() + static_cast<long>(k), c.points.end());
+    const double within = 0.5 * eps;
+    for (std::size_t i = 0; i < k; ++i) {
+      const Eigen::Vector3d d = c.points[i + 1] - c.points[i];
+      const double steps = std::ceil(d.norm() / (0.5 * within));
+      for (double t = 0.0; t < steps; t += 1.0)
+        if (!(distance_to_curve(c.points[i] + (t / steps) * d, after) <= within)) return trimmed;
+    }
+    const auto cut = static_cast<long>(k);
+    c.points.erase(c.points.begin(), c.points.begin() + cut);
+    c.uv_a.erase(c.uv_a.begin(), c.uv_a.begin() + cut);
+    c.uv_b.erase(c.uv_b.begin(), c.uv_b.begin() + cut);
+    trimmed = true;
+  }
+  return trimmed;
+}
+
+/// trim_retraced_start() at both ends.
+void trim_retraced_ends(IntersectionCurve& c, double eps) {
+  if (c.closed()) return;
+  trim_retraced_start(c, eps);
+  reverse(c);
+  trim_retraced_start(c, eps);
+  reverse(c);
+}
+
+/// A closed curve that runs out along a stretch and back along it encloses
+/// nothing: it is the open curve out. (Two segments chained end to end at
+/// both ends, pieces of one curve found from either side of a leaf edge; or
+/// a larger leaf's segment and its smaller neighbours' along a leaf edge,
+/// chained into a loop.) Opened at a point where it turns back, when the
+/// stretch from there retraces the rest as trim_retraced_start() asks.
+void open_retraced_loop(IntersectionCurve& c, double eps) {
+  if (!c.closed()) return;
+  const std::size_t n = c.points.size() - 1;  // distinct points; the last repeats the first
+  // Such a loop turns back at both its tips: either will do, and a loop that
+  // fails at its first two turns is not one (a small loop of a few leaf
+  // segments turns by more than a right angle at every point).
+  int turns_tried = 0;
+  for (std::size_t k = 0; k < n && turns_tried < 2; ++k) {
+    const Eigen::Vector3d in = c.points[k] - c.points[(k + n - 1) % n];
+    const Eigen::Vector3d out = c.points[k + 1] - c.points[k];
+    if (!(in.dot(out) < kJoinTurnCosine * in.norm() * out.norm())) continue;
+    ++turns_tried;
+    // The loop from its turn at k, once round, open.
+    IntersectionCurve open;
+    for (std::size_t i = 0; i <= n; ++i) {
+      const std::size_t at = (k + i) % n;
+      open.points.push_back(c.points[at]);
+      open.uv_a.push_back(c.uv_a[at]);
+      open.uv_b.push_back(c.uv_b[at]);
+    }
+    if (trim_retraced_start(open, eps) && !open.closed()) {
+      c = std::move(open);
+      return;
+    }
+  }
 }
 
 /// How squarely a free end must face the end it is bridged to: the gap within
@@ -273,26 +353,73 @@ double trim_behind(IntersectionCurve& tail, const FreeEnd& e, double reach) {
 }
 
 /// The points that take `head`'s end on to `tail`'s start across a gap of up
-/// to kBridgeReach eps (after trimming where `tail` overlaps `head`, plus the
-/// chord that crossed the end): when the two ends face each other and the
-/// bridge runs one branch between them. `tail` comes back trimmed.
+/// to `reach` (after trimming where `tail` overlaps `head` by up to
+/// kBridgeReach eps, plus the chord that crossed the end): when the two ends
+/// face each other and the bridge runs one branch between them. `tail` comes
+/// back trimmed.
 std::optional<IntersectionCurve> bridge_gap(const IntersectionCurve& head, IntersectionCurve& tail,
-                                            double eps, BridgeAsker& asker) {
+                                            double eps, double reach, BridgeAsker& asker) {
   const FreeEnd e = end_of(head, false);
   const double crossing_chord = trim_behind(tail, e, kBridgeReach * eps);
   if (tail.points.size() < 2) return std::nullopt;
   const FreeEnd f = end_of(tail, true);
   const double gap = (e.point - f.point).norm();
-  if (!(gap <= kBridgeReach * eps + crossing_chord) || !opposite(e.outward, f.outward))
-    return std::nullopt;
+  if (!(gap <= reach + crossing_chord) || !opposite(e.outward, f.outward)) return std::nullopt;
   if (gap > 1e-6 * eps && !face_each_other(e, f)) return std::nullopt;
   return asker(end_point(head, false), end_point(tail, true));
 }
 
+/// Joins `tail` on to `head` where the two overlap, each end lying on the
+/// other: head's end within eps/2 of a chord of tail that crosses it going on,
+/// and tail's points before that chord within eps/2 of head (left out). Where
+/// a larger leaf's segment and its smaller neighbours' both lie on one stretch
+/// of a curve (a curve along a leaf edge), the chain can split there into two
+/// pieces that each run past the other's end.
+bool join_overlapping(IntersectionCurve& head, const IntersectionCurve& tail, double eps) {
+  const FreeEnd e = end_of(head, false);
+  const double within = 0.5 * eps;
+  if (tail.points.size() < 2 || !(e.outward.squaredNorm() > 0.0) ||
+      !(distance_to_curve(tail.points.front(), head) <= within))
+    return false;
+  for (std::size_t m = 1; m < tail.points.size(); ++m) {
+    const Eigen::Vector3d& before = tail.points[m - 1];
+    if (!(distance_to_curve(before, head) <= within)) return false;
+    const Eigen::Vector3d chord = tail.points[m] - before;
+    if (!((tail.points[m] - e.point).dot(e.outward) > 0.0)) continue;
+    // The chord that passes head's end: it must go on, and pass within eps/2.
+    IntersectionCurve crossing;
+    crossing.points = {before, tail.points[m]};
+    if (!(chord.dot(e.outward) > 0.0) || !(distance_to_curve(e.point, crossing) <= within))
+      return false;
+    IntersectionCurve rest;
+    rest.points.assign(tail.points.begin() + static_cast<long>(m), tail.points.end());
+    rest.uv_a.assign(tail.uv_a.begin() + static_cast<long>(m), tail.uv_a.end());
+    rest.uv_b.assign(tail.uv_b.begin() + static_cast<long>(m), tail.uv_b.end());
+    append(head, rest);
+    return true;
+  }
+  return false;
+}
+
+/// How far the bridge may reach across a gap between two ends.
+double bridge_reach(double eps, double reach_e, double reach_f) {
+  return std::max({kBridgeReach * eps, reach_e, reach_f});
+}
+
+double reach_of(const EndReaches& r, bool at_start) { return at_start ? r.front : r.back; }
+
 /// Joins one pair of open curves that continue each other: ends within eps,
-/// or with `asker`, ends up to kBridgeReach eps apart (or overlapping by as
-/// much) through the bridge's points. False when none does.
-bool join_one(std::vector<IntersectionCurve>& curves, double eps, BridgeAsker* asker) {
+/// or overlapping (join_overlapping()), or with `asker`, ends up to their
+/// bridge_reach() apart (or overlapping by up to kBridgeReach eps) through the
+/// bridge's points. False when none does.
+bool join_one(std::vector<IntersectionCurve>& curves, std::vector<EndReaches>& reaches, double eps,
+              BridgeAsker* asker) {
+  // An overlap needs each end within eps/2 of the other curve, so inside its box.
+  std::vector<Bounds> boxes;
+  if (asker == nullptr) {
+    boxes.reserve(curves.size());
+    for (const IntersectionCurve& c : curves) boxes.push_back(bounds_of(c, 0.5 * eps));
+  }
   for (std::size_t i = 0; i < curves.size(); ++i) {
     if (curves[i].closed()) continue;
     for (std::size_t j = i + 1; j < curves.size(); ++j) {
@@ -302,25 +429,37 @@ bool join_one(std::vector<IntersectionCurve>& curves, double eps, BridgeAsker* a
         const bool i_start = (way & 1) != 0, j_end = (way & 2) != 0;
         const FreeEnd e = end_of(curves[i], i_start), f = end_of(curves[j], !j_end);
         const double gap = (e.point - f.point).norm();
+        // The joined curve's ends: i's other end and j's other end.
+        const EndReaches joined{reach_of(reaches[i], !i_start), reach_of(reaches[j], j_end)};
         if (asker == nullptr) {
-          if (!(gap <= eps) || !opposite(e.outward, f.outward)) continue;
-          IntersectionCurve head = std::move(curves[i]), tail = std::move(curves[j]);
-          if (i_start) reverse(head);
-          if (j_end) reverse(tail);
-          append(head, tail);
-          curves[i] = std::move(head);
-        } else {
-          if (!(gap <= kBridgeReach * eps)) continue;
+          const bool meet = gap <= eps && opposite(e.outward, f.outward);
+          if (!meet && !(boxes[i].holds(f.point) && boxes[j].holds(e.point))) continue;
           IntersectionCurve head = curves[i], tail = curves[j];
           if (i_start) reverse(head);
           if (j_end) reverse(tail);
-          const std::optional<IntersectionCurve> between = bridge_gap(head, tail, eps, *asker);
+          if (meet) {
+            append(head, tail);
+          } else if (!join_overlapping(head, tail, eps)) {
+            continue;
+          }
+          curves[i] = std::move(head);
+        } else {
+          const double reach =
+              bridge_reach(eps, reach_of(reaches[i], i_start), reach_of(reaches[j], !j_end));
+          if (!(gap <= reach)) continue;
+          IntersectionCurve head = curves[i], tail = curves[j];
+          if (i_start) reverse(head);
+          if (j_end) reverse(tail);
+          const std::optional<IntersectionCurve> between =
+              bridge_gap(head, tail, eps, reach, *asker);
           if (!between) continue;
           append(head, *between);
           append(head, tail);
           curves[i] = std::move(head);
         }
+        reaches[i] = joined;
         curves.erase(curves.begin() + static_cast<long>(j));
+        reaches.erase(reaches.begin() + static_cast<long>(j));
         return true;
       }
     }
@@ -330,18 +469,19 @@ bool join_one(std::vector<IntersectionCurve>& curves, double eps, BridgeAsker* a
 
 /// Closes an open curve longer than 2 eps whose own ends meet within eps and
 /// run on, or with `asker`, whose ends are bridged (as in join_one()) on a
-/// curve longer than 2 kBridgeReach eps. A closed curve repeats its first
+/// curve longer than twice the bridge's reach. A closed curve repeats its first
 /// point (replacing a last point within 1e-6 eps of it, as across a periodic
 /// face's seam).
-void close_if_loop(IntersectionCurve& c, double eps, BridgeAsker* asker) {
+void close_if_loop(IntersectionCurve& c, const EndReaches& ends, double eps, BridgeAsker* asker) {
   if (c.closed() || c.points.size() < 3 || !(c.length() > 2.0 * eps)) return;
   if (asker == nullptr) {
     if (!continues(c, c, eps)) return;
   } else {
-    if (!(c.length() > 2.0 * kBridgeReach * eps)) return;
-    if (!((c.points.back() - c.points.front()).norm() <= kBridgeReach * eps)) return;
+    const double reach = bridge_reach(eps, ends.front, ends.back);
+    if (!(c.length() > 2.0 * reach)) return;
+    if (!((c.points.back() - c.points.front()).norm() <= reach)) return;
     IntersectionCurve trimmed = c;
-    const std::optional<IntersectionCurve> between = bridge_gap(c, trimmed, eps, *asker);
+    const std::optional<IntersectionCurve> between = bridge_gap(c, trimmed, eps, reach, *asker);
     if (!between) return;
     // The loop now starts after the overlap; the bridge leads back to it.
     c = std::move(trimmed);
@@ -366,22 +506,35 @@ bool is_touch(const IntersectionCurve& c, double eps) { return !(c.length() > ep
 }  // namespace
 
 std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps,
-                                           const GapBridge& bridge) {
+                                           const GapBridge& bridge,
+                                           std::vector<EndReaches> reaches) {
+  reaches.resize(curves.size());
   for (IntersectionCurve& c : curves) {
     drop_repeated_points(c, 1e-6 * eps);
-    open_out_and_back(c);
+    open_retraced_loop(c, eps);
+    trim_retraced_ends(c, eps);
   }
-  curves = drop_covered(std::move(curves), eps);
-  while (join_one(curves, eps, nullptr)) {
+  // Only short pieces: a longer stretch of a branch that runs within eps/2 of
+  // another (a crossing at a small angle) must stay, or the branch splits.
+  drop_covered(curves, reaches, eps, eps);
+  while (join_one(curves, reaches, eps, nullptr)) {
   }
-  for (IntersectionCurve& c : curves) close_if_loop(c, eps, nullptr);
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    close_if_loop(curves[i], reaches[i], eps, nullptr);
   if (bridge) {
     BridgeAsker asker(bridge);
-    while (join_one(curves, eps, &asker)) {
+    while (join_one(curves, reaches, eps, &asker)) {
     }
-    for (IntersectionCurve& c : curves) close_if_loop(c, eps, &asker);
+    for (std::size_t i = 0; i < curves.size(); ++i)
+      close_if_loop(curves[i], reaches[i], eps, &asker);
   }
+  // Joined as far as they go: a piece of any length that another curve
+  // covers repeats it (a larger leaf's segment beside its smaller
+  // neighbours' along a leaf edge).
+  drop_covered(curves, reaches, eps, std::numeric_limits<double>::infinity());
   std::erase_if(curves, [eps](const IntersectionCurve& c) { return is_touch(c, eps); });
+  // Pieces joined within eps can meet at points that repeat up to rounding.
+  for (IntersectionCurve& c : curves) drop_repeated_points(c, 1e-6 * eps);
   return curves;
 }
 

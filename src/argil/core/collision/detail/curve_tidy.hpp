@@ -31,24 +31,39 @@ using GapBridge =
 /// leaf crossed the boundary.
 inline constexpr double kBridgeReach = 16.0;
 
+/// How far the bridge may reach from each end of a curve [mm], beyond
+/// kBridgeReach eps: about the size of the leaves the end's segment came
+/// from. A curve that runs along a leaf edge (a crossing along a knot line of
+/// both surfaces) passes through the cracks between leaves of different sizes
+/// there, and no triangle pair finds it along up to a leaf's edge.
+struct EndReaches {
+  double front = 0.0, back = 0.0;
+};
+
 /// First leaves out points that repeat their predecessor within a millionth of
 /// eps (where chained segments of no length met): they would give a curve's
-/// end a direction made of rounding; a closed curve of three points, out to one
-/// point and back, becomes the open curve out. Then drops, shortest first, every curve
+/// end a direction made of rounding. A closed curve that runs out along a
+/// stretch and back along it becomes the open curve out, and an open curve
+/// that starts or ends out and back over itself starts at its turn (the points
+/// left out lie within eps/2 of the rest). Then drops, shortest first, every curve
 /// no longer than eps whose points and chords (checked every eps/4) lie within
 /// eps/2 of other curves, and keeps those (a duplicate piece: every point of it
 /// stays within eps of the reported set). Then joins open curves
 /// whose free ends lie within eps of each other and run on with a turn of at
-/// most a right angle, and closes an open curve longer than 2 eps whose own
+/// most a right angle, or that overlap with each end on the other (the
+/// overlap left out of one), and closes an open curve longer than 2 eps whose own
 /// ends meet that way (a closed curve repeats its first point).
-/// With a `bridge`, then joins (and closes) ends up to kBridgeReach eps apart
-/// that face each other, through the bridge's points; where two pieces
-/// overlap by up to as much, each past the other's end (their refined ends
+/// With a `bridge`, then joins (and closes) ends that face each other up to
+/// kBridgeReach eps apart, or as far as the larger of their `reaches` (one per
+/// curve, or none), through the bridge's points; where two pieces
+/// overlap by up to kBridgeReach eps, each past the other's end (their refined ends
 /// slid along the curve), the overlapping points of one go first.
+/// Then drops curves of any length that others cover within eps/2 (as above).
 /// Last drops every curve still no longer than eps: the surfaces meet there
 /// only within eps (faces that touch edge to edge, a loop less than eps/2
 /// across), which the query reports as its leaf pair's contact of depth 0.
 std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps,
-                                           const GapBridge& bridge = {});
+                                           const GapBridge& bridge = {},
+                                           std::vector<EndReaches> reaches = {});
 
 }  // namespace argil::detail
