@@ -386,6 +386,12 @@ TEST_CASE("curve tidying drops short pieces, opens out-and-back loops, joins and
               eps, straight)
               .size() == 2);
     CHECK(asked == 0);
+    // Farther than that, as far as the ends' leaves reach.
+    const std::vector<IntersectionCurve> far{curve({{0, 0, 0}, {1, 0, 0}}),
+                                             curve({{1.05, 0, 0}, {2, 0, 0}})};
+    CHECK(argil::detail::tidy_curves(far, eps, straight).size() == 2);
+    CHECK(argil::detail::tidy_curves(far, eps, straight, {{0.0, 0.01}, {0.01, 0.0}}).size() == 2);
+    CHECK(argil::detail::tidy_curves(far, eps, straight, {{0.0, 0.1}, {0.1, 0.0}}).size() == 1);
   }
   SECTION("a loop whose ends lie a few eps apart is closed through the bridge") {
     const argil::detail::GapBridge straight = [](const argil::detail::CurvePoint& from,
@@ -403,6 +409,12 @@ TEST_CASE("curve tidying drops short pieces, opens out-and-back loops, joins and
     CHECK(out[0].closed());
     CHECK(out[0].points.size() == 8);
     CHECK(out[0].points[6].isApprox(Eigen::Vector3d(0.4985, 0, 0)));
+    // However far its ends' leaves reach: the loop is longer than twice its gap.
+    const auto far_reaching = argil::detail::tidy_curves(
+        {curve({{0.5, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 0}, {0.497, 0, 0}})}, eps,
+        straight, {{10.0, 10.0}});
+    REQUIRE(far_reaching.size() == 1);
+    CHECK(far_reaching[0].closed());
   }
   SECTION("an open loop whose ends meet is closed; its first point repeated") {
     const auto out = argil::detail::tidy_curves(

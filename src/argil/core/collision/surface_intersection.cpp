@@ -496,18 +496,9 @@ bool inside_domain(const BSplineSurface& s, const Eigen::Vector2d& uv) {
 /// Refined pieces of one curve can end up to about 1.6 eps apart (where
 /// leaves of different sizes meet), or a leaf's edge apart along a knot line
 /// of both surfaces: the bridge fills such a gap with refined points when one
-/// branch runs across it. A gap longer than kBridgeReach eps is crossed only
-/// between ends inside both domains: along a face's edge (faces that meet
-/// edge to edge) the leaves' triangles touch rather than cross, their
-/// segments are scattered, and bridging them gives pieces side by side.
+/// branch runs across it.
 detail::GapBridge bridge_for(const SurfacePair& pair, double eps) {
   return [&pair, eps](const detail::CurvePoint& from, const detail::CurvePoint& to) {
-    const auto inside = [&pair](const detail::CurvePoint& p) {
-      return inside_domain(pair.a, p.uv_a) && inside_domain(pair.b, p.uv_b);
-    };
-    if ((to.point - from.point).norm() > detail::kBridgeReach * eps &&
-        !(inside(from) && inside(to)))
-      return std::optional<IntersectionCurve>();
     return Densifier(pair, eps / 3.0)
         .between({from.point, from.uv_a, from.uv_b}, {to.point, to.uv_a, to.uv_b});
   };
@@ -938,13 +929,23 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
     detail::ChainedCurves chained = detail::chain_segments(descent.segments, request.tolerance);
     result.curves = std::move(chained.curves);
     // Refinement keeps each curve's end points, so the bridge may reach as
-    // far from them as refinement may move them.
+    // far from them as refinement may move them; but not from an end on a
+    // face's edge: along it (faces that meet edge to edge) the leaves'
+    // triangles touch rather than cross, their segments are scattered, and
+    // bridging them gave pieces side by side.
     std::vector<detail::EndReaches> end_reaches;
     if (request.refine) {
       for (std::size_t ci = 0; ci < result.curves.size(); ++ci) {
-        end_reaches.push_back({chained.reaches[ci].front(), chained.reaches[ci].back()});
-        result.curves[ci] = refine_curve(pair, std::move(result.curves[ci]), chained.reaches[ci],
-                                         request.tolerance);
+        IntersectionCurve& c = result.curves[ci];
+        c = refine_curve(pair, std::move(c), chained.reaches[ci], request.tolerance);
+        const auto reach = [&](std::size_t k, double r) {
+          return k < c.points.size() && inside_domain(pair.a, c.uv_a[k]) &&
+                         inside_domain(pair.b, c.uv_b[k])
+                     ? r
+                     : 0.0;
+        };
+        end_reaches.push_back({reach(0, chained.reaches[ci].front()),
+                               reach(c.points.size() - 1, chained.reaches[ci].back())});
       }
     }
     // A yes/no test needs only whether there is a curve.

@@ -114,6 +114,8 @@ std::vector<std::size_t> covering(const std::vector<IntersectionCurve>& curves,
     return false;
   };
   const std::vector<Eigen::Vector3d>& points = curves[self].points;
+  // Both ends first: cheap, and most curves near others are not covered.
+  if (points.empty() || !covered(points.back())) return {};
   for (std::size_t k = 0; k < points.size(); ++k) {
     if (!covered(points[k])) return {};
     if (k + 1 == points.size()) break;
@@ -270,9 +272,10 @@ void trim_retraced_ends(IntersectionCurve& c, double eps) {
 void open_retraced_loop(IntersectionCurve& c, double eps) {
   if (!c.closed()) return;
   const std::size_t n = c.points.size() - 1;  // distinct points; the last repeats the first
-  // Such a loop turns back at both its tips: either will do, and a loop that
-  // fails at its first two turns is not one (a small loop of a few leaf
-  // segments turns by more than a right angle at every point).
+  // Such a loop turns back at both its tips, and either will do: only the
+  // first two turns are tried (a small loop of a few leaf segments turns by
+  // more than a right angle at every point). A loop less than about eps
+  // across can pass the test and be opened: at eps it is no loop.
   int turns_tried = 0;
   for (std::size_t k = 0; k < n && turns_tried < 2; ++k) {
     const Eigen::Vector3d in = c.points[k] - c.points[(k + n - 1) % n];
@@ -385,7 +388,13 @@ bool join_overlapping(IntersectionCurve& head, const IntersectionCurve& tail, do
     const Eigen::Vector3d& before = tail.points[m - 1];
     if (!(distance_to_curve(before, head) <= within)) return false;
     const Eigen::Vector3d chord = tail.points[m] - before;
-    if (!((tail.points[m] - e.point).dot(e.outward) > 0.0)) continue;
+    if (!((tail.points[m] - e.point).dot(e.outward) > 0.0)) {
+      // A chord left out: within eps/2 of head, checked every eps/4.
+      const double steps = std::ceil(chord.norm() / (0.5 * within));
+      for (double t = 1.0; t < steps; t += 1.0)
+        if (!(distance_to_curve(before + (t / steps) * chord, head) <= within)) return false;
+      continue;
+    }
     // The chord that passes head's end: it must go on, and pass within eps/2.
     IntersectionCurve crossing;
     crossing.points = {before, tail.points[m]};
@@ -433,7 +442,11 @@ bool join_one(std::vector<IntersectionCurve>& curves, std::vector<EndReaches>& r
         const EndReaches joined{reach_of(reaches[i], !i_start), reach_of(reaches[j], j_end)};
         if (asker == nullptr) {
           const bool meet = gap <= eps && opposite(e.outward, f.outward);
-          if (!meet && !(boxes[i].holds(f.point) && boxes[j].holds(e.point))) continue;
+          // An overlap needs each end within eps/2 of the other curve.
+          if (!meet && !(boxes[i].holds(f.point) && boxes[j].holds(e.point) &&
+                         distance_to_curve(f.point, curves[i]) <= 0.5 * eps &&
+                         distance_to_curve(e.point, curves[j]) <= 0.5 * eps))
+            continue;
           IntersectionCurve head = curves[i], tail = curves[j];
           if (i_start) reverse(head);
           if (j_end) reverse(tail);
@@ -477,9 +490,12 @@ void close_if_loop(IntersectionCurve& c, const EndReaches& ends, double eps, Bri
   if (asker == nullptr) {
     if (!continues(c, c, eps)) return;
   } else {
+    // Longer than twice the gap it closes (and than 2 kBridgeReach eps): a
+    // loop, not a short arc whose ends the bridge could reach.
+    const double gap = (c.points.back() - c.points.front()).norm();
+    if (!(gap <= bridge_reach(eps, ends.front, ends.back))) return;
+    if (!(c.length() > 2.0 * std::max(kBridgeReach * eps, gap))) return;
     const double reach = bridge_reach(eps, ends.front, ends.back);
-    if (!(c.length() > 2.0 * reach)) return;
-    if (!((c.points.back() - c.points.front()).norm() <= reach)) return;
     IntersectionCurve trimmed = c;
     const std::optional<IntersectionCurve> between = bridge_gap(c, trimmed, eps, reach, *asker);
     if (!between) return;
@@ -509,9 +525,13 @@ std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves
                                            const GapBridge& bridge,
                                            std::vector<EndReaches> reaches) {
   reaches.resize(curves.size());
-  for (IntersectionCurve& c : curves) {
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    IntersectionCurve& c = curves[i];
     drop_repeated_points(c, 1e-6 * eps);
+    const bool was_closed = c.closed();
     open_retraced_loop(c, eps);
+    // An opened loop's ends are not its chained ends: their reach is unknown.
+    if (was_closed && !c.closed()) reaches[i] = {};
     trim_retraced_ends(c, eps);
   }
   // Only short pieces: a longer stretch of a branch that runs within eps/2 of
@@ -528,11 +548,16 @@ std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves
     for (std::size_t i = 0; i < curves.size(); ++i)
       close_if_loop(curves[i], reaches[i], eps, &asker);
   }
-  // Joined as far as they go: a piece of any length that another curve
-  // covers repeats it (a larger leaf's segment beside its smaller
-  // neighbours' along a leaf edge).
+  // Every curve still no longer than eps is a touch (is_touch()). Then, joined
+  // as far as they go, a piece of any length that another curve covers repeats
+  // it (a larger leaf's segment beside its smaller neighbours' along a leaf
+  // edge). Touches go first, so none is left to cover a longer curve.
+  for (std::size_t i = curves.size(); i-- > 0;) {
+    if (!is_touch(curves[i], eps)) continue;
+    curves.erase(curves.begin() + static_cast<long>(i));
+    reaches.erase(reaches.begin() + static_cast<long>(i));
+  }
   drop_covered(curves, reaches, eps, std::numeric_limits<double>::infinity());
-  std::erase_if(curves, [eps](const IntersectionCurve& c) { return is_touch(c, eps); });
   // Pieces joined within eps can meet at points that repeat up to rounding.
   for (IntersectionCurve& c : curves) drop_repeated_points(c, 1e-6 * eps);
   return curves;

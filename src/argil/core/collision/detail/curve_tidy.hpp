@@ -33,9 +33,9 @@ inline constexpr double kBridgeReach = 16.0;
 
 /// How far the bridge may reach from each end of a curve [mm], beyond
 /// kBridgeReach eps: about the size of the leaves the end's segment came
-/// from. A curve that runs along a leaf edge (a crossing along a knot line of
-/// both surfaces) passes through the cracks between leaves of different sizes
-/// there, and no triangle pair finds it along up to a leaf's edge.
+/// from (0 for an end on a face's edge: see the query's bridge). A curve that runs along a leaf
+/// edge (a crossing along a knot line of both surfaces) passes through the cracks between leaves of
+/// different sizes there, and no triangle pair finds it along up to a leaf's edge.
 struct EndReaches {
   double front = 0.0, back = 0.0;
 };
@@ -58,10 +58,10 @@ struct EndReaches {
 /// curve, or none), through the bridge's points; where two pieces
 /// overlap by up to kBridgeReach eps, each past the other's end (their refined ends
 /// slid along the curve), the overlapping points of one go first.
-/// Then drops curves of any length that others cover within eps/2 (as above).
-/// Last drops every curve still no longer than eps: the surfaces meet there
+/// Then drops every curve still no longer than eps: the surfaces meet there
 /// only within eps (faces that touch edge to edge, a loop less than eps/2
 /// across), which the query reports as its leaf pair's contact of depth 0.
+/// Last drops curves of any length that others cover within eps/2 (as above).
 std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps,
                                            const GapBridge& bridge = {},
                                            std::vector<EndReaches> reaches = {});
