@@ -12,6 +12,7 @@
 #include "argil/core.hpp"
 #include "bench_surfaces.hpp"
 #include "bench_timing.hpp"
+#include "support/polyline_distance.hpp"
 
 namespace argil::bench {
 namespace {
@@ -47,13 +48,6 @@ SISLSurf* to_sisl(const BSplineSurface& s) {
                  1);
 }
 
-double chord_error(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& p) {
-  const Eigen::Vector3d d = b - a;
-  const double l2 = d.squaredNorm();
-  const double t = l2 > 0.0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
-}
-
 /// Adds the points of curve(t) over (t0, t1] to `line`, splitting intervals
 /// whose chord is farther than `tol` from the curve.
 template <class Curve>
@@ -61,9 +55,9 @@ void sample_interval(const Curve& curve, double t0, const Eigen::Vector3d& p0, d
                      const Eigen::Vector3d& p1, double tol, int depth, Polyline& line) {
   const double tm = 0.5 * (t0 + t1);
   const Eigen::Vector3d pm = curve(tm);
-  const bool straight = chord_error(p0, p1, pm) <= tol &&
-                        chord_error(p0, p1, curve(0.5 * (t0 + tm))) <= tol &&
-                        chord_error(p0, p1, curve(0.5 * (tm + t1))) <= tol;
+  const bool straight = test::distance_to_segment(pm, p0, p1) <= tol &&
+                        test::distance_to_segment(curve(0.5 * (t0 + tm)), p0, p1) <= tol &&
+                        test::distance_to_segment(curve(0.5 * (tm + t1)), p0, p1) <= tol;
   if (straight || depth >= kMaxDepth) {
     line.push_back(p1);
     return;

@@ -4,18 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "support/polyline_distance.hpp"
+
 namespace argil::bench {
 namespace {
 
 constexpr std::size_t kRunLength = 32;
-
-double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                        const Eigen::Vector3d& b) {
-  const Eigen::Vector3d d = b - a;
-  const double l2 = d.squaredNorm();
-  const double t = l2 > 0.0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
-}
 
 }  // namespace
 
@@ -43,7 +37,7 @@ double PolylineDistance::operator()(const Eigen::Vector3d& p) const {
     const Polyline& line = *run.line;
     if (run.first == run.last) best = std::min(best, (line[run.first] - p).norm());
     for (std::size_t k = run.first; k < run.last; ++k)
-      best = std::min(best, segment_distance(p, line[k], line[k + 1]));
+      best = std::min(best, test::distance_to_segment(p, line[k], line[k + 1]));
   }
   return best;
 }

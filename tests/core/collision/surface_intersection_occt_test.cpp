@@ -28,12 +28,14 @@
 #include "argil/core.hpp"
 #include "core/collision/surface_pairs.hpp"
 #include "support/occt_surface.hpp"
+#include "support/polyline_distance.hpp"
 
 using argil::BSplineSurface;
 using argil::Direction;
 
 namespace {
 
+using argil::test::distance_to_polyline;
 using argil::test::to_occt;
 
 constexpr double kPi = 3.14159265358979323846;
@@ -100,17 +102,6 @@ Foot feet(GeomAPI_ProjectPointOnSurf& pa, GeomAPI_ProjectPointOnSurf& pb,
   f.distance = std::max(pa.LowerDistance(), pb.LowerDistance());
   f.found = true;
   return f;
-}
-
-double distance_to_polyline(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& poly) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k + 1 < poly.size(); ++k) {
-    const Eigen::Vector3d d = poly[k + 1] - poly[k];
-    const double t =
-        d.squaredNorm() > 0 ? std::clamp((p - poly[k]).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-    best = std::min(best, (poly[k] + t * d - p).norm());
-  }
-  return best;
 }
 
 double polyline_length(const argil::IntersectionCurve& c) {

@@ -15,6 +15,7 @@
 
 #include "argil/core.hpp"
 #include "support/built_hierarchy.hpp"
+#include "support/polyline_distance.hpp"
 
 namespace argil::test {
 
@@ -88,19 +89,8 @@ inline BSplineSurface moved(const BSplineSurface& s, const Eigen::Matrix3d& R,
 /// Distance from p to the reported curves (their polylines).
 inline double distance_to_curves(const Eigen::Vector3d& p, const CollisionResult& r) {
   double best = std::numeric_limits<double>::infinity();
-  for (const IntersectionCurve& c : r.curves) {
-    for (std::size_t k = 0; k < c.points.size(); ++k) {
-      best = std::min(best, (c.points[k] - p).norm());
-      if (k + 1 < c.points.size()) {
-        const Eigen::Vector3d d = c.points[k + 1] - c.points[k];
-        const double l2 = d.squaredNorm();
-        if (l2 > 0) {
-          const double t = std::clamp((p - c.points[k]).dot(d) / l2, 0.0, 1.0);
-          best = std::min(best, (c.points[k] + t * d - p).norm());
-        }
-      }
-    }
-  }
+  for (const IntersectionCurve& c : r.curves)
+    best = std::min(best, test::distance_to_polyline(p, c.points));
   return best;
 }
 

@@ -15,6 +15,7 @@
 #include "argil/io.hpp"
 #include "support/built_hierarchy.hpp"
 #include "support/occt_surface.hpp"
+#include "support/polyline_distance.hpp"
 #include "test_files.hpp"
 
 namespace argil::io {
@@ -74,24 +75,12 @@ double distance_to_reported(const Eigen::Vector3d& p, const CollisionResult& r) 
   return best;
 }
 
-/// The distance from p to a polyline.
-double distance_to_polyline(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& line) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
-    const Eigen::Vector3d d = line[k + 1] - line[k];
-    const double t =
-        d.squaredNorm() > 0.0 ? std::clamp((p - line[k]).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-    best = std::min(best, (line[k] + t * d - p).norm());
-  }
-  return best;
-}
-
 /// How many points of curve i lie within `within` of another curve.
 int points_beside_other_curves(const CollisionResult& r, std::size_t i, double within) {
   int beside = 0;
   for (const Eigen::Vector3d& p : r.curves[i].points)
     for (std::size_t j = 0; j < r.curves.size(); ++j)
-      if (j != i && distance_to_polyline(p, r.curves[j].points) <= within) {
+      if (j != i && test::distance_to_polyline(p, r.curves[j].points) <= within) {
         ++beside;
         break;
       }

@@ -33,6 +33,25 @@ void reverse(IntersectionCurve& c) {
   std::reverse(c.uv_b.begin(), c.uv_b.end());
 }
 
+/// Leaves out a curve's first `k` points.
+void drop_front(IntersectionCurve& c, std::size_t k) {
+  const auto cut = static_cast<long>(k);
+  c.points.erase(c.points.begin(), c.points.begin() + cut);
+  c.uv_a.erase(c.uv_a.begin(), c.uv_a.begin() + cut);
+  c.uv_b.erase(c.uv_b.begin(), c.uv_b.begin() + cut);
+}
+
+/// True when `held` accepts the inner points of the chord from `a` to `b`,
+/// taken every `step` at most (its ends are the caller's).
+template <class Held>
+bool chord_held(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double step, Held&& held) {
+  const Eigen::Vector3d d = b - a;
+  const double steps = std::ceil(d.norm() / step);
+  for (double t = 1.0; t < steps; t += 1.0)
+    if (!held(a + (t / steps) * d)) return false;
+  return true;
+}
+
 /// Appends `tail` to `head`, the meeting points kept once when they coincide.
 void append(IntersectionCurve& head, const IntersectionCurve& tail) {
   if (tail.points.empty()) return;
@@ -118,11 +137,8 @@ std::vector<std::size_t> covering(const std::vector<IntersectionCurve>& curves,
   if (points.empty() || !covered(points.back())) return {};
   for (std::size_t k = 0; k < points.size(); ++k) {
     if (!covered(points[k])) return {};
-    if (k + 1 == points.size()) break;
-    const Eigen::Vector3d d = points[k + 1] - points[k];
-    const double steps = std::ceil(d.norm() / (0.5 * within));
-    for (double t = 1.0; t < steps; t += 1.0)
-      if (!covered(points[k] + (t / steps) * d)) return {};
+    if (k + 1 < points.size() && !chord_held(points[k], points[k + 1], 0.5 * within, covered))
+      return {};
   }
   std::vector<std::size_t> out;
   for (std::size_t j = 0; j < curves.size(); ++j)
@@ -233,22 +249,18 @@ std::size_t first_turn_back(const IntersectionCurve& c) {
 /// the curve. Repeats while the new start turns back too.
 bool trim_retraced_start(IntersectionCurve& c, double eps) {
   bool trimmed = false;
-  while (true) {
-    const std::size_t k = first_turn_back(c);
-    if (k == 0) return trimmed;
+  for (std::size_t k = first_turn_back(c); k != 0; k = first_turn_back(c)) {
     IntersectionCurve after;
     after.points.assign(c.points.begin() + static_cast<long>(k), c.points.end());
     const double within = 0.5 * eps;
-    for (std::size_t i = 0; i < k; ++i) {
-      const Eigen::Vector3d d = c.points[i + 1] - c.points[i];
-      const double steps = std::ceil(d.norm() / (0.5 * within));
-      for (double t = 0.0; t < steps; t += 1.0)
-        if (!(distance_to_curve(c.points[i] + (t / steps) * d, after) <= within)) return trimmed;
-    }
-    const auto cut = static_cast<long>(k);
-    c.points.erase(c.points.begin(), c.points.begin() + cut);
-    c.uv_a.erase(c.uv_a.begin(), c.uv_a.begin() + cut);
-    c.uv_b.erase(c.uv_b.begin(), c.uv_b.begin() + cut);
+    const auto on_after = [&](const Eigen::Vector3d& p) {
+      return distance_to_curve(p, after) <= within;
+    };
+    for (std::size_t i = 0; i < k; ++i)
+      if (!on_after(c.points[i]) ||
+          !chord_held(c.points[i], c.points[i + 1], 0.5 * within, on_after))
+        return trimmed;
+    drop_front(c, k);
     trimmed = true;
   }
   return trimmed;
@@ -348,10 +360,7 @@ double trim_behind(IntersectionCurve& tail, const FreeEnd& e, double reach) {
   }
   if (behind == 0 || behind == tail.points.size()) return 0.0;
   const double chord = (tail.points[behind] - tail.points[behind - 1]).norm();
-  const auto cut = static_cast<long>(behind);
-  tail.points.erase(tail.points.begin(), tail.points.begin() + cut);
-  tail.uv_a.erase(tail.uv_a.begin(), tail.uv_a.begin() + cut);
-  tail.uv_b.erase(tail.uv_b.begin(), tail.uv_b.begin() + cut);
+  drop_front(tail, behind);
   return chord;
 }
 
@@ -384,15 +393,16 @@ bool join_overlapping(IntersectionCurve& head, const IntersectionCurve& tail, do
   if (tail.points.size() < 2 || !(e.outward.squaredNorm() > 0.0) ||
       !(distance_to_curve(tail.points.front(), head) <= within))
     return false;
+  const auto on_head = [&](const Eigen::Vector3d& p) {
+    return distance_to_curve(p, head) <= within;
+  };
   for (std::size_t m = 1; m < tail.points.size(); ++m) {
     const Eigen::Vector3d& before = tail.points[m - 1];
-    if (!(distance_to_curve(before, head) <= within)) return false;
+    if (!on_head(before)) return false;
     const Eigen::Vector3d chord = tail.points[m] - before;
     if (!((tail.points[m] - e.point).dot(e.outward) > 0.0)) {
       // A chord left out: within eps/2 of head, checked every eps/4.
-      const double steps = std::ceil(chord.norm() / (0.5 * within));
-      for (double t = 1.0; t < steps; t += 1.0)
-        if (!(distance_to_curve(before + (t / steps) * chord, head) <= within)) return false;
+      if (!chord_held(before, tail.points[m], 0.5 * within, on_head)) return false;
       continue;
     }
     // The chord that passes head's end: it must go on, and pass within eps/2.
@@ -400,10 +410,8 @@ bool join_overlapping(IntersectionCurve& head, const IntersectionCurve& tail, do
     crossing.points = {before, tail.points[m]};
     if (!(chord.dot(e.outward) > 0.0) || !(distance_to_curve(e.point, crossing) <= within))
       return false;
-    IntersectionCurve rest;
-    rest.points.assign(tail.points.begin() + static_cast<long>(m), tail.points.end());
-    rest.uv_a.assign(tail.uv_a.begin() + static_cast<long>(m), tail.uv_a.end());
-    rest.uv_b.assign(tail.uv_b.begin() + static_cast<long>(m), tail.uv_b.end());
+    IntersectionCurve rest = tail;
+    drop_front(rest, m);
     append(head, rest);
     return true;
   }
