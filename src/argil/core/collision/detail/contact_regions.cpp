@@ -203,9 +203,10 @@ void join_in_grid(const std::vector<LeafContact>& leaves, std::vector<int>& pare
 constexpr double kSweepTestsPerLeaf = 512.0;
 
 /// Joins (union-find) every two leaves whose closed rectangles touch: a sweep
-/// in u (only rectangles whose u ranges overlap can touch), or the grid when
-/// the sweep would test too many pairs. Which pairs are joined first does not
-/// change the components, and region numbers depend only on them.
+/// in u (only rectangles whose u ranges overlap can touch), handing over to the
+/// grid once it has tested kSweepTestsPerLeaf pairs per leaf. Which pairs are
+/// joined first does not change the components, and region numbers depend
+/// only on them, so the sweep's joins before the hand-over stand.
 void join_touching(const std::vector<LeafContact>& leaves, std::vector<int>& parent) {
   const std::size_t n = leaves.size();
   if (n < 2) return;
@@ -217,21 +218,18 @@ void join_touching(const std::vector<LeafContact>& leaves, std::vector<int>& par
   });
   std::vector<double> u0(n);
   for (std::size_t x = 0; x < n; ++x) u0[x] = leaves[static_cast<std::size_t>(by_u0[x])].rect.u0;
+  const double budget = kSweepTestsPerLeaf * static_cast<double>(n);
   double tests = 0.0;
   for (std::size_t x = 0; x < n; ++x) {
-    const double u1 = leaves[static_cast<std::size_t>(by_u0[x])].rect.u1;
-    const auto after = u0.begin() + static_cast<long>(x) + 1;
-    tests += static_cast<double>(std::upper_bound(after, u0.end(), u1) - after);
-  }
-  if (tests > kSweepTestsPerLeaf * static_cast<double>(n)) {
-    join_in_grid(leaves, parent);
-    return;
-  }
-  for (std::size_t x = 0; x < n; ++x) {
     const LeafContact& li = leaves[static_cast<std::size_t>(by_u0[x])];
-    for (std::size_t y = x + 1; y < n && u0[y] <= li.rect.u1; ++y)
+    for (std::size_t y = x + 1; y < n && u0[y] <= li.rect.u1; ++y) {
+      if (++tests > budget) {
+        join_in_grid(leaves, parent);
+        return;
+      }
       if (li.rect.touches(leaves[static_cast<std::size_t>(by_u0[y])].rect))
         parent[static_cast<std::size_t>(find(parent, by_u0[x]))] = find(parent, by_u0[y]);
+    }
   }
 }
 
