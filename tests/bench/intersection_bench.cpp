@@ -114,7 +114,14 @@ int main(int argc, char** argv) {
     for (std::string item; std::getline(items, item, ',');) out.push_back(item);
     return out;
   };
+  const char* usage =
+      "usage: bench_intersection [pair,pair,...] [--limit SECONDS] [--peers NAME,NAME]\n"
+      "                          [--exponents 3,4,...]\n";
   for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
+      std::printf("%s", usage);
+      return 0;
+    }
     if (std::strcmp(argv[i], "--limit") == 0 && i + 1 < argc) {
       limit_s = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--peers") == 0 && i + 1 < argc) {
@@ -127,6 +134,26 @@ int main(int argc, char** argv) {
       for (std::string name; std::getline(names, name, ',');) only.push_back(name);
     }
   }
+  // A misspelt pair or peer would silently measure nothing.
+  const std::vector<Pair> pairs = all_pairs();
+  std::string pair_names, peer_names;
+  for (const Pair& pair : pairs) pair_names += " " + pair.name;
+  for (Peer peer : kPeers) peer_names += " " + peer_name(peer);
+  for (const std::string& name : only) {
+    if (std::none_of(pairs.begin(), pairs.end(), [&](const Pair& p) { return p.name == name; })) {
+      std::fprintf(stderr, "bench_intersection: unknown pair '%s' (pairs:%s)\n%s", name.c_str(),
+                   pair_names.c_str(), usage);
+      return 2;
+    }
+  }
+  for (const std::string& name : peers_only) {
+    if (std::none_of(std::begin(kPeers), std::end(kPeers),
+                     [&](Peer p) { return peer_name(p) == name; })) {
+      std::fprintf(stderr, "bench_intersection: unknown peer '%s' (peers:%s)\n%s", name.c_str(),
+                   peer_names.c_str(), usage);
+      return 2;
+    }
+  }
   std::printf(
       "Surface-surface intersection: CPU time (median of up to 7 runs) and achieved error,\n"
       "relative to the pair's size: on-surf = largest distance of the peer's points to either\n"
@@ -136,7 +163,7 @@ int main(int argc, char** argv) {
   // (pair, eps exponent) -> peer -> ms, for the peers that returned a result
   // that is not wrong: a missed curve or a failure has no time to compare.
   std::map<std::pair<std::string, int>, std::map<std::string, double>> times;
-  for (const Pair& pair : all_pairs()) {
+  for (const Pair& pair : pairs) {
     if (!only.empty() && std::find(only.begin(), only.end(), pair.name) == only.end()) continue;
     const OracleCurves oracle =
         pair.graph ? graph_oracle(pair.a, pair.b, 1000) : occt_oracle(pair.a, pair.b, pair.size);
