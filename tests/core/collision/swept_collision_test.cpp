@@ -4,6 +4,7 @@
 // OpenCASCADE elsewhere).
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "argil/core.hpp"
@@ -133,7 +134,8 @@ TEST_CASE("a sheet swept along a floor without reaching it does not cross it",
 
 TEST_CASE(
     "random swept graph patches: every crossing of a dense sampling of the motion is found, and "
-    "every reported one has a sampled pose within 3 eps",
+    "every reported one has a sampled pose within 3 eps, and b's point at its uv_b passes within "
+    "eps",
     "[collision][swept]") {
   std::mt19937_64 rng(415);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -161,13 +163,24 @@ TEST_CASE(
     const Pose from{R0, start}, to{R1, start + travel};
     if (crosses(argil::collide(a, b, from, crossing_test(eps)))) continue;
     ++clear_runs;
-    const bool swept = crosses(argil::collide_swept(a, b, from, to, crossing_test(eps)));
+    const argil::CollisionResult swept_result =
+        argil::collide_swept(a, b, from, to, crossing_test(eps));
+    const bool swept = crosses(swept_result);
     swept_crossings += swept ? 1 : 0;
     const bool end_crosses = crosses(argil::collide(a, b, to, crossing_test(eps)));
     if (swept && !end_crosses) ++passed_through;
     // Samples eps / 4 apart along the motion.
     const int samples = static_cast<int>(std::ceil(travel.norm() / (0.25 * eps)));
     bool sampled_crossing = false, sampled_near = false;
+    // The crossing's point on b (its uv_b) passes within eps of it on the
+    // way (a point anywhere else on b's leaf need not).
+    const argil::Contact* crossing = nullptr;
+    for (const argil::Contact& c : swept_result.contacts)
+      if (crossing == nullptr && c.depth >= 0.0) crossing = &c;
+    const Eigen::Vector3d on_b = crossing != nullptr
+                                     ? argil::evaluate(patch, crossing->uv_b[0], crossing->uv_b[1])
+                                     : Eigen::Vector3d::Zero();
+    double b_point_gap = std::numeric_limits<double>::infinity();
     const CollisionRequest near{.tolerance = 3.0 * eps,
                                 .max_contacts = 1,
                                 .refine = false,
@@ -179,8 +192,13 @@ TEST_CASE(
         sampled_crossing = crosses(argil::collide(a, b, at, crossing_test(eps)));
       if (swept && !sampled_near) sampled_near = !argil::collide(a, b, at, near).contacts.empty();
     }
+    for (int k = 0; swept && k <= samples; ++k) {
+      const Pose at = argil::interpolate(from, to, static_cast<double>(k) / samples);
+      b_point_gap = std::min(b_point_gap, (argil::apply(at, on_b) - crossing->point).norm());
+    }
     if (sampled_crossing) CHECK(swept);  // no crossing missed
     if (swept) CHECK(sampled_near);      // none reported far from the motion
+    if (swept) CHECK(b_point_gap <= eps);
   }
   CAPTURE(clear_runs, swept_crossings, passed_through);
   // The cases exercise what they test: clear starts, crossings, and crossings

@@ -858,7 +858,7 @@ class PairDescent {
     PendingContact c;
     c.leaf.contact.point = hit->point;
     c.leaf.contact.uv_a = param_of(la.params[static_cast<std::size_t>(hit->triangle)], hit->bary);
-    c.uv_b = lb.rect.centre();
+    c.uv_b = param_of(lb.params[static_cast<std::size_t>(hit->triangle_b)], hit->bary_b);
     c.crossing = true;
     return c;
   }

@@ -48,17 +48,33 @@ std::optional<Eigen::Vector3d> segment_meets(const Eigen::Vector3d& p, const Eig
   return Eigen::Vector3d(p + lambda * (q - p));
 }
 
+/// Where a moving triangle met a fixed one: the point, and the moving
+/// triangle's barycentric coordinates of its point that was there.
+struct MovingHit {
+  Eigen::Vector3d point, bary_moving;
+};
+
+Eigen::Vector3d unit(std::size_t k) { return Eigen::Vector3d::Unit(static_cast<Eigen::Index>(k)); }
+
 /// Triangle s (fixed) against triangle t moving from t0 to t1; a's view only.
-std::optional<Eigen::Vector3d> moving_meets_fixed(const Triangle& s, const Triangle& t0,
-                                                  const Triangle& t1) {
+std::optional<MovingHit> moving_meets_fixed(const Triangle& s, const Triangle& t0,
+                                            const Triangle& t1) {
   for (std::size_t i = 0; i < 3; ++i) {
     // A corner's path through s.
-    if (std::optional<Eigen::Vector3d> x = segment_meets(t0[i], t1[i], s)) return x;
-    // The quad an edge sweeps, as two triangles.
+    if (std::optional<Eigen::Vector3d> x = segment_meets(t0[i], t1[i], s))
+      return MovingHit{*x, unit(i)};
+    // The quad an edge sweeps, as two triangles: (t0[i], t0[j], t1[j]) and
+    // (t0[i], t1[j], t1[i]). The weight on j's corners is how far along the
+    // edge the point that met s lies.
     const std::size_t j = (i + 1) % 3;
-    for (const Triangle& quad : {Triangle{t0[i], t0[j], t1[j]}, Triangle{t0[i], t1[j], t1[i]}}) {
+    for (int half = 0; half < 2; ++half) {
+      const Triangle quad =
+          half == 0 ? Triangle{t0[i], t0[j], t1[j]} : Triangle{t0[i], t1[j], t1[i]};
       const TriangleIntersection x = intersect_triangles(s, quad);
-      if (x.kind != TriangleIntersection::Kind::none) return x.points[0];
+      if (x.kind == TriangleIntersection::Kind::none) continue;
+      const Eigen::Vector3d& w = x.bary_b[0];
+      const double along = half == 0 ? w[1] + w[2] : w[1];
+      return MovingHit{x.points[0], (1.0 - along) * unit(i) + along * unit(j)};
     }
   }
   return std::nullopt;
@@ -80,12 +96,12 @@ std::optional<SweptHit> swept_leaves_meet(const SweptLeafPair& pair) {
       const Triangle t1 = triangle_of(pair.b_end, j);
       const Triangle t_own = triangle_of(pair.b_own, j);
       if (one_side(s, {&t0, &t1}) || one_side(t_own, {&s0, &s1})) continue;
-      if (std::optional<Eigen::Vector3d> x = moving_meets_fixed(s, t0, t1))
-        return SweptHit{*x, i, barycentric(*x, s)};
+      if (std::optional<MovingHit> x = moving_meets_fixed(s, t0, t1))
+        return SweptHit{x->point, i, barycentric(x->point, s), j, x->bary_moving};
       // Seen from b: a corner of a passing through b's triangle.
       for (std::size_t k = 0; k < 3; ++k)
-        if (segment_meets(s0[k], s1[k], t_own))
-          return SweptHit{s[k], i, Eigen::Vector3d::Unit(static_cast<Eigen::Index>(k))};
+        if (std::optional<Eigen::Vector3d> on_b = segment_meets(s0[k], s1[k], t_own))
+          return SweptHit{s[k], i, unit(k), j, barycentric(*on_b, t_own)};
     }
   }
   return std::nullopt;

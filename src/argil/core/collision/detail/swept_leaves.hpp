@@ -19,11 +19,14 @@ using LeafCorners = std::array<Eigen::Vector3d, 4>;
 std::array<Triangle, 2> leaf_triangles_of(const LeafCorners& c);
 
 /// Where a fixed leaf was met: a point on it, its triangle (0 or 1) and its
-/// barycentric coordinates there.
+/// barycentric coordinates there; and the point of the moving leaf that met
+/// it, as its triangle and barycentric coordinates.
 struct SweptHit {
   Eigen::Vector3d point;
   int triangle = 0;
   Eigen::Vector3d bary;
+  int triangle_b = 0;
+  Eigen::Vector3d bary_b;
 };
 
 /// The fixed leaf `a` and the moving leaf b: b's corners at the motion's start
