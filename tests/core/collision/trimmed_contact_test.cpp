@@ -6,6 +6,7 @@
 #include <random>
 
 #include "argil/core.hpp"
+#include "support/polyline_distance.hpp"
 #include "support/random_surface.hpp"
 #include "support/trim_loops.hpp"
 
@@ -53,12 +54,9 @@ double edge_distance(const Samples& s, const Eigen::Vector3d& p) {
   double best = std::numeric_limits<double>::infinity();
   int begin = 0;
   for (const int end : s.curve_end) {
-    for (int k = begin; k + 1 < end; ++k) {
-      const Eigen::Vector3d a = s.edge[static_cast<std::size_t>(k)];
-      const Eigen::Vector3d ab = s.edge[static_cast<std::size_t>(k) + 1] - a;
-      const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
-      best = std::min(best, (a + t * ab - p).norm());
-    }
+    for (int k = begin; k + 1 < end; ++k)
+      best = std::min(best, test::distance_to_segment(p, s.edge[static_cast<std::size_t>(k)],
+                                                      s.edge[static_cast<std::size_t>(k) + 1]));
     begin = end;
   }
   return best;

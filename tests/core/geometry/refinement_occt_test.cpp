@@ -10,6 +10,7 @@
 
 #include "argil/core.hpp"
 #include "support/occt_surface.hpp"
+#include "support/polyline_distance.hpp"
 #include "support/random_surface.hpp"
 
 namespace {
@@ -185,13 +186,7 @@ TEST_CASE("the region near a path holds every point of the face within reach", "
     for (int k = 0; k < 3000; ++k) {
       const double u = fu(rng), v = fv(rng);
       const Eigen::Vector3d p = argil::evaluate(s, u, v);
-      double distance = std::numeric_limits<double>::infinity();
-      for (std::size_t m = 1; m < path.size(); ++m) {
-        const Eigen::Vector3d ab = path[m] - path[m - 1];
-        const double t = std::clamp((p - path[m - 1]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-        distance = std::min(distance, (p - path[m - 1] - t * ab).norm());
-      }
-      if (distance > reach) continue;
+      if (argil::test::distance_to_polyline(p, path) > reach) continue;
       ++found;
       REQUIRE(region.has_value());
       CHECK(region->u0 <= u);
