@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -117,21 +118,38 @@ int main(int argc, char** argv) {
   const char* usage =
       "usage: bench_intersection [pair,pair,...] [--limit SECONDS] [--peers NAME,NAME]\n"
       "                          [--exponents 3,4,...]\n";
+  const auto refuse = [&](const std::string& why) {
+    std::fprintf(stderr, "bench_intersection: %s\n%s", why.c_str(), usage);
+    return 2;
+  };
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
       std::printf("%s", usage);
       return 0;
     }
-    if (std::strcmp(argv[i], "--limit") == 0 && i + 1 < argc) {
-      limit_s = std::atof(argv[++i]);
-    } else if (std::strcmp(argv[i], "--peers") == 0 && i + 1 < argc) {
+    const bool option = arg == "--limit" || arg == "--peers" || arg == "--exponents";
+    if (option && i + 1 == argc) return refuse(arg + " needs a value");
+    if (arg == "--limit") {
+      char* end = nullptr;
+      limit_s = std::strtod(argv[++i], &end);
+      if (*end != '\0' || !(limit_s > 0.0))
+        return refuse("--limit wants seconds above 0, not '" + std::string(argv[i]) + "'");
+    } else if (arg == "--peers") {
       peers_only = split(argv[++i]);
-    } else if (std::strcmp(argv[i], "--exponents") == 0 && i + 1 < argc) {
+    } else if (arg == "--exponents") {
       exponents.clear();
-      for (const std::string& e : split(argv[++i])) exponents.push_back(std::stoi(e));
+      for (const std::string& e : split(argv[++i])) {
+        char* end = nullptr;
+        const long x = std::strtol(e.c_str(), &end, 10);
+        if (e.empty() || *end != '\0' || x < 1 || x > 15)
+          return refuse("--exponents wants integers 1 to 15, not '" + e + "'");
+        exponents.push_back(static_cast<int>(x));
+      }
+    } else if (arg.rfind("--", 0) == 0) {
+      return refuse("unknown option '" + arg + "'");
     } else {
-      std::stringstream names(argv[i]);
-      for (std::string name; std::getline(names, name, ',');) only.push_back(name);
+      for (const std::string& name : split(argv[i])) only.push_back(name);
     }
   }
   // A misspelt pair or peer would silently measure nothing.
@@ -141,17 +159,13 @@ int main(int argc, char** argv) {
   for (Peer peer : kPeers) peer_names += " " + peer_name(peer);
   for (const std::string& name : only) {
     if (std::none_of(pairs.begin(), pairs.end(), [&](const Pair& p) { return p.name == name; })) {
-      std::fprintf(stderr, "bench_intersection: unknown pair '%s' (pairs:%s)\n%s", name.c_str(),
-                   pair_names.c_str(), usage);
-      return 2;
+      return refuse("unknown pair '" + name + "' (pairs:" + pair_names + ")");
     }
   }
   for (const std::string& name : peers_only) {
     if (std::none_of(std::begin(kPeers), std::end(kPeers),
                      [&](Peer p) { return peer_name(p) == name; })) {
-      std::fprintf(stderr, "bench_intersection: unknown peer '%s' (peers:%s)\n%s", name.c_str(),
-                   peer_names.c_str(), usage);
-      return 2;
+      return refuse("unknown peer '" + name + "' (peers:" + peer_names + ")");
     }
   }
   std::printf(
