@@ -26,12 +26,15 @@ CollisionRequest crossing_test(double eps) {
           .curves = false};
 }
 
-bool crosses(const argil::CollisionResult& r) {
+/// The first crossing (a contact of depth 0 or more); null when none.
+const argil::Contact* first_crossing(const argil::CollisionResult& r) {
   REQUIRE(r.status.ok());
   for (const argil::Contact& c : r.contacts)
-    if (c.depth >= 0.0) return true;
-  return false;
+    if (c.depth >= 0.0) return &c;
+  return nullptr;
 }
+
+bool crosses(const argil::CollisionResult& r) { return first_crossing(r) != nullptr; }
 
 /// A flat 4 x 4 bicubic sheet `width` mm wide in z = 0, centred on its origin:
 /// no thickness at all.
@@ -165,7 +168,8 @@ TEST_CASE(
     ++clear_runs;
     const argil::CollisionResult swept_result =
         argil::collide_swept(a, b, from, to, crossing_test(eps));
-    const bool swept = crosses(swept_result);
+    const argil::Contact* crossing = first_crossing(swept_result);
+    const bool swept = crossing != nullptr;
     swept_crossings += swept ? 1 : 0;
     const bool end_crosses = crosses(argil::collide(a, b, to, crossing_test(eps)));
     if (swept && !end_crosses) ++passed_through;
@@ -174,9 +178,6 @@ TEST_CASE(
     bool sampled_crossing = false, sampled_near = false;
     // The crossing's point on b (its uv_b) passes within eps of it on the
     // way (a point anywhere else on b's leaf need not).
-    const argil::Contact* crossing = nullptr;
-    for (const argil::Contact& c : swept_result.contacts)
-      if (crossing == nullptr && c.depth >= 0.0) crossing = &c;
     const Eigen::Vector3d on_b = crossing != nullptr
                                      ? argil::evaluate(patch, crossing->uv_b[0], crossing->uv_b[1])
                                      : Eigen::Vector3d::Zero();
