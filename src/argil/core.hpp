@@ -31,6 +31,7 @@
 #include "argil/core/operators/curve_operators.hpp"    // IWYU pragma: export
 #include "argil/core/operators/surface_operators.hpp"  // IWYU pragma: export
 // hierarchy
+#include "argil/core/hierarchy/normal_cone.hpp"        // IWYU pragma: export
 #include "argil/core/hierarchy/patch_bound.hpp"        // IWYU pragma: export
 #include "argil/core/hierarchy/surface_hierarchy.hpp"  // IWYU pragma: export
 // collision

@@ -20,6 +20,7 @@
 #include "argil/core/collision/triangle_intersection.hpp"
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/core/geometry/triangle_distance.hpp"
+#include "argil/core/hierarchy/normal_cone.hpp"
 
 namespace argil {
 
@@ -47,6 +48,9 @@ struct View {
   double radius;
   Eigen::Vector3d lo, hi;
   bool flat;
+  /// Nodes only: flat to the coarse tolerance (PairDescent's transversal
+  /// leaves), always false when the query has none.
+  bool coarse = false;
   /// Nodes only: the patch lies within `flatness` of its two corner
   /// triangles (c00, c10, c11), (c00, c11, c01); +inf for blocks.
   double flatness = std::numeric_limits<double>::infinity();
@@ -142,10 +146,12 @@ struct Sweep {
 /// Entries of one side: blocks as -(id + 1), hierarchy nodes as id >= 0.
 class Side {
  public:
-  Side(const SurfaceHierarchy& h, double flat_tolerance, int max_level, QueryCounters& counters,
-       std::optional<Rigid> placed = std::nullopt, std::optional<Sweep> sweep = std::nullopt)
+  Side(const SurfaceHierarchy& h, double flat_tolerance, double coarse_tolerance, int max_level,
+       QueryCounters& counters, std::optional<Rigid> placed = std::nullopt,
+       std::optional<Sweep> sweep = std::nullopt)
       : h_(h),
         flat_tolerance_(flat_tolerance),
+        coarse_tolerance_(coarse_tolerance),
         max_level_(max_level),
         counters_(counters),
         placed_(std::move(placed)),
@@ -165,6 +171,20 @@ class Side {
     return views_[static_cast<std::size_t>(slots[id])];
   }
 
+  /// A node's normal cone, placed (nullopt where normal_cone() gives none),
+  /// computed once per query.
+  const std::optional<NormalCone>& cone(int node) {
+    const auto id = static_cast<std::size_t>(node);
+    if (id >= cone_slots_.size()) cone_slots_.resize(std::max(id + 1, 2 * cone_slots_.size()), -1);
+    if (cone_slots_[id] < 0) {
+      cone_slots_[id] = static_cast<int>(cones_.size());
+      std::optional<NormalCone> c = normal_cone(h_.node(node).patch);
+      if (c && placed_) c->axis = placed_->R * c->axis;
+      cones_.push_back(c);
+    }
+    return cones_[static_cast<std::size_t>(cone_slots_[id])];
+  }
+
   /// The entry's bounds in its own frame.
   View own_view(int entry) {
     if (entry < 0) {
@@ -177,7 +197,9 @@ class Side {
     // within 2 r of each other whatever the flatness bound says.
     const bool flat =
         b.flatness <= flat_tolerance_ || 2.0 * b.radius <= flat_tolerance_ || n.level >= max_level_;
-    return {b.center, b.radius, b.box.min, b.box.max, flat, b.flatness, b.corners};
+    return {b.center,   b.radius, b.box.min,
+            b.box.max,  flat,     flat || b.flatness <= coarse_tolerance_,
+            b.flatness, b.corners};
   }
 
   /// A leaf's corner triangles, placed.
@@ -261,6 +283,7 @@ class Side {
 
   const SurfaceHierarchy& h_;
   double flat_tolerance_;
+  double coarse_tolerance_;  // 0: no coarse leaves
   int max_level_;
   QueryCounters& counters_;
   std::optional<Rigid> placed_;
@@ -269,6 +292,8 @@ class Side {
   // slots index views, so a query pays 4 bytes per id, not a view.
   std::vector<int> node_slots_, block_slots_;
   std::vector<View> views_;
+  std::vector<int> cone_slots_;  // node ids to cones_ (-1: not yet computed)
+  std::vector<std::optional<NormalCone>> cones_;
 };
 
 /// True when every point of `other` lies more than eps beyond the plane
@@ -382,10 +407,13 @@ struct PairPoint {
 /// Refines one point pair; nullopt when refinement leaves the `reach` of the
 /// start or, on a curve, does not converge onto both surfaces.
 std::optional<RefinedPair> refine_near(const SurfacePair& pair, const PairPoint& start,
-                                       bool on_curve, double reach) {
-  const RefinedPair r = refine_surface_pair(
-      pair.a, pair.b,
-      {.uv_a = start.uv_a, .uv_b = start.uv_b, .on_curve = on_curve, .scale = pair.scale});
+                                       bool on_curve, double reach, int fixed = -1) {
+  const RefinedPair r = refine_surface_pair(pair.a, pair.b,
+                                            {.uv_a = start.uv_a,
+                                             .uv_b = start.uv_b,
+                                             .on_curve = on_curve,
+                                             .fixed = fixed,
+                                             .scale = pair.scale});
   if (!((r.point - start.point).norm() <= reach)) return std::nullopt;
   // Converged means on both surfaces up to rounding of the model size.
   if (on_curve && !(r.gap <= 1e-12 * pair.scale)) return std::nullopt;
@@ -723,13 +751,18 @@ class PairDescent {
     way,  // a swept query's motion: stops at the first leaf pair that meets on it
   };
 
+  /// `exact`: both exact surfaces (b placed), for coarse leaves: given only
+  /// with the end's pass of a refined query.
   PairDescent(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
               const std::optional<Rigid>& placed_b, const std::optional<Sweep>& sweep, Pass pass,
-              const CollisionRequest& request, QueryCounters& counters)
+              const CollisionRequest& request, QueryCounters& counters,
+              const SurfacePair* exact = nullptr)
       : request_(request),
         counters_(counters),
-        sa_(ha, request.tolerance / 3.0, request.max_level, counters),
-        sb_(hb, request.tolerance / 3.0, request.max_level, counters, placed_b,
+        exact_(exact),
+        coarse_(exact ? coarse_tolerance(ha, hb, sweep, request) : 0.0),
+        sa_(ha, request.tolerance / 3.0, coarse_ / 3.0, request.max_level, counters),
+        sb_(hb, request.tolerance / 3.0, coarse_ / 3.0, request.max_level, counters, placed_b,
             pass == Pass::way ? sweep : std::nullopt),
         on_plane_(on_plane_distance(ha.surface(), hb.surface(), placed_b, request.tolerance)),
         apart_(request.tolerance + (pass == Pass::way ? sweep->sagitta : 0.0)),
@@ -753,6 +786,9 @@ class PairDescent {
       const View& vb = sb_.view(eb);
       if (pair_apart(va, vb, apart_)) continue;
       if (!(va.flat && vb.flat)) {
+        // A transversal pair is a leaf when its crossings refine (see
+        // coarse_leaf_pair); it is split like any other otherwise.
+        if (transversal(ea, va, eb, vb) && coarse_leaf_pair(ea, va, eb, vb)) continue;
         // Split the side that is not flat; the larger sphere when neither is.
         const bool split_a = !va.flat && (vb.flat || va.radius >= vb.radius);
         const Side::Children kids = split_a ? sa_.children(ea) : sb_.children(eb);
@@ -788,20 +824,110 @@ class PairDescent {
   std::vector<PendingContact> pending;
 
  private:
+  /// The tolerance coarse leaves are flat to, 0 for none: only refined
+  /// curves of one placement (no sweep) get them, as refinement moves their
+  /// points onto the exact curve and the densifier follows it between them.
+  static double coarse_tolerance(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
+                                 const std::optional<Sweep>& sweep,
+                                 const CollisionRequest& request) {
+    if (!request.refine || !request.curves || request.first_crossing_only ||
+        request.stop_at_crossing || sweep)
+      return 0.0;
+    return std::max(request.tolerance, kCoarseFraction * scale_of(ha.surface(), hb.surface()));
+  }
+
+  /// True when both nodes are flat to the coarse tolerance and their normals
+  /// meet at kTransversalAngle or more everywhere: the surfaces cross there
+  /// at an angle, in arcs that run to the pair's edges (no closed loop, no
+  /// tangency), which the coarse triangles follow within their flatness over
+  /// the angle's sine, and which refinement and the densifier then trace on
+  /// the exact surfaces. Such a pair is a leaf however far from eps-flat.
+  bool transversal(int ea, const View& va, int eb, const View& vb) {
+    if (!(coarse_ > 0.0) || !(va.coarse && vb.coarse) || ea < 0 || eb < 0) return false;
+    const std::optional<NormalCone>& ca = sa_.cone(ea);
+    if (!ca) return false;
+    const std::optional<NormalCone>& cb = sb_.cone(eb);
+    return cb && least_crossing_angle(*ca, *cb) >= kTransversalAngle;
+  }
+
   /// True when the pair gave a contact.
   bool examine_leaf_pair(int ea, int eb) {
     const LeafTriangles la = sa_.leaf(ea);
     const LeafTriangles lb = sb_.leaf(eb);
-    const double eps = request_.tolerance;
-    const double reach = 2.0 * (la.radius + lb.radius) + eps;
+    const double reach = 2.0 * (la.radius + lb.radius) + request_.tolerance;
     // Only curves need the overlap told apart (the haptic tick asks for none).
     LeafPairFindings found =
         leaf_crossings(la, lb, reach, on_plane_, coincide_ ? &*coincide_ : nullptr);
+    return keep_findings(ea, eb, la, lb, std::move(found), request_.tolerance, reach);
+  }
+
+  /// A transversal pair (see transversal()) as a leaf: its triangles' crossings
+  /// with every end point refined onto both exact surfaces, which the
+  /// densifier then follows between them. False, with nothing kept, when a
+  /// point does not refine near its leaves: the pair is split instead.
+  bool coarse_leaf_pair(int ea, const View& va, int eb, const View& vb) {
+    const LeafTriangles la = sa_.leaf(ea);
+    const LeafTriangles lb = sb_.leaf(eb);
+    const double eps = request_.tolerance;
+    const double reach = 2.0 * (la.radius + lb.radius) + eps;
+    LeafPairFindings found = leaf_crossings(la, lb, reach, on_plane_, &*coincide_);
+    for (detail::Segment& seg : found.segments) {
+      for (std::size_t k = 0; k < 2; ++k) {
+        const int fixed = pin_to_leaf_edge(seg.uv_a[k], la.rect, seg.uv_b[k], lb.rect);
+        const std::optional<RefinedPair> r =
+            refine_near(*exact_, {seg.points[k], seg.uv_a[k], seg.uv_b[k]}, true, reach, fixed);
+        if (!r) return false;
+        seg.points[k] = r->point;
+        seg.uv_a[k] = r->uv_a;
+        seg.uv_b[k] = r->uv_b;
+      }
+    }
+    ++counters_.leaf_pairs;
+    // Its triangles stray up to its flatness from the patches: surfaces that
+    // come within eps/3 have triangles this close.
+    const double near_touch = std::max(eps, eps / 3.0 + va.flatness + vb.flatness);
+    keep_findings(ea, eb, la, lb, std::move(found), near_touch, reach);
+    return true;
+  }
+
+  /// A crossing that ends on an edge of a's leaf (else of b's) is put exactly
+  /// on it; returns the parameter to hold there (0 to 3: u_a, v_a, u_b, v_b),
+  /// -1 for an end inside both leaves (on a triangle's diagonal). Refined
+  /// along the edge, the ends that two neighbouring leaves share land on the
+  /// same point of the curve even where the leaves differ in size.
+  static int pin_to_leaf_edge(Eigen::Vector2d& uv_a, const ParamRect& ra, Eigen::Vector2d& uv_b,
+                              const ParamRect& rb) {
+    const auto pin = [](Eigen::Vector2d& uv, const ParamRect& r, int first) {
+      const double near_u = 1e-12 * r.width(), near_v = 1e-12 * r.height();
+      for (const double edge : {r.u0, r.u1}) {
+        if (std::abs(uv[0] - edge) <= near_u) {
+          uv[0] = edge;
+          return first;
+        }
+      }
+      for (const double edge : {r.v0, r.v1}) {
+        if (std::abs(uv[1] - edge) <= near_v) {
+          uv[1] = edge;
+          return first + 1;
+        }
+      }
+      return -1;
+    };
+    const int on_a = pin(uv_a, ra, 0);
+    return on_a >= 0 ? on_a : pin(uv_b, rb, 2);
+  }
+
+  /// Keeps a leaf pair's segments and its contact (a crossing, else a
+  /// near-touch where its triangles come within `near_touch`); true when
+  /// it has a contact.
+  bool keep_findings(int ea, int eb, const LeafTriangles& la, const LeafTriangles& lb,
+                     LeafPairFindings found, double near_touch, double reach) {
     counters_.triangle_tests += found.triangle_tests;
     segments.insert(segments.end(), found.segments.begin(), found.segments.end());
     const bool crossing = found.contact.has_value();
     crossed_ = crossed_ || crossing;
-    if (!crossing && !request_.first_crossing_only) found.contact = leaf_near_touch(la, lb, eps);
+    if (!crossing && !request_.first_crossing_only)
+      found.contact = leaf_near_touch(la, lb, near_touch);
     // Kept for the way unless the pair ends farther apart than any point of b
     // moved: then the two never met (a pair without a near-touch is more than
     // eps apart, which is at least that far here).
@@ -870,8 +996,17 @@ class PairDescent {
     double travel;  // the farthest any point of b moves [mm]
   };
 
+  /// Coarse leaves are flat to this fraction of the pair's size (or to eps).
+  static constexpr double kCoarseFraction = 1e-3;
+  /// Least angle between the two sides' normals for a transversal leaf [rad]
+  /// (15 degrees): the coarse triangles' crossing lies within their flatness
+  /// over its sine (4x) of the exact curve.
+  static constexpr double kTransversalAngle = 0.2617993877991494;
+
   const CollisionRequest& request_;
   QueryCounters& counters_;
+  const SurfacePair* exact_;  // for coarse leaves' refinement
+  double coarse_;             // see coarse_tolerance()
   Side sa_;
   Side sb_;
   double on_plane_;                    // see on_plane_distance
@@ -897,20 +1032,6 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   result.status = check_request(request, ha);
   if (result.status.ok()) result.status = check_request(request, hb);
   if (!result.status.ok()) return result;
-  PairDescent descent(ha, hb, placed_b, sweep, PairDescent::Pass::end, request, result.counters);
-  descent.run();
-  // Swept: the way matters only when the end crosses nowhere. Bounds over the
-  // whole motion reach many more pairs, so a motion longer than eps gets its
-  // own descent, second, which stops at the first pair that meets.
-  if (sweep && !descent.crossed()) {
-    if (descent.kept_the_way()) {
-      descent.meet_kept_pairs_on_the_way();
-    } else {
-      PairDescent way(ha, hb, placed_b, sweep, PairDescent::Pass::way, request, result.counters);
-      way.run();
-      descent.pending.insert(descent.pending.end(), way.pending.begin(), way.pending.end());
-    }
-  }
   // Refinement and penetration work on b's exact surface in a's frame.
   const bool exact_b = request.refine || request.compute_depth;
   BSplineSurface moved_b;
@@ -925,6 +1046,21 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   const SurfacePair pair{ha.surface(), placed_b && exact_b ? moved_b : hb.surface(),
                          request.refine ? scale_of(ha.surface(), hb.surface())
                                         : std::numeric_limits<double>::quiet_NaN()};
+  PairDescent descent(ha, hb, placed_b, sweep, PairDescent::Pass::end, request, result.counters,
+                      &pair);
+  descent.run();
+  // Swept: the way matters only when the end crosses nowhere. Bounds over the
+  // whole motion reach many more pairs, so a motion longer than eps gets its
+  // own descent, second, which stops at the first pair that meets.
+  if (sweep && !descent.crossed()) {
+    if (descent.kept_the_way()) {
+      descent.meet_kept_pairs_on_the_way();
+    } else {
+      PairDescent way(ha, hb, placed_b, sweep, PairDescent::Pass::way, request, result.counters);
+      way.run();
+      descent.pending.insert(descent.pending.end(), way.pending.begin(), way.pending.end());
+    }
+  }
   if (request.curves) {
     detail::ChainedCurves chained = detail::chain_segments(descent.segments, request.tolerance);
     result.curves = std::move(chained.curves);

@@ -15,15 +15,19 @@ namespace {
 /// segments turns by up to a right angle at each point.
 constexpr double kJoinTurnCosine = 0.0;
 
+double distance_to_chord(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                         const Eigen::Vector3d& b) {
+  const Eigen::Vector3d d = b - a;
+  const double dd = d.squaredNorm();
+  const double t = dd > 0.0 ? std::clamp((p - a).dot(d) / dd, 0.0, 1.0) : 0.0;
+  return (a + t * d - p).norm();
+}
+
 double distance_to_curve(const Eigen::Vector3d& p, const IntersectionCurve& c) {
   double best = std::numeric_limits<double>::infinity();
   if (c.points.size() == 1) return (c.points[0] - p).norm();
-  for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
-    const Eigen::Vector3d d = c.points[k + 1] - c.points[k];
-    const double dd = d.squaredNorm();
-    const double t = dd > 0.0 ? std::clamp((p - c.points[k]).dot(d) / dd, 0.0, 1.0) : 0.0;
-    best = std::min(best, (c.points[k] + t * d - p).norm());
-  }
+  for (std::size_t k = 0; k + 1 < c.points.size(); ++k)
+    best = std::min(best, distance_to_chord(p, c.points[k], c.points[k + 1]));
   return best;
 }
 
@@ -101,6 +105,65 @@ struct Bounds {
   }
 };
 
+/// A curve's chords in runs, each with its box grown by `within`: whether a
+/// point lies within `within` of a long curve then takes a few box tests and
+/// the chords of the runs whose boxes hold it, not a pass over every chord
+/// (covering() asks this every eps/4 along each candidate's chords).
+class ChordRuns {
+ public:
+  ChordRuns(const IntersectionCurve& c, double within) : c_(c), within_(within) {
+    const std::size_t n = c.points.size();
+    if (n == 1) add_run(0, 0);
+    for (std::size_t first = 0; first + 1 < n; first += kChords)
+      add_run(first, std::min(first + kChords, n - 1));
+  }
+
+  /// True when some point of the curve lies within `within` of p.
+  bool near(const Eigen::Vector3d& p) const {
+    for (const Run& r : runs_) {
+      if (!r.box.holds(p)) continue;
+      if (r.first == r.last && (c_.points[r.first] - p).norm() <= within_) return true;
+      for (std::size_t k = r.first; k < r.last; ++k)
+        if (distance_to_chord(p, c_.points[k], c_.points[k + 1]) <= within_) return true;
+    }
+    return false;
+  }
+
+  /// True when one chord of the curve lies within `within` of both p and q:
+  /// then of every point between them (the distance to a segment is convex).
+  bool holds_between(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const {
+    for (const Run& r : runs_) {
+      if (!r.box.holds(p) || !r.box.holds(q)) continue;
+      for (std::size_t k = r.first; k < r.last; ++k)
+        if (distance_to_chord(p, c_.points[k], c_.points[k + 1]) <= within_ &&
+            distance_to_chord(q, c_.points[k], c_.points[k + 1]) <= within_)
+          return true;
+    }
+    return false;
+  }
+
+ private:
+  void add_run(std::size_t first, std::size_t last) {
+    Bounds b{c_.points[first], c_.points[first]};
+    for (std::size_t k = first; k <= last; ++k) {
+      b.lo = b.lo.cwiseMin(c_.points[k]);
+      b.hi = b.hi.cwiseMax(c_.points[k]);
+    }
+    b.lo.array() -= within_;
+    b.hi.array() += within_;
+    runs_.push_back({b, first, last});
+  }
+
+  static constexpr std::size_t kChords = 16;
+  struct Run {
+    Bounds box;
+    std::size_t first, last;  // point indices: chords first..last-1
+  };
+  const IntersectionCurve& c_;
+  double within_;
+  std::vector<Run> runs_;
+};
+
 Bounds bounds_of(const IntersectionCurve& c, double eps) {
   Bounds b{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
            Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
@@ -115,9 +178,13 @@ Bounds bounds_of(const IntersectionCurve& c, double eps) {
 
 /// The curves (other than `self` and not dropped) that hold every point of
 /// curve `self` within `within`, checked at its points and along its chords
-/// every `within` / 2; empty when some point has none near.
+/// every `within` / 2 (a stretch of chord whose ends lie within `within` of
+/// one chord of a near curve needs no check between them); empty when some
+/// point has none near.
+/// `runs` are the curves' chord runs built for the same `within`.
 std::vector<std::size_t> covering(const std::vector<IntersectionCurve>& curves,
-                                  const std::vector<Bounds>& bounds, std::size_t self,
+                                  const std::vector<Bounds>& bounds,
+                                  const std::vector<ChordRuns>& runs, std::size_t self,
                                   const std::vector<bool>& dropped, double within) {
   std::vector<std::size_t> near;  // the curves whose boxes meet this one's
   for (std::size_t j = 0; j < curves.size(); ++j)
@@ -126,19 +193,31 @@ std::vector<std::size_t> covering(const std::vector<IntersectionCurve>& curves,
   std::vector<bool> used(curves.size(), false);
   const auto covered = [&](const Eigen::Vector3d& p) {
     for (const std::size_t j : near) {
-      if (!bounds[j].holds(p) || !(distance_to_curve(p, curves[j]) <= within)) continue;
+      if (!bounds[j].holds(p) || !runs[j].near(p)) continue;
       used[j] = true;
       return true;
     }
     return false;
+  };
+  // A chord whose ends are covered: held by one chord of a near curve, or
+  // else its midpoint covered and both halves held, down to within / 2.
+  const auto chord_covered = [&](const auto& self_call, const Eigen::Vector3d& p,
+                                 const Eigen::Vector3d& q) -> bool {
+    if (!((q - p).norm() > 0.5 * within)) return true;
+    for (const std::size_t j : near) {
+      if (!runs[j].holds_between(p, q)) continue;
+      used[j] = true;
+      return true;
+    }
+    const Eigen::Vector3d m = 0.5 * (p + q);
+    return covered(m) && self_call(self_call, p, m) && self_call(self_call, m, q);
   };
   const std::vector<Eigen::Vector3d>& points = curves[self].points;
   // Both ends first: cheap, and most curves near others are not covered.
   if (points.empty() || !covered(points.back())) return {};
   for (std::size_t k = 0; k < points.size(); ++k) {
     if (!covered(points[k])) return {};
-    if (k + 1 < points.size() && !chord_held(points[k], points[k + 1], 0.5 * within, covered))
-      return {};
+    if (k + 1 < points.size() && !chord_covered(chord_covered, points[k], points[k + 1])) return {};
   }
   std::vector<std::size_t> out;
   for (std::size_t j = 0; j < curves.size(); ++j)
@@ -160,6 +239,10 @@ void drop_covered(std::vector<IntersectionCurve>& curves, std::vector<EndReaches
   std::vector<Bounds> bounds;
   bounds.reserve(curves.size());
   for (const IntersectionCurve& c : curves) bounds.push_back(bounds_of(c, eps));
+  const double within = 0.5 * eps;
+  std::vector<ChordRuns> runs;
+  runs.reserve(curves.size());
+  for (const IntersectionCurve& c : curves) runs.emplace_back(c, within);
   std::vector<bool> dropped(curves.size(), false);
   // A curve that covers a dropped one is kept, so no point of a dropped
   // curve ends up near only another dropped curve.
@@ -172,7 +255,7 @@ void drop_covered(std::vector<IntersectionCurve>& curves, std::vector<EndReaches
     if (anchored[i] || !(lengths[i] <= longest)) continue;
     // Its points, and its chords every eps/4, within eps/2 of kept curves:
     // every point of it lies within eps of them.
-    const std::vector<std::size_t> by = covering(curves, bounds, i, dropped, 0.5 * eps);
+    const std::vector<std::size_t> by = covering(curves, bounds, runs, i, dropped, within);
     if (by.empty()) continue;
     dropped[i] = true;
     for (const std::size_t j : by) anchored[j] = true;
@@ -428,9 +511,16 @@ double reach_of(const EndReaches& r, bool at_start) { return at_start ? r.front 
 /// Joins one pair of open curves that continue each other: ends within eps,
 /// or overlapping (join_overlapping()), or with `asker`, ends up to their
 /// bridge_reach() apart (or overlapping by up to kBridgeReach eps) through the
-/// bridge's points. False when none does.
+/// bridge's points, the nearest ends first. False when none does.
 bool join_one(std::vector<IntersectionCurve>& curves, std::vector<EndReaches>& reaches, double eps,
               BridgeAsker* asker) {
+  // Ends the bridge may join: gap, reach, curves i < j and the way they meet.
+  struct Bridgeable {
+    double gap, reach;
+    std::size_t i, j;
+    int way;
+  };
+  std::vector<Bridgeable> bridgeable;
   // An overlap needs each end within eps/2 of the other curve, so inside its box.
   std::vector<Bounds> boxes;
   if (asker == nullptr) {
@@ -467,16 +557,8 @@ bool join_one(std::vector<IntersectionCurve>& curves, std::vector<EndReaches>& r
         } else {
           const double reach =
               bridge_reach(eps, reach_of(reaches[i], i_start), reach_of(reaches[j], !j_end));
-          if (!(gap <= reach)) continue;
-          IntersectionCurve head = curves[i], tail = curves[j];
-          if (i_start) reverse(head);
-          if (j_end) reverse(tail);
-          const std::optional<IntersectionCurve> between =
-              bridge_gap(head, tail, eps, reach, *asker);
-          if (!between) continue;
-          append(head, *between);
-          append(head, tail);
-          curves[i] = std::move(head);
+          if (gap <= reach) bridgeable.push_back({gap, reach, i, j, way});
+          continue;
         }
         reaches[i] = joined;
         curves.erase(curves.begin() + static_cast<long>(j));
@@ -484,6 +566,25 @@ bool join_one(std::vector<IntersectionCurve>& curves, std::vector<EndReaches>& r
         return true;
       }
     }
+  }
+  // Bridges are tried across the smallest gaps first: a far reach (a large
+  // leaf's) must not join two pieces past a third that lies between them.
+  std::stable_sort(bridgeable.begin(), bridgeable.end(),
+                   [](const Bridgeable& x, const Bridgeable& y) { return x.gap < y.gap; });
+  for (const Bridgeable& b : bridgeable) {
+    const bool i_start = (b.way & 1) != 0, j_end = (b.way & 2) != 0;
+    IntersectionCurve head = curves[b.i], tail = curves[b.j];
+    if (i_start) reverse(head);
+    if (j_end) reverse(tail);
+    const std::optional<IntersectionCurve> between = bridge_gap(head, tail, eps, b.reach, *asker);
+    if (!between) continue;
+    append(head, *between);
+    append(head, tail);
+    curves[b.i] = std::move(head);
+    reaches[b.i] = {reach_of(reaches[b.i], !i_start), reach_of(reaches[b.j], j_end)};
+    curves.erase(curves.begin() + static_cast<long>(b.j));
+    reaches.erase(reaches.begin() + static_cast<long>(b.j));
+    return true;
   }
   return false;
 }

@@ -19,13 +19,14 @@ struct CurveConstraint {
   Eigen::Vector3d plane_point = Eigen::Vector3d::Zero();
 };
 
-/// From the surfaces' derivatives at the start x.
+/// From the surfaces' derivatives at the start x, with parameter `fixed`
+/// (-1: none) held as if on its domain edge.
 CurveConstraint curve_constraint(const SurfaceDerivatives& da, const SurfaceDerivatives& db,
                                  const Eigen::Vector4d& x, const Eigen::Vector4d& lo,
-                                 const Eigen::Vector4d& hi) {
+                                 const Eigen::Vector4d& hi, int fixed) {
   CurveConstraint c;
   for (int k = 0; k < 4; ++k) {
-    if (x[k] == lo[k] || x[k] == hi[k]) {
+    if (x[k] == lo[k] || x[k] == hi[k] || k == fixed) {
       c.fixed[static_cast<std::size_t>(k)] = true;
       ++c.fixed_count;
     }
@@ -92,7 +93,7 @@ RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b
   SurfaceDerivatives db = evaluate_derivatives(b, x[2], x[3], 1);
   bool evaluated = true;
   const CurveConstraint constraint =
-      request.on_curve ? curve_constraint(da, db, x, lo, hi) : CurveConstraint{};
+      request.on_curve ? curve_constraint(da, db, x, lo, hi, request.fixed) : CurveConstraint{};
   RefinedPair out;
   const double stop = 1e-14 * request.scale;
   constexpr int kMaxIterations = 40;

@@ -18,6 +18,10 @@ struct PairRefineRequest {
   /// n_a x n_b there). Without it (or where the surfaces are tangent) the
   /// iteration converges to a local minimum of |S_a - S_b|: a local closest pair.
   bool on_curve = false;
+  /// With on_curve: the parameter (0 to 3: u_a, v_a, u_b, v_b) that stays
+  /// where it starts instead of the plane, so a point on a leaf's edge
+  /// refines to where the curve crosses that edge; -1 for none.
+  int fixed = -1;
   /// Model size [mm]: the iteration stops when |S_a - S_b| <= 1e-14 of it.
   double scale = 1.0;
 };
