@@ -490,10 +490,47 @@ class Densifier {
   IntersectionCurve out_;
 };
 
+/// Leaves out each refined point of a transversal leaf from which the curve
+/// steps back along the way it came (a turn of more than 154 degrees between
+/// refined neighbours, the step no longer than the point's reach). Such a
+/// leaf's points start off the curve by up to its flatness over the crossing
+/// angle's sine, and refinement moves them across the curve: a crossing of
+/// its triangles' diagonal next to the leaf's edge can land behind the edge's
+/// point, and near a leaf's corner two neighbours' ends, held on different
+/// edges, can land in the other order. The densifier then follows the curve
+/// between the points kept.
+void drop_steps_back(IntersectionCurve& c, std::vector<bool>& refined,
+                     const std::vector<bool>& pinned, const std::vector<double>& reaches) {
+  if (c.points.empty()) return;
+  constexpr double kBackCosine = -0.9;
+  std::size_t kept = 1, last = 0;
+  for (std::size_t k = 1; k < c.points.size(); ++k) {
+    bool back = false;
+    if (k + 1 < c.points.size() && pinned[k] && refined[last] && refined[k] && refined[k + 1]) {
+      const Eigen::Vector3d in = c.points[k] - c.points[last];
+      const Eigen::Vector3d out = c.points[k + 1] - c.points[k];
+      const double lengths = in.norm() * out.norm();
+      back = lengths > 0.0 && in.dot(out) < kBackCosine * lengths &&
+             std::min(in.norm(), out.norm()) <= reaches[k];
+    }
+    if (back) continue;
+    c.points[kept] = c.points[k];
+    c.uv_a[kept] = c.uv_a[k];
+    c.uv_b[kept] = c.uv_b[k];
+    refined[kept] = refined[k];
+    last = kept++;
+  }
+  c.points.resize(kept);
+  c.uv_a.resize(kept);
+  c.uv_b.resize(kept);
+  refined.resize(kept);
+}
+
 /// Refines every point of the curve (a closed curve's repeated end once),
-/// then densifies between refined neighbours.
+/// leaves out steps back, then densifies between refined neighbours.
 IntersectionCurve refine_curve(const SurfacePair& pair, IntersectionCurve c,
-                               const std::vector<double>& reaches, double eps) {
+                               const std::vector<double>& reaches, const std::vector<bool>& pinned,
+                               double eps) {
   const std::size_t n = c.points.size();
   // A closed curve repeats its first point: refine it once.
   const bool closed = n > 2 && c.points[n - 1] == c.points[0] && c.uv_a[n - 1] == c.uv_a[0];
@@ -506,6 +543,7 @@ IntersectionCurve refine_curve(const SurfacePair& pair, IntersectionCurve c,
     c.uv_b[n - 1] = c.uv_b[0];
     refined[n - 1] = refined[0];
   }
+  drop_steps_back(c, refined, pinned, reaches);
   return Densifier(pair, eps / 3.0).run(c, refined);
 }
 
@@ -861,6 +899,28 @@ class PairDescent {
     return keep_findings(ea, eb, la, lb, std::move(found), request_.tolerance, reach);
   }
 
+  /// Refines a segment's ends onto both exact surfaces, an end on an edge of
+  /// either leaf along that edge (pin_to_leaf_edge); false when an end did
+  /// not converge near the leaves (it keeps its value).
+  bool refine_ends(detail::Segment& seg, const LeafTriangles& la, const LeafTriangles& lb,
+                   double reach) const {
+    bool all = true;
+    for (std::size_t k = 0; k < 2; ++k) {
+      Eigen::Vector2d uv_a = seg.uv_a[k], uv_b = seg.uv_b[k];
+      const int fixed = pin_to_leaf_edge(uv_a, la.rect, uv_b, lb.rect);
+      const std::optional<RefinedPair> r =
+          refine_near(*exact_, {seg.points[k], uv_a, uv_b}, true, reach, fixed);
+      if (!r) {
+        all = false;
+        continue;
+      }
+      seg.points[k] = r->point;
+      seg.uv_a[k] = r->uv_a;
+      seg.uv_b[k] = r->uv_b;
+    }
+    return all;
+  }
+
   /// A transversal pair (see transversal()) as a leaf: its triangles' crossings
   /// with every end point refined onto both exact surfaces, which the
   /// densifier then follows between them. False, with nothing kept, when a
@@ -872,15 +932,8 @@ class PairDescent {
     const double reach = 2.0 * (la.radius + lb.radius) + eps;
     LeafPairFindings found = leaf_crossings(la, lb, reach, on_plane_, &*coincide_);
     for (detail::Segment& seg : found.segments) {
-      for (std::size_t k = 0; k < 2; ++k) {
-        const int fixed = pin_to_leaf_edge(seg.uv_a[k], la.rect, seg.uv_b[k], lb.rect);
-        const std::optional<RefinedPair> r =
-            refine_near(*exact_, {seg.points[k], seg.uv_a[k], seg.uv_b[k]}, true, reach, fixed);
-        if (!r) return false;
-        seg.points[k] = r->point;
-        seg.uv_a[k] = r->uv_a;
-        seg.uv_b[k] = r->uv_b;
-      }
+      if (!refine_ends(seg, la, lb, reach)) return false;
+      seg.pinned = true;
     }
     ++counters_.leaf_pairs;
     // Its triangles stray up to its flatness from the patches: surfaces that
@@ -1065,7 +1118,9 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
     detail::ChainedCurves chained = detail::chain_segments(descent.segments, request.tolerance);
     result.curves = std::move(chained.curves);
     // Refinement keeps each curve's end points, so the bridge may reach as
-    // far from them as refinement may move them; but not from an end on a
+    // far from them as refinement may move them (from a transversal leaf's
+    // end, to the nearest end facing it only: EndReaches); but not from an
+    // end on a
     // face's edge: along it (faces that meet edge to edge) the leaves'
     // triangles touch rather than cross, their segments are scattered, and
     // bridging them gave pieces side by side.
@@ -1073,7 +1128,8 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
     if (request.refine) {
       for (std::size_t ci = 0; ci < result.curves.size(); ++ci) {
         IntersectionCurve& c = result.curves[ci];
-        c = refine_curve(pair, std::move(c), chained.reaches[ci], request.tolerance);
+        c = refine_curve(pair, std::move(c), chained.reaches[ci], chained.pinned[ci],
+                         request.tolerance);
         const auto reach = [&](std::size_t k, double r) {
           return k < c.points.size() && inside_domain(pair.a, c.uv_a[k]) &&
                          inside_domain(pair.b, c.uv_b[k])
@@ -1081,7 +1137,8 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
                      : 0.0;
         };
         end_reaches.push_back({reach(0, chained.reaches[ci].front()),
-                               reach(c.points.size() - 1, chained.reaches[ci].back())});
+                               reach(c.points.size() - 1, chained.reaches[ci].back()),
+                               chained.pinned[ci].front(), chained.pinned[ci].back()});
       }
     }
     // A yes/no test needs only whether there is a curve.

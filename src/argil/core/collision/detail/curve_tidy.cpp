@@ -507,20 +507,32 @@ double bridge_reach(double eps, double reach_e, double reach_f) {
 }
 
 double reach_of(const EndReaches& r, bool at_start) { return at_start ? r.front : r.back; }
+bool pinned_at(const EndReaches& r, bool at_start) {
+  return at_start ? r.front_pinned : r.back_pinned;
+}
+
+/// True when a free end of an open curve other than i and j lies nearer to
+/// `e` than `gap` and faces it (the two could continue each other).
+bool nearer_facing_end(const std::vector<IntersectionCurve>& curves, std::size_t i, std::size_t j,
+                       const FreeEnd& e, double gap) {
+  for (std::size_t k = 0; k < curves.size(); ++k) {
+    if (k == i || k == j || curves[k].closed() || curves[k].points.size() < 2) continue;
+    for (const bool at_start : {true, false}) {
+      const FreeEnd g = end_of(curves[k], at_start);
+      if ((g.point - e.point).norm() < gap && opposite(e.outward, g.outward) &&
+          face_each_other(e, g))
+        return true;
+    }
+  }
+  return false;
+}
 
 /// Joins one pair of open curves that continue each other: ends within eps,
 /// or overlapping (join_overlapping()), or with `asker`, ends up to their
 /// bridge_reach() apart (or overlapping by up to kBridgeReach eps) through the
-/// bridge's points, the nearest ends first. False when none does.
+/// bridge's points. False when none does.
 bool join_one(std::vector<IntersectionCurve>& curves, std::vector<EndReaches>& reaches, double eps,
               BridgeAsker* asker) {
-  // Ends the bridge may join: gap, reach, curves i < j and the way they meet.
-  struct Bridgeable {
-    double gap, reach;
-    std::size_t i, j;
-    int way;
-  };
-  std::vector<Bridgeable> bridgeable;
   // An overlap needs each end within eps/2 of the other curve, so inside its box.
   std::vector<Bounds> boxes;
   if (asker == nullptr) {
@@ -537,7 +549,8 @@ bool join_one(std::vector<IntersectionCurve>& curves, std::vector<EndReaches>& r
         const FreeEnd e = end_of(curves[i], i_start), f = end_of(curves[j], !j_end);
         const double gap = (e.point - f.point).norm();
         // The joined curve's ends: i's other end and j's other end.
-        const EndReaches joined{reach_of(reaches[i], !i_start), reach_of(reaches[j], j_end)};
+        const EndReaches joined{reach_of(reaches[i], !i_start), reach_of(reaches[j], j_end),
+                                pinned_at(reaches[i], !i_start), pinned_at(reaches[j], j_end)};
         if (asker == nullptr) {
           const bool meet = gap <= eps && opposite(e.outward, f.outward);
           // An overlap needs each end within eps/2 of the other curve.
@@ -557,8 +570,23 @@ bool join_one(std::vector<IntersectionCurve>& curves, std::vector<EndReaches>& r
         } else {
           const double reach =
               bridge_reach(eps, reach_of(reaches[i], i_start), reach_of(reaches[j], !j_end));
-          if (gap <= reach) bridgeable.push_back({gap, reach, i, j, way});
-          continue;
+          if (!(gap <= reach)) continue;
+          // Within reach only through a pinned end's: the nearest facing ends only.
+          const double unpinned_reach = bridge_reach(
+              eps, pinned_at(reaches[i], i_start) ? 0.0 : reach_of(reaches[i], i_start),
+              pinned_at(reaches[j], !j_end) ? 0.0 : reach_of(reaches[j], !j_end));
+          if (gap > unpinned_reach &&
+              (nearer_facing_end(curves, i, j, e, gap) || nearer_facing_end(curves, i, j, f, gap)))
+            continue;
+          IntersectionCurve head = curves[i], tail = curves[j];
+          if (i_start) reverse(head);
+          if (j_end) reverse(tail);
+          const std::optional<IntersectionCurve> between =
+              bridge_gap(head, tail, eps, reach, *asker);
+          if (!between) continue;
+          append(head, *between);
+          append(head, tail);
+          curves[i] = std::move(head);
         }
         reaches[i] = joined;
         curves.erase(curves.begin() + static_cast<long>(j));
@@ -566,25 +594,6 @@ bool join_one(std::vector<IntersectionCurve>& curves, std::vector<EndReaches>& r
         return true;
       }
     }
-  }
-  // Bridges are tried across the smallest gaps first: a far reach (a large
-  // leaf's) must not join two pieces past a third that lies between them.
-  std::stable_sort(bridgeable.begin(), bridgeable.end(),
-                   [](const Bridgeable& x, const Bridgeable& y) { return x.gap < y.gap; });
-  for (const Bridgeable& b : bridgeable) {
-    const bool i_start = (b.way & 1) != 0, j_end = (b.way & 2) != 0;
-    IntersectionCurve head = curves[b.i], tail = curves[b.j];
-    if (i_start) reverse(head);
-    if (j_end) reverse(tail);
-    const std::optional<IntersectionCurve> between = bridge_gap(head, tail, eps, b.reach, *asker);
-    if (!between) continue;
-    append(head, *between);
-    append(head, tail);
-    curves[b.i] = std::move(head);
-    reaches[b.i] = {reach_of(reaches[b.i], !i_start), reach_of(reaches[b.j], j_end)};
-    curves.erase(curves.begin() + static_cast<long>(b.j));
-    reaches.erase(reaches.begin() + static_cast<long>(b.j));
-    return true;
   }
   return false;
 }

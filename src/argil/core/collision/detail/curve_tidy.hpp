@@ -36,8 +36,12 @@ inline constexpr double kBridgeReach = 16.0;
 /// from (0 for an end on a face's edge: see the query's bridge). A curve that runs along a leaf
 /// edge (a crossing along a knot line of both surfaces) passes through the cracks between leaves of
 /// different sizes there, and no triangle pair finds it along up to a leaf's edge.
+/// An end from a transversal leaf (`pinned`) keeps its leaf's reach, but joins
+/// through it only the nearest end that faces it: a large leaf's reach could
+/// otherwise join two pieces across a third between them.
 struct EndReaches {
   double front = 0.0, back = 0.0;
+  bool front_pinned = false, back_pinned = false;
 };
 
 /// First leaves out points that repeat their predecessor within a millionth of

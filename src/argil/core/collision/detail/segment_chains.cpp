@@ -84,6 +84,7 @@ class ChainWalker {
   void walk(int start) {
     out_.curves.emplace_back();
     out_.reaches.emplace_back();
+    out_.pinned.emplace_back();
     append(start);
     int e = start;
     for (;;) {
@@ -108,6 +109,7 @@ class ChainWalker {
     const auto k = static_cast<std::size_t>(e % 2);
     IntersectionCurve& c = out_.curves.back();
     out_.reaches.back().push_back(s.reach);
+    out_.pinned.back().push_back(s.pinned);
     c.points.push_back(s.points[k]);
     c.uv_a.push_back(s.uv_a[k]);
     c.uv_b.push_back(s.uv_b[k]);

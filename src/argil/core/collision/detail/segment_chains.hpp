@@ -16,13 +16,18 @@ struct Segment {
   std::array<Eigen::Vector2d, 2> uv_a, uv_b;
   double width_a, width_b;  // smaller side of each leaf's parameter rectangle
   double reach;             // sum of the leaves' radii [mm]
+  /// Its ends already lie on both exact surfaces, refined along the leaves'
+  /// edges (a transversal leaf's: see surface_intersection.cpp).
+  bool pinned = false;
 };
 
 /// Curves chained from segments, and per curve point the reach of the segment
-/// it came from (how far refinement may move it).
+/// it came from (how far refinement may move it) and whether that segment was
+/// pinned.
 struct ChainedCurves {
   std::vector<IntersectionCurve> curves;
   std::vector<std::vector<double>> reaches;
+  std::vector<std::vector<bool>> pinned;
 };
 
 /// Chains segments into polylines (a segment whose ends both lie within 1e-3
