@@ -789,8 +789,9 @@ class PairDescent {
     way,  // a swept query's motion: stops at the first leaf pair that meets on it
   };
 
-  /// `exact`: both exact surfaces (b placed), for coarse leaves: given only
-  /// with the end's pass of a refined query.
+  /// `exact`: both exact surfaces (b placed), onto which transversal leaves
+  /// refine their crossings; coarse_tolerance() decides whether the query
+  /// has any.
   PairDescent(const SurfaceHierarchy& ha, const SurfaceHierarchy& hb,
               const std::optional<Rigid>& placed_b, const std::optional<Sweep>& sweep, Pass pass,
               const CollisionRequest& request, QueryCounters& counters,
@@ -1120,10 +1121,9 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
     // Refinement keeps each curve's end points, so the bridge may reach as
     // far from them as refinement may move them (from a transversal leaf's
     // end, to the nearest end facing it only: EndReaches); but not from an
-    // end on a
-    // face's edge: along it (faces that meet edge to edge) the leaves'
-    // triangles touch rather than cross, their segments are scattered, and
-    // bridging them gave pieces side by side.
+    // end on a face's edge: along it (faces that meet edge to edge) the
+    // leaves' triangles touch rather than cross, their segments are
+    // scattered, and bridging them gave pieces side by side.
     std::vector<detail::EndReaches> end_reaches;
     if (request.refine) {
       for (std::size_t ci = 0; ci < result.curves.size(); ++ci) {
