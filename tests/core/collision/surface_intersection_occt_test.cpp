@@ -110,9 +110,9 @@ double polyline_length(const argil::IntersectionCurve& c) {
   return l;
 }
 
-/// The oracle checks on `kPairs` crossing pairs at eps = kRelativeEps of the
+/// The oracle checks on `pairs` crossing pairs at eps = `relative_eps` of the
 /// model size (refined).
-void check_against_occt(const int kPairs, const double kRelativeEps) {
+void check_against_occt(const int pairs, const double relative_eps) {
   // Crossings flatter than this are the documented grazing limit (docs/collision.md).
   constexpr double kWellConditionedDeg = 10.0;
   // Refined points: Gauss-Newton stops at 1e-14 of the size and keeps points
@@ -131,13 +131,13 @@ void check_against_occt(const int kPairs, const double kRelativeEps) {
   double worst_uv = 0.0;
   std::vector<double> length_ratios;
   int pairs_with_curves = 0;
-  for (int index = 0; index < kPairs; ++index) {
+  for (int index = 0; index < pairs; ++index) {
     const Pair pair = crossing_pair(rng, index);
     REQUIRE(argil::validate(pair.a).ok());
     REQUIRE(argil::validate(pair.b).ok());
     const double size = std::max(argil::control_point_box(pair.a).diagonal(),
                                  argil::control_point_box(pair.b).diagonal());
-    const double eps = kRelativeEps * size;
+    const double eps = relative_eps * size;
     auto ha = argil::test::hierarchy_for(pair.a);
     auto hb = argil::test::hierarchy_for(pair.b);
     const argil::CollisionResult ours = argil::collide(ha, hb, {.tolerance = eps, .refine = true});
@@ -298,7 +298,7 @@ void check_against_occt(const int kPairs, const double kRelativeEps) {
       "  length ours / OCCT: min %.4f, median %.4f, max %.4f; pairs where OCCT misses a piece of "
       "our curve by "
       "more than 1e-3 of the size: %ld (worst %.3g)\n",
-      kPairs, pairs_with_curves, occt_failures, infinite_curves, samples, occt_off_surface,
+      pairs, pairs_with_curves, occt_failures, infinite_curves, samples, occt_off_surface,
       occt_unprojected, kWellConditionedDeg, samples_steep, misses_steep, worst_steep,
       kWellConditionedDeg, samples_grazing, misses_grazing, worst_grazing, our_points,
       refined_points, kRefinedRelative, worst_point, our_points_steep, steep_unrefined,

@@ -48,8 +48,8 @@ struct View {
   double radius;
   Eigen::Vector3d lo, hi;
   bool flat;
-  /// Nodes only: flat to the coarse tolerance (PairDescent's transversal
-  /// leaves), always false when the query has none.
+  /// Nodes only: flat, or flat to the coarse tolerance (PairDescent's
+  /// transversal leaves; that tolerance is 0 when the query has none).
   bool coarse = false;
   /// Nodes only: the patch lies within `flatness` of its two corner
   /// triangles (c00, c10, c11), (c00, c11, c01); +inf for blocks.
@@ -526,8 +526,9 @@ void drop_steps_back(IntersectionCurve& c, std::vector<bool>& refined,
   refined.resize(kept);
 }
 
-/// Refines every point of the curve (a closed curve's repeated end once),
-/// leaves out steps back, then densifies between refined neighbours.
+/// Refines every point of the curve not yet refined (a closed curve's
+/// repeated end once), leaves out steps back, then densifies between refined
+/// neighbours.
 IntersectionCurve refine_curve(const SurfacePair& pair, IntersectionCurve c,
                                const std::vector<double>& reaches, const std::vector<bool>& pinned,
                                double eps) {
@@ -535,8 +536,9 @@ IntersectionCurve refine_curve(const SurfacePair& pair, IntersectionCurve c,
   // A closed curve repeats its first point: refine it once.
   const bool closed = n > 2 && c.points[n - 1] == c.points[0] && c.uv_a[n - 1] == c.uv_a[0];
   std::vector<bool> refined(n, false);
+  // A transversal leaf's points were refined in the descent (pinned).
   for (std::size_t k = 0; k < (closed ? n - 1 : n); ++k)
-    refined[k] = refine_curve_point(pair, c, k, reaches[k]);
+    refined[k] = pinned[k] || refine_curve_point(pair, c, k, reaches[k]);
   if (closed) {
     c.points[n - 1] = c.points[0];
     c.uv_a[n - 1] = c.uv_a[0];
