@@ -129,6 +129,10 @@ void check_against_occt(const int pairs, const double relative_eps) {
   double worst_occt_gap = 0.0;
   double worst_steep = 0.0, worst_grazing = 0.0, worst_point = 0.0, worst_point_steep = 0.0;
   double worst_uv = 0.0;
+  // Chords between refined neighbours: their midpoints' distance to both
+  // surfaces (OCCT projection) against eps/3, the densifier's tolerance.
+  long chords_checked = 0, chords_off = 0;
+  double worst_chord = 0.0;
   std::vector<double> length_ratios;
   int pairs_with_curves = 0;
   for (int index = 0; index < pairs; ++index) {
@@ -218,6 +222,7 @@ void check_against_occt(const int pairs, const double relative_eps) {
     double our_length = 0.0, ours_to_occt = 0.0;
     for (const argil::IntersectionCurve& c : ours.curves) {
       our_length += polyline_length(c);
+      bool previous_refined = false;
       for (std::size_t k = 0; k < c.points.size(); ++k) {
         const Eigen::Vector3d& p = c.points[k];
         ++our_points;
@@ -241,6 +246,30 @@ void check_against_occt(const int pairs, const double relative_eps) {
         worst_point = std::max(worst_point, d / size);
         const bool refined = d <= kRefinedRelative * size;
         refined_points += refined ? 1 : 0;
+        // Every 4th chord (the file's time budget) whose ends are both refined.
+        // Any surface point bounds the midpoint's distance to the surface from
+        // above: OCCT's projection (which can stop at a farther extremum next
+        // to a knot) or OCCT's point at the mean of the ends' parameters.
+        if (k % 4 == 1 && refined && previous_refined) {
+          const Eigen::Vector3d mid = 0.5 * (c.points[k - 1] + p);
+          const Eigen::Vector2d ma = 0.5 * (c.uv_a[k - 1] + c.uv_a[k]);
+          const Eigen::Vector2d mb = 0.5 * (c.uv_b[k - 1] + c.uv_b[k]);
+          double to_a = (eig(oa->Value(ma[0], ma[1])) - mid).norm();
+          double to_b = (eig(ob->Value(mb[0], mb[1])) - mid).norm();
+          pa.Perform(gp_Pnt(mid.x(), mid.y(), mid.z()));
+          pb.Perform(gp_Pnt(mid.x(), mid.y(), mid.z()));
+          if (pa.NbPoints() > 0) to_a = std::min(to_a, pa.LowerDistance());
+          if (pb.NbPoints() > 0) to_b = std::min(to_b, pb.LowerDistance());
+          const double off = std::max(to_a, to_b);
+          ++chords_checked;
+          worst_chord = std::max(worst_chord, off / eps);
+          if (off > eps / 3.0 + 1e-12 * size) {
+            ++chords_off;
+            std::printf("  pair %d chord %zu-%zu: midpoint %.3g eps off a surface\n", index, k - 1,
+                        k, off / eps);
+          }
+        }
+        previous_refined = refined;
         if (refined) worst_uv = std::max(worst_uv, at_uv / size);
         // Unrefined points keep the leaf guarantee: within eps/3 of both surfaces
         // (plus rounding of the barycentric parameters, 1e-12 of the size).
@@ -297,13 +326,15 @@ void check_against_occt(const int pairs, const double relative_eps) {
       "%ld unprojected\n"
       "  length ours / OCCT: min %.4f, median %.4f, max %.4f; pairs where OCCT misses a piece of "
       "our curve by "
-      "more than 1e-3 of the size: %ld (worst %.3g)\n",
+      "more than 1e-3 of the size: %ld (worst %.3g)\n"
+      "  chords between refined points: %ld midpoints projected, %ld over eps/3 off a surface, "
+      "worst %.3g eps\n",
       pairs, pairs_with_curves, occt_failures, infinite_curves, samples, occt_off_surface,
       occt_unprojected, kWellConditionedDeg, samples_steep, misses_steep, worst_steep,
       kWellConditionedDeg, samples_grazing, misses_grazing, worst_grazing, our_points,
       refined_points, kRefinedRelative, worst_point, our_points_steep, steep_unrefined,
       worst_point_steep, worst_uv, projected, unprojected, quantile(0.0), quantile(0.5),
-      quantile(1.0), occt_gaps, worst_occt_gap);
+      quantile(1.0), occt_gaps, worst_occt_gap, chords_checked, chords_off, worst_chord);
   CHECK(samples_steep > 1000);  // the check has material: most of OCCT's samples are steep
   CHECK(misses_steep == 0);
   // Refinement keeps a point's leaf value where Gauss-Newton across the curve
@@ -311,6 +342,8 @@ void check_against_occt(const int pairs, const double relative_eps) {
   // turn of the curve and next to a domain edge; docs/collision.md "Limits").
   CHECK(steep_unrefined * 1000 <= our_points_steep);
   CHECK(worst_uv <= kRefinedRelative);
+  CHECK(chords_checked > 1000);
+  CHECK(chords_off == 0);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "argil/core/collision/detail/contact_regions.hpp"
+#include "argil/core/collision/detail/curve_densifier.hpp"
 #include "argil/core/collision/detail/curve_tidy.hpp"
 #include "argil/core/collision/detail/segment_chains.hpp"
 #include "argil/core/collision/detail/surface_pair_refine.hpp"
@@ -386,109 +387,23 @@ struct PendingContact {
   double reach = 0.0;
 };
 
-/// The two surfaces and the model size [mm] refinement tolerances scale with.
-struct SurfacePair {
-  const BSplineSurface& a;
-  const BSplineSurface& b;
-  double scale;
-};
-
 double scale_of(const BSplineSurface& a, const BSplineSurface& b) {
   return std::max({control_point_box(a).diagonal(), control_point_box(b).diagonal(),
                    std::numeric_limits<double>::min()});
 }
 
-/// A point with its parameters on both surfaces.
-struct PairPoint {
-  Eigen::Vector3d point;
-  Eigen::Vector2d uv_a, uv_b;
-};
-
-/// Refines one point pair; nullopt when refinement leaves the `reach` of the
-/// start or, on a curve, does not converge onto both surfaces.
-std::optional<RefinedPair> refine_near(const SurfacePair& pair, const PairPoint& start,
-                                       bool on_curve, double reach, int fixed = -1) {
-  const RefinedPair r = refine_surface_pair(pair.a, pair.b,
-                                            {.uv_a = start.uv_a,
-                                             .uv_b = start.uv_b,
-                                             .on_curve = on_curve,
-                                             .fixed = fixed,
-                                             .scale = pair.scale});
-  if (!((r.point - start.point).norm() <= reach)) return std::nullopt;
-  // Converged means on both surfaces up to rounding of the model size.
-  if (on_curve && !(r.gap <= 1e-12 * pair.scale)) return std::nullopt;
-  return r;
-}
-
-/// Curve point k replaced by its refinement; false when refinement failed.
-bool refine_curve_point(const SurfacePair& pair, IntersectionCurve& c, std::size_t k,
-                        double reach) {
+/// Curve point k replaced by its refinement, with the curve's tangent there;
+/// nullopt when refinement failed.
+std::optional<CurveTangent> refine_curve_point(const SurfacePair& pair, IntersectionCurve& c,
+                                               std::size_t k, double reach) {
   const std::optional<RefinedPair> r =
       refine_near(pair, {c.points[k], c.uv_a[k], c.uv_b[k]}, true, reach);
-  if (!r) return false;
+  if (!r) return std::nullopt;
   c.points[k] = r->point;
   c.uv_a[k] = r->uv_a;
   c.uv_b[k] = r->uv_b;
-  return true;
+  return r->tangent;
 }
-
-/// Inserts refined midpoints between consecutive refined curve points while
-/// the curve strays more than `tolerance` from the chord: the leaf segments
-/// are as long as the flat leaves, and the exact curve bends away from them
-/// by up to its curvature times their length squared over 8.
-class Densifier {
- public:
-  Densifier(const SurfacePair& pair, double tolerance) : pair_(pair), tolerance_(tolerance) {}
-
-  IntersectionCurve run(const IntersectionCurve& c, const std::vector<bool>& refined) {
-    out_ = {};
-    for (std::size_t k = 0; k < c.points.size(); ++k) {
-      push({c.points[k], c.uv_a[k], c.uv_b[k]});
-      if (k + 1 < c.points.size() && refined[k] && refined[k + 1])
-        fill({c.points[k], c.uv_a[k], c.uv_b[k]}, {c.points[k + 1], c.uv_a[k + 1], c.uv_b[k + 1]},
-             0);
-    }
-    return std::move(out_);
-  }
-
-  /// The refined points strictly between two refined points of one branch;
-  /// nullopt when a midpoint does not refine onto the curve near its chord,
-  /// or the chords do not come within `tolerance` of the curve.
-  std::optional<IntersectionCurve> between(const PairPoint& lo, const PairPoint& hi) {
-    out_ = {};
-    if (!fill(lo, hi, 0)) return std::nullopt;
-    return std::move(out_);
-  }
-
- private:
-  static constexpr int kMaxDepth = 10;  // at most 2^10 pieces per leaf segment
-
-  void push(const PairPoint& p) {
-    out_.points.push_back(p.point);
-    out_.uv_a.push_back(p.uv_a);
-    out_.uv_b.push_back(p.uv_b);
-  }
-
-  /// Fills the open interval between two refined points; false when it
-  /// stopped short (a failed refinement or the depth limit).
-  bool fill(const PairPoint& lo, const PairPoint& hi, int depth) {
-    if (depth >= kMaxDepth) return false;
-    const PairPoint chord{0.5 * (lo.point + hi.point), 0.5 * (lo.uv_a + hi.uv_a),
-                          0.5 * (lo.uv_b + hi.uv_b)};
-    const std::optional<RefinedPair> r =
-        refine_near(pair_, chord, true, (hi.point - lo.point).norm() + tolerance_);
-    if (!r) return false;
-    if ((r->point - chord.point).norm() <= tolerance_) return true;
-    const PairPoint mid{r->point, r->uv_a, r->uv_b};
-    const bool first = fill(lo, mid, depth + 1);
-    push(mid);
-    return fill(mid, hi, depth + 1) && first;
-  }
-
-  const SurfacePair& pair_;
-  double tolerance_;
-  IntersectionCurve out_;
-};
 
 /// Leaves out each refined point of a transversal leaf from which the curve
 /// steps back along the way it came (a turn of more than 154 degrees between
@@ -500,6 +415,7 @@ class Densifier {
 /// edges, can land in the other order. The densifier then follows the curve
 /// between the points kept.
 void drop_steps_back(IntersectionCurve& c, std::vector<bool>& refined,
+                     std::vector<std::optional<CurveTangent>>& tangents,
                      const std::vector<bool>& pinned, const std::vector<double>& reaches) {
   if (c.points.empty()) return;
   constexpr double kBackCosine = -0.9;
@@ -518,12 +434,14 @@ void drop_steps_back(IntersectionCurve& c, std::vector<bool>& refined,
     c.uv_a[kept] = c.uv_a[k];
     c.uv_b[kept] = c.uv_b[k];
     refined[kept] = refined[k];
+    tangents[kept] = tangents[k];
     last = kept++;
   }
   c.points.resize(kept);
   c.uv_a.resize(kept);
   c.uv_b.resize(kept);
   refined.resize(kept);
+  tangents.resize(kept);
 }
 
 /// Refines every point of the curve not yet refined (a closed curve's
@@ -536,17 +454,23 @@ IntersectionCurve refine_curve(const SurfacePair& pair, IntersectionCurve c,
   // A closed curve repeats its first point: refine it once.
   const bool closed = n > 2 && c.points[n - 1] == c.points[0] && c.uv_a[n - 1] == c.uv_a[0];
   std::vector<bool> refined(n, false);
-  // A transversal leaf's points were refined in the descent (pinned).
-  for (std::size_t k = 0; k < (closed ? n - 1 : n); ++k)
-    refined[k] = pinned[k] || refine_curve_point(pair, c, k, reaches[k]);
+  std::vector<std::optional<CurveTangent>> tangents(n);
+  // A transversal leaf's points were refined in the descent (pinned); the
+  // densifier starts from their tangents (the leaves' segments are long).
+  for (std::size_t k = 0; k < (closed ? n - 1 : n); ++k) {
+    tangents[k] = pinned[k] ? curve_tangent(pair.a, pair.b, c.uv_a[k], c.uv_b[k])
+                            : refine_curve_point(pair, c, k, reaches[k]);
+    refined[k] = pinned[k] || tangents[k].has_value();
+  }
   if (closed) {
     c.points[n - 1] = c.points[0];
     c.uv_a[n - 1] = c.uv_a[0];
     c.uv_b[n - 1] = c.uv_b[0];
     refined[n - 1] = refined[0];
+    tangents[n - 1] = tangents[0];
   }
-  drop_steps_back(c, refined, pinned, reaches);
-  return Densifier(pair, eps / 3.0).run(c, refined);
+  drop_steps_back(c, refined, tangents, pinned, reaches);
+  return CurveDensifier(pair, eps / 3.0).run(c, refined, tangents);
 }
 
 /// True when parameters lie inside the surface's domain, off its edges by
@@ -567,7 +491,7 @@ bool inside_domain(const BSplineSurface& s, const Eigen::Vector2d& uv) {
 /// branch runs across it.
 detail::GapBridge bridge_for(const SurfacePair& pair, double eps) {
   return [&pair, eps](const detail::CurvePoint& from, const detail::CurvePoint& to) {
-    return Densifier(pair, eps / 3.0)
+    return CurveDensifier(pair, eps / 3.0)
         .between({from.point, from.uv_a, from.uv_b}, {to.point, to.uv_a, to.uv_b});
   };
 }

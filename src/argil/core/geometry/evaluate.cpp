@@ -11,6 +11,46 @@ namespace argil {
 
 using Vector4 = Eigen::Vector4d;
 
+namespace {
+
+constexpr int kN = kMaxDegree + 1;
+using BasisRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 3, kN>;
+
+/// The homogeneous derivatives up to `Order` from the basis rows of spans
+/// (su, sv): a template so the surface point's hot loop has no order tests.
+template <int Order>
+void contract(const BSplineSurface& s, int su, int sv, const BasisRows& bu, const BasisRows& bv,
+              detail::HomogeneousDerivatives& h) {
+  const int p = s.degree[0];
+  const int q = s.degree[1];
+  const bool rational = s.is_rational();
+  for (int a = 0; a <= p; ++a) {
+    // Contract over v first: one 4-vector per v-derivative order for this row.
+    Vector4 r0 = Vector4::Zero(), r1 = Vector4::Zero(), r2 = Vector4::Zero();
+    for (int b = 0; b <= q; ++b) {
+      const Eigen::Index k = s.pole_index(su - p + a, sv - q + b);
+      const double w = rational ? s.weights[k] : 1.0;
+      Vector4 pw;
+      pw << w * s.control_points.row(k).transpose(), w;
+      r0 += bv(0, b) * pw;
+      if constexpr (Order >= 1) r1 += bv(1, b) * pw;
+      if constexpr (Order >= 2) r2 += bv(2, b) * pw;
+    }
+    h.a00 += bu(0, a) * r0;
+    if constexpr (Order >= 1) {
+      h.a10 += bu(1, a) * r0;
+      h.a01 += bu(0, a) * r1;
+    }
+    if constexpr (Order >= 2) {
+      h.a20 += bu(2, a) * r0;
+      h.a11 += bu(1, a) * r1;
+      h.a02 += bu(0, a) * r2;
+    }
+  }
+}
+
+}  // namespace
+
 SurfaceDerivatives evaluate_derivatives(const BSplineSurface& s, double u, double v, int order) {
   assert(order >= 0 && order <= 2);
   const int p = s.degree[0];
@@ -22,38 +62,21 @@ SurfaceDerivatives evaluate_derivatives(const BSplineSurface& s, double u, doubl
   const int su = find_span(p, s.knots[0], nu, u);
   const int sv = find_span(q, s.knots[1], nv, v);
 
-  constexpr int kN = kMaxDegree + 1;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 3, kN> bu(order + 1,
-                                                                                   p + 1);
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 3, kN> bv(order + 1,
-                                                                                   q + 1);
+  BasisRows bu(order + 1, p + 1);
+  BasisRows bv(order + 1, q + 1);
   basis_derivatives(p, s.knots[0], su, u, order, bu);
   basis_derivatives(q, s.knots[1], sv, v, order, bv);
 
-  const bool rational = s.is_rational();
   detail::HomogeneousDerivatives h;
-  for (int a = 0; a <= p; ++a) {
-    // Contract over v first: one 4-vector per v-derivative order for this row.
-    Vector4 r0 = Vector4::Zero(), r1 = Vector4::Zero(), r2 = Vector4::Zero();
-    for (int b = 0; b <= q; ++b) {
-      const Eigen::Index k = s.pole_index(su - p + a, sv - q + b);
-      const double w = rational ? s.weights[k] : 1.0;
-      Vector4 pw;
-      pw << w * s.control_points.row(k).transpose(), w;
-      r0 += bv(0, b) * pw;
-      if (order >= 1) r1 += bv(1, b) * pw;
-      if (order >= 2) r2 += bv(2, b) * pw;
-    }
-    h.a00 += bu(0, a) * r0;
-    if (order >= 1) {
-      h.a10 += bu(1, a) * r0;
-      h.a01 += bu(0, a) * r1;
-    }
-    if (order >= 2) {
-      h.a20 += bu(2, a) * r0;
-      h.a11 += bu(1, a) * r1;
-      h.a02 += bu(0, a) * r2;
-    }
+  switch (order) {
+    case 0:
+      contract<0>(s, su, sv, bu, bv, h);
+      break;
+    case 1:
+      contract<1>(s, su, sv, bu, bv, h);
+      break;
+    default:
+      contract<2>(s, su, sv, bu, bv, h);
   }
 
   return detail::cartesian(h, order);

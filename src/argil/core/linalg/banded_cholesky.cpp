@@ -57,14 +57,21 @@ void solve_rows(const double* l, int n, int b, double* x) {
   const int stride = b + 1;
   for (int i = 0; i < n; ++i) {                                           // L y = b
     const double* row = l + static_cast<std::ptrdiff_t>(i) * stride + b;  // row[k - i] = L(i, k)
-    double acc[C];
-    for (int c = 0; c < C; ++c) acc[c] = x[i * C + c];
-    for (int k = std::max(0, i - b); k < i; ++k) {
-      const double v = row[k - i];
-      for (int c = 0; c < C; ++c) acc[c] -= v * x[k * C + c];
+    // Two partial sums (even and odd k) halve the chain of dependent subtractions.
+    double acc[C], odd[C];
+    for (int c = 0; c < C; ++c) acc[c] = x[i * C + c], odd[c] = 0.0;
+    int k = std::max(0, i - b);
+    for (; k + 1 < i; k += 2) {
+      const double v = row[k - i], w = row[k + 1 - i];
+      for (int c = 0; c < C; ++c) {
+        acc[c] -= v * x[k * C + c];
+        odd[c] -= w * x[(k + 1) * C + c];
+      }
     }
+    if (k < i)
+      for (int c = 0; c < C; ++c) acc[c] -= row[k - i] * x[k * C + c];
     const double inverse = 1.0 / row[0];
-    for (int c = 0; c < C; ++c) x[i * C + c] = acc[c] * inverse;
+    for (int c = 0; c < C; ++c) x[i * C + c] = (acc[c] + odd[c]) * inverse;
   }
   for (int i = n - 1; i >= 0; --i) {  // L^T x = y: row i of L scatters upwards
     const double* row = l + static_cast<std::ptrdiff_t>(i) * stride + b;

@@ -73,9 +73,38 @@ Eigen::Vector4d gauss_newton_step(const SurfaceDerivatives& da, const SurfaceDer
   // heap-sized solve spent more on allocation than on arithmetic.
   using Small = Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::ColMajor, 4, 4>;
   const Small ms = m.topRows(rows) * col_scale.asDiagonal();
+  if (rows == 4) {
+    // Square and well conditioned (a transversal crossing): the one solution
+    // is the minimum-norm one, and LU finds it at a fraction of the cost. The
+    // columns have unit norm, so a pivot above 1e-8 means no near-singularity.
+    const Eigen::PartialPivLU<Eigen::Matrix4d> lu{Eigen::Matrix4d(ms)};
+    if (lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 1e-8)
+      return col_scale.cwiseProduct(lu.solve(rhs.head<4>()));
+  }
   const Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1> r = rhs.head(rows);
   return col_scale.cwiseProduct(
       Eigen::Vector4d(Eigen::CompleteOrthogonalDecomposition<Small>(ms).solve(r)));
+}
+
+/// The curve's direction from both surfaces' first derivatives.
+CurveTangent tangent_from(const SurfaceDerivatives& da, const SurfaceDerivatives& db) {
+  const Eigen::Vector3d na = da.du.cross(da.dv), nb = db.du.cross(db.dv);
+  const Eigen::Vector3d t = na.cross(nb);
+  const double length = t.norm();
+  // Below 1e-8 of |n_a| |n_b| the normals are parallel to rounding: no direction.
+  if (!(length > 1e-8 * na.norm() * nb.norm())) return {};
+  const Eigen::Vector3d unit = t / length;
+  // d(uv)/ds solves [S_u S_v] d(uv) = T; T lies in both tangent planes, so
+  // the normal equations are exact up to rounding.
+  const auto rate = [&unit](const SurfaceDerivatives& d) -> Eigen::Vector2d {
+    Eigen::Matrix2d g;
+    g << d.du.dot(d.du), d.du.dot(d.dv), d.du.dot(d.dv), d.dv.dot(d.dv);
+    if (!(g.determinant() > 1e-12 * g(0, 0) * g(1, 1))) return Eigen::Vector2d::Zero();
+    return g.inverse() * Eigen::Vector2d(d.du.dot(unit), d.dv.dot(unit));
+  };
+  const Eigen::Vector2d ra = rate(da), rb = rate(db);
+  if (ra.isZero(0.0) || rb.isZero(0.0)) return {};
+  return {unit, ra, rb};
 }
 
 }  // namespace
@@ -116,13 +145,36 @@ RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b
     x = next;
     evaluated = false;
   }
-  const Eigen::Vector3d pa = evaluated ? da.point : evaluate(a, x[0], x[1]);
-  const Eigen::Vector3d pb = evaluated ? db.point : evaluate(b, x[2], x[3]);
+  if (!evaluated) {
+    da = evaluate_derivatives(a, x[0], x[1], 1);
+    db = evaluate_derivatives(b, x[2], x[3], 1);
+  }
   out.uv_a = x.head<2>();
   out.uv_b = x.tail<2>();
-  out.point = 0.5 * (pa + pb);
-  out.gap = (pa - pb).norm();
+  out.point = 0.5 * (da.point + db.point);
+  out.gap = (da.point - db.point).norm();
+  out.tangent = tangent_from(da, db);
   return out;
+}
+
+CurveTangent curve_tangent(const BSplineSurface& a, const BSplineSurface& b,
+                           const Eigen::Vector2d& uv_a, const Eigen::Vector2d& uv_b) {
+  return tangent_from(evaluate_derivatives(a, uv_a[0], uv_a[1], 1),
+                      evaluate_derivatives(b, uv_b[0], uv_b[1], 1));
+}
+
+std::optional<RefinedPair> refine_near(const SurfacePair& pair, const PairPoint& start,
+                                       bool on_curve, double reach, int fixed) {
+  const RefinedPair r = refine_surface_pair(pair.a, pair.b,
+                                            {.uv_a = start.uv_a,
+                                             .uv_b = start.uv_b,
+                                             .on_curve = on_curve,
+                                             .fixed = fixed,
+                                             .scale = pair.scale});
+  if (!((r.point - start.point).norm() <= reach)) return std::nullopt;
+  // Converged means on both surfaces up to rounding of the model size.
+  if (on_curve && !(r.gap <= 1e-12 * pair.scale)) return std::nullopt;
+  return r;
 }
 
 }  // namespace argil

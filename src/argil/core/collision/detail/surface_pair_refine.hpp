@@ -3,10 +3,24 @@
 // the surface-surface query for curve points and contacts.
 
 #include <Eigen/Core>
+#include <optional>
 
 #include "argil/core/geometry/bspline_surface.hpp"
 
 namespace argil {
+
+/// The two surfaces and the model size [mm] refinement tolerances scale with.
+struct SurfacePair {
+  const BSplineSurface& a;
+  const BSplineSurface& b;
+  double scale;
+};
+
+/// A point with its parameters on both surfaces.
+struct PairPoint {
+  Eigen::Vector3d point;
+  Eigen::Vector2d uv_a, uv_b;
+};
 
 /// Where refine_surface_pair() starts and what it keeps fixed.
 struct PairRefineRequest {
@@ -26,6 +40,18 @@ struct PairRefineRequest {
   double scale = 1.0;
 };
 
+/// The direction of the intersection curve at a point on both surfaces: its
+/// unit tangent n_a x n_b and the rates of both parameter pairs along it per
+/// mm of arc; all zero where the surfaces are tangent (or a normal vanishes).
+struct CurveTangent {
+  Eigen::Vector3d unit = Eigen::Vector3d::Zero();
+  Eigen::Vector2d uv_a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d uv_b = Eigen::Vector2d::Zero();
+};
+
+CurveTangent curve_tangent(const BSplineSurface& a, const BSplineSurface& b,
+                           const Eigen::Vector2d& uv_a, const Eigen::Vector2d& uv_b);
+
 /// A pair of surface points after refine_surface_pair().
 struct RefinedPair {
   Eigen::Vector2d uv_a = Eigen::Vector2d::Zero();
@@ -33,6 +59,7 @@ struct RefinedPair {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // midpoint of S_a(uv_a) and S_b(uv_b) [mm]
   double gap = 0.0;                                 // |S_a(uv_a) - S_b(uv_b)| [mm]
   int iterations = 0;
+  CurveTangent tangent;  // at (uv_a, uv_b)
 };
 
 /// Gauss-Newton from (uv_a, uv_b) on F = S_a(u, v) - S_b(s, t) with
@@ -42,5 +69,12 @@ struct RefinedPair {
 /// 40 iterations.
 RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b,
                                 const PairRefineRequest& request);
+
+/// Refines one point pair from `start` (on the curve: see
+/// PairRefineRequest::on_curve and fixed); nullopt when refinement leaves the
+/// `reach` of the start [mm] or, on a curve, does not converge onto both
+/// surfaces (to 1e-12 of the model size).
+std::optional<RefinedPair> refine_near(const SurfacePair& pair, const PairPoint& start,
+                                       bool on_curve, double reach, int fixed = -1);
 
 }  // namespace argil
