@@ -145,7 +145,8 @@ bool CurveDensifier::fill(Node& lo, Node& hi, int depth) {
   const std::optional<HermiteArc> known =
       lo.tangent && hi.tangent ? hermite_arc(lo.at, *lo.tangent, hi.at, *hi.tangent)
                                : std::nullopt;
-  const bool from_arc = known.has_value();
+  // (Near a domain edge the arc can bend out of the domain: the chord cannot.)
+  const bool from_arc = known.has_value() && in_domains(known->at(0.5));
   const double length = (hi.at.point - lo.at.point).norm();
   const std::optional<RefinedPair> r =
       refine_near(pair_, from_arc ? known->at(0.5) : chord, true, length + tolerance_);
@@ -172,34 +173,43 @@ bool CurveDensifier::fill(Node& lo, Node& hi, int depth) {
 
 /// The arc's points at s = k / pieces strictly inside it, each refined onto
 /// the curve from the arc (the middle one is `mid` when given), pushed in
-/// order; false, pushing nothing, when one does not refine near its start or
-/// the points do not advance along the chord.
+/// order; false, pushing nothing, when one starts outside a domain, lands
+/// farther than an eighth of the tolerance from the arc (the arc is not as
+/// good there as at its middle) or the points do not advance along the chord.
 bool CurveDensifier::fill_along(const HermiteArc& arc, const Node* mid, int pieces) {
   const Eigen::Vector3d chord = arc.hi.point - arc.lo.point;
-  const double reach = chord.norm() / pieces + tolerance_;
-  IntersectionCurve run;
+  IntersectionCurve inner;
   Eigen::Vector3d previous = arc.lo.point;
   for (int k = 1; k < pieces; ++k) {
     PairPoint p;
     if (mid && 2 * k == pieces) {
       p = mid->at;
     } else {
-      const std::optional<RefinedPair> r =
-          refine_near(pair_, arc.at(static_cast<double>(k) / pieces), true, reach);
+      const PairPoint start = arc.at(static_cast<double>(k) / pieces);
+      if (!in_domains(start)) return false;
+      const std::optional<RefinedPair> r = refine_near(pair_, start, true, tolerance_ / 8);
       if (!r) return false;
       p = {r->point, r->uv_a, r->uv_b};
     }
     if (!((p.point - previous).dot(chord) > 0.0)) return false;
     previous = p.point;
-    run.points.push_back(p.point);
-    run.uv_a.push_back(p.uv_a);
-    run.uv_b.push_back(p.uv_b);
+    inner.points.push_back(p.point);
+    inner.uv_a.push_back(p.uv_a);
+    inner.uv_b.push_back(p.uv_b);
   }
   if (!((arc.hi.point - previous).dot(chord) > 0.0)) return false;
-  out_.points.insert(out_.points.end(), run.points.begin(), run.points.end());
-  out_.uv_a.insert(out_.uv_a.end(), run.uv_a.begin(), run.uv_a.end());
-  out_.uv_b.insert(out_.uv_b.end(), run.uv_b.begin(), run.uv_b.end());
+  out_.points.insert(out_.points.end(), inner.points.begin(), inner.points.end());
+  out_.uv_a.insert(out_.uv_a.end(), inner.uv_a.begin(), inner.uv_a.end());
+  out_.uv_b.insert(out_.uv_b.end(), inner.uv_b.begin(), inner.uv_b.end());
   return true;
+}
+
+bool CurveDensifier::in_domains(const PairPoint& p) const {
+  const auto inside = [](const BSplineSurface& s, const Eigen::Vector2d& uv) {
+    return uv[0] >= s.domain_start(Direction::u) && uv[0] <= s.domain_end(Direction::u) &&
+           uv[1] >= s.domain_start(Direction::v) && uv[1] <= s.domain_end(Direction::v);
+  };
+  return inside(pair_.a, p.uv_a) && inside(pair_.b, p.uv_b);
 }
 
 }  // namespace argil

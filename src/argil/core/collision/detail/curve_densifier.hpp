@@ -42,6 +42,7 @@ class CurveDensifier {
   void push(const PairPoint& p);
   bool fill(Node& lo, Node& hi, int depth);
   bool fill_along(const HermiteArc& arc, const Node* mid, int pieces);
+  bool in_domains(const PairPoint& p) const;
 
   const SurfacePair& pair_;
   double tolerance_;

@@ -76,7 +76,7 @@ Eigen::Vector4d gauss_newton_step(const SurfaceDerivatives& da, const SurfaceDer
   if (rows == 4) {
     // Square and well conditioned (a transversal crossing): the one solution
     // is the minimum-norm one, and LU finds it at a fraction of the cost. The
-    // columns have unit norm, so a pivot above 1e-8 means no near-singularity.
+    // columns have unit norm; a pivot below 1e-8 is taken as rank deficient.
     const Eigen::PartialPivLU<Eigen::Matrix4d> lu{Eigen::Matrix4d(ms)};
     if (lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 1e-8)
       return col_scale.cwiseProduct(lu.solve(rhs.head<4>()));
