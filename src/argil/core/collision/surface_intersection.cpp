@@ -827,25 +827,22 @@ class PairDescent {
   }
 
   /// Refines a segment's ends onto both exact surfaces, an end on an edge of
-  /// either leaf along that edge (pin_to_leaf_edge); false when an end did
-  /// not converge near the leaves (it keeps its value).
+  /// either leaf along that edge (pin_to_leaf_edge); false at the first end
+  /// that does not converge near the leaves (the pair is then split, so the
+  /// other end is not tried).
   bool refine_ends(detail::Segment& seg, const LeafTriangles& la, const LeafTriangles& lb,
                    double reach) const {
-    bool all = true;
     for (std::size_t k = 0; k < 2; ++k) {
       Eigen::Vector2d uv_a = seg.uv_a[k], uv_b = seg.uv_b[k];
       const int fixed = pin_to_leaf_edge(uv_a, la.rect, uv_b, lb.rect);
       const std::optional<RefinedPair> r =
           refine_near(*exact_, {seg.points[k], uv_a, uv_b}, true, reach, fixed);
-      if (!r) {
-        all = false;
-        continue;
-      }
+      if (!r) return false;
       seg.points[k] = r->point;
       seg.uv_a[k] = r->uv_a;
       seg.uv_b[k] = r->uv_b;
     }
-    return all;
+    return true;
   }
 
   /// A transversal pair (see transversal()) as a leaf: its triangles' crossings

@@ -31,8 +31,7 @@ struct HermiteArc {
 
   Eigen::Vector3d point(double s, int order = 0) const {
     const Eigen::Vector4d w = weights(s, order);
-    return w[0] * lo.point + w[1] * scale * t_lo.unit + w[2] * hi.point +
-           w[3] * scale * t_hi.unit;
+    return w[0] * lo.point + w[1] * scale * t_lo.unit + w[2] * hi.point + w[3] * scale * t_hi.unit;
   }
 
   /// The arc's point at s with parameters; a parameter both ends share
@@ -143,18 +142,19 @@ bool CurveDensifier::fill(Node& lo, Node& hi, int depth) {
   // With both tangents at hand the arc's middle is a closer start than the
   // chord's (a Newton step fewer); finding them just for that costs more.
   const std::optional<HermiteArc> known =
-      lo.tangent && hi.tangent ? hermite_arc(lo.at, *lo.tangent, hi.at, *hi.tangent)
-                               : std::nullopt;
+      lo.tangent && hi.tangent ? hermite_arc(lo.at, *lo.tangent, hi.at, *hi.tangent) : std::nullopt;
   // (Near a domain edge the arc can bend out of the domain: the chord cannot.)
-  const bool from_arc = known.has_value() && in_domains(known->at(0.5));
+  std::optional<PairPoint> arc_middle;
+  if (known) arc_middle = known->at(0.5);
+  const bool from_arc = arc_middle && in_domains(*arc_middle);
   const double length = (hi.at.point - lo.at.point).norm();
   const std::optional<RefinedPair> r =
-      refine_near(pair_, from_arc ? known->at(0.5) : chord, true, length + tolerance_);
+      refine_near(pair_, from_arc ? *arc_middle : chord, true, length + tolerance_);
   if (!r) return false;
   if ((r->point - chord.point).norm() <= tolerance_) return true;
   Node mid{{r->point, r->uv_a, r->uv_b}, r->tangent};
   const std::optional<HermiteArc> arc =
-      from_arc ? known : hermite_arc(lo.at, tangent(lo), hi.at, tangent(hi));
+      known ? known : hermite_arc(lo.at, tangent(lo), hi.at, tangent(hi));
   if (arc && arc->distance_near_middle(r->point) <= tolerance_ / 8) {
     // A chord over ds of the arc strays at most max|P''| ds^2 / 8 from it.
     const double pieces = std::ceil(std::sqrt(arc->max_second_derivative() / (4 * tolerance_)));
