@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <tuple>
@@ -12,6 +13,7 @@
 
 #include "argil/core/collision/detail/contact_regions.hpp"
 #include "argil/core/collision/detail/curve_densifier.hpp"
+#include "argil/core/collision/detail/curve_end_march.hpp"
 #include "argil/core/collision/detail/curve_tidy.hpp"
 #include "argil/core/collision/detail/segment_chains.hpp"
 #include "argil/core/collision/detail/surface_pair_refine.hpp"
@@ -473,18 +475,6 @@ IntersectionCurve refine_curve(const SurfacePair& pair, IntersectionCurve c,
   return CurveDensifier(pair, eps / 3.0).run(c, refined, tangents);
 }
 
-/// True when parameters lie inside the surface's domain, off its edges by
-/// more than rounding (1e-9 of the domain's size).
-bool inside_domain(const BSplineSurface& s, const Eigen::Vector2d& uv) {
-  for (const Direction d : {Direction::u, Direction::v}) {
-    const double lo = s.domain_start(d), hi = s.domain_end(d);
-    const double margin = 1e-9 * (hi - lo);
-    const double x = uv[d == Direction::u ? 0 : 1];
-    if (!(x > lo + margin && x < hi - margin)) return false;
-  }
-  return true;
-}
-
 /// Refined pieces of one curve can end up to about 1.6 eps apart (where
 /// leaves of different sizes meet), or a leaf's edge apart along a knot line
 /// of both surfaces: the bridge fills such a gap with refined points when one
@@ -493,6 +483,15 @@ detail::GapBridge bridge_for(const SurfacePair& pair, double eps) {
   return [&pair, eps](const detail::CurvePoint& from, const detail::CurvePoint& to) {
     return CurveDensifier(pair, eps / 3.0)
         .between({from.point, from.uv_a, from.uv_b}, {to.point, to.uv_a, to.uv_b});
+  };
+}
+
+/// Pieces of a curve along an edge two faces share can stop short of the
+/// edge's end, where no triangle pair found the curve: the march follows it on.
+detail::EndMarch march_for(const SurfacePair& pair, double eps) {
+  return [&pair, eps](const detail::CurvePoint& end, const Eigen::Vector3d& outward,
+                      const std::function<bool(const Eigen::Vector3d&)>& stop) {
+    return march_from_end(pair, {end.point, end.uv_a, end.uv_b}, outward, eps / 3.0, stop);
   };
 }
 
@@ -1043,24 +1042,16 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
     result.curves = std::move(chained.curves);
     // Refinement keeps each curve's end points, so the bridge may reach as
     // far from them as refinement may move them (from a transversal leaf's
-    // end, to the nearest end facing it only: EndReaches); but not from an
-    // end on a face's edge: along it (faces that meet edge to edge) the
-    // leaves' triangles touch rather than cross, their segments are
-    // scattered, and bridging them gave pieces side by side.
+    // end, to the nearest end facing it only: EndReaches). Along an edge two
+    // faces share, the leaves' triangles touch rather than cross and their
+    // segments are scattered: the bridge joins the pieces along the edge.
     std::vector<detail::EndReaches> end_reaches;
     if (request.refine) {
       for (std::size_t ci = 0; ci < result.curves.size(); ++ci) {
         IntersectionCurve& c = result.curves[ci];
         c = refine_curve(pair, std::move(c), chained.reaches[ci], chained.pinned[ci],
                          request.tolerance);
-        const auto reach = [&](std::size_t k, double r) {
-          return k < c.points.size() && inside_domain(pair.a, c.uv_a[k]) &&
-                         inside_domain(pair.b, c.uv_b[k])
-                     ? r
-                     : 0.0;
-        };
-        end_reaches.push_back({reach(0, chained.reaches[ci].front()),
-                               reach(c.points.size() - 1, chained.reaches[ci].back()),
+        end_reaches.push_back({chained.reaches[ci].front(), chained.reaches[ci].back(),
                                chained.pinned[ci].front(), chained.pinned[ci].back()});
       }
     }
@@ -1069,7 +1060,8 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
       result.curves = detail::tidy_curves(
           std::move(result.curves), request.tolerance,
           request.refine ? bridge_for(pair, request.tolerance) : detail::GapBridge{},
-          std::move(end_reaches));
+          std::move(end_reaches),
+          request.refine ? march_for(pair, request.tolerance) : detail::EndMarch{});
   }
   std::vector<LeafContact> leaves;
   leaves.reserve(descent.pending.size());

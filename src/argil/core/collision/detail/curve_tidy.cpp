@@ -632,6 +632,33 @@ void close_if_loop(IntersectionCurve& c, const EndReaches& ends, double eps, Bri
   }
 }
 
+/// Marches each free end of every open curve on (EndMarch), stopping within
+/// eps of another curve or of the curve's own other end (a loop).
+void march_ends(std::vector<IntersectionCurve>& curves, double eps, const EndMarch& march) {
+  std::vector<Bounds> bounds;
+  bounds.reserve(curves.size());
+  for (const IntersectionCurve& c : curves) bounds.push_back(bounds_of(c, eps));
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    IntersectionCurve& c = curves[i];
+    if (c.closed() || c.points.size() < 2) continue;
+    // The back end, then the front end reversed; reversed back after.
+    for (int side = 0; side < 2; ++side) {
+      const Eigen::Vector3d other_end = c.points.front();
+      const auto stop = [&](const Eigen::Vector3d& p) {
+        if ((p - other_end).norm() <= eps) return true;
+        for (std::size_t j = 0; j < curves.size(); ++j)
+          if (j != i && !curves[j].points.empty() && bounds[j].holds(p) &&
+              distance_to_curve(p, curves[j]) <= eps)
+            return true;
+        return false;
+      };
+      append(c, march(end_point(c, false), end_of(c, false).outward, stop));
+      reverse(c);
+    }
+    bounds[i] = bounds_of(c, eps);
+  }
+}
+
 /// A curve no longer than eps: a place where the surfaces meet within eps
 /// (open, or a loop less than eps/2 across), not a branch of their
 /// intersection.
@@ -640,8 +667,8 @@ bool is_touch(const IntersectionCurve& c, double eps) { return !(c.length() > ep
 }  // namespace
 
 std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps,
-                                           const GapBridge& bridge,
-                                           std::vector<EndReaches> reaches) {
+                                           const GapBridge& bridge, std::vector<EndReaches> reaches,
+                                           const EndMarch& march) {
   reaches.resize(curves.size());
   for (std::size_t i = 0; i < curves.size(); ++i) {
     IntersectionCurve& c = curves[i];
@@ -665,6 +692,13 @@ std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves
     }
     for (std::size_t i = 0; i < curves.size(); ++i)
       close_if_loop(curves[i], reaches[i], eps, &asker);
+  }
+  if (march) {
+    march_ends(curves, eps, march);
+    while (join_one(curves, reaches, eps, nullptr)) {
+    }
+    for (std::size_t i = 0; i < curves.size(); ++i)
+      close_if_loop(curves[i], reaches[i], eps, nullptr);
   }
   // Every curve still no longer than eps is a touch (is_touch()). Then, joined
   // as far as they go, a piece of any length that another curve covers repeats

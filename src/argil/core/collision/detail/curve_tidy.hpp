@@ -25,6 +25,13 @@ struct CurvePoint {
 using GapBridge =
     std::function<std::optional<IntersectionCurve>(const CurvePoint& from, const CurvePoint& to)>;
 
+/// The refined points that continue a curve past its free end `end`, which
+/// it leaves along `outward`, up to where the curve ends (a face's edge) or
+/// `stop` accepts a point (another piece reached); empty when it does not go on.
+using EndMarch =
+    std::function<IntersectionCurve(const CurvePoint& end, const Eigen::Vector3d& outward,
+                                    const std::function<bool(const Eigen::Vector3d&)>& stop)>;
+
 /// How far apart two free ends may lie for tidy_curves() to ask the bridge,
 /// in eps: pieces of one curve meet up to about 1.6 eps apart where leaves of
 /// different sizes meet, as each piece's end is refined where its own flat
@@ -33,9 +40,11 @@ inline constexpr double kBridgeReach = 16.0;
 
 /// How far the bridge may reach from each end of a curve [mm], beyond
 /// kBridgeReach eps: about the size of the leaves the end's segment came
-/// from (0 for an end on a face's edge: see the query's bridge). A curve that runs along a leaf
-/// edge (a crossing along a knot line of both surfaces) passes through the cracks between leaves of
-/// different sizes there, and no triangle pair finds it along up to a leaf's edge.
+/// from. A curve that runs along a leaf edge (a crossing along a knot line of
+/// both surfaces) passes through the cracks between leaves of different sizes
+/// there, and no triangle pair finds it along up to a leaf's edge; along an
+/// edge two faces share, the leaves' triangles touch rather than cross, and
+/// their segments are scattered pieces of the edge.
 /// An end from a transversal leaf (`pinned`) keeps its leaf's reach, but joins
 /// through it only the nearest end that faces it: a large leaf's reach could
 /// otherwise join two pieces across a third between them.
@@ -62,12 +71,15 @@ struct EndReaches {
 /// curve, or none), through the bridge's points; where two pieces
 /// overlap by up to kBridgeReach eps, each past the other's end (their refined ends
 /// slid along the curve), the overlapping points of one go first.
+/// With a `march`, then marches every free end on (stopping within eps of
+/// another curve, or of its own other end) and joins and closes as before.
 /// Then drops every curve still no longer than eps: the surfaces meet there
 /// only within eps (faces that touch edge to edge, a loop less than eps/2
 /// across), which the query reports as its leaf pair's contact of depth 0.
 /// Last drops curves of any length that others cover within eps/2 (as above).
 std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps,
                                            const GapBridge& bridge = {},
-                                           std::vector<EndReaches> reaches = {});
+                                           std::vector<EndReaches> reaches = {},
+                                           const EndMarch& march = {});
 
 }  // namespace argil::detail

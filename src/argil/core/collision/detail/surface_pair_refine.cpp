@@ -11,13 +11,33 @@ namespace argil {
 namespace {
 
 /// What keeps an on-curve point from sliding along the curve: parameters
-/// fixed on their domain edges, or else a plane across the curve.
+/// fixed on their domain edges where the curve crosses them, or else a plane
+/// across the curve (also beside fixed parameters when the curve runs along
+/// their edges: there they do not pin the point).
 struct CurveConstraint {
   std::array<bool, 4> fixed{false, false, false, false};
   int fixed_count = 0;
   Eigen::Vector3d plane_normal = Eigen::Vector3d::Zero();  // zero: no plane
   Eigen::Vector3d plane_point = Eigen::Vector3d::Zero();
 };
+
+/// True when the fixed parameters pin a curve point: both of one surface's,
+/// or one whose iso-line (the edge it holds the point on) crosses the curve's
+/// unit tangent `t`. A curve along that edge (two faces meeting edge to edge,
+/// a face's edge lying on another face) leaves the point free to slide along
+/// it, a direction the Gauss-Newton step does not see.
+bool pinned_by_fixed(const SurfaceDerivatives& da, const SurfaceDerivatives& db,
+                     const std::array<bool, 4>& fixed, const Eigen::Vector3d& t) {
+  constexpr double kAlongSine = 1e-6;  // the iso-line runs along the curve
+  const auto pins = [&](const SurfaceDerivatives& d, bool u_fixed, bool v_fixed) {
+    if (u_fixed && v_fixed) return true;
+    if (!u_fixed && !v_fixed) return false;
+    const Eigen::Vector3d& along = u_fixed ? d.dv : d.du;  // the iso-line's direction
+    const double length = along.norm();
+    return !(length > 0.0) || along.cross(t).norm() > kAlongSine * length;
+  };
+  return pins(da, fixed[0], fixed[1]) || pins(db, fixed[2], fixed[3]);
+}
 
 /// From the surfaces' derivatives at the start x, with parameter `fixed`
 /// (-1: none) held as if on its domain edge.
@@ -31,13 +51,19 @@ CurveConstraint curve_constraint(const SurfaceDerivatives& da, const SurfaceDeri
       ++c.fixed_count;
     }
   }
-  if (c.fixed_count > 0) return c;
   const Eigen::Vector3d t = unit_normal(da).cross(unit_normal(db));
   // Tangent surfaces have no curve direction: fall back to closest points.
-  if (t.norm() > 1e-8) c.plane_normal = t.normalized();
+  if (!(t.norm() > 1e-8)) return c;
+  if (c.fixed_count > 0 && pinned_by_fixed(da, db, c.fixed, t.normalized())) return c;
+  c.plane_normal = t.normalized();
   c.plane_point = 0.5 * (da.point + db.point);
   return c;
 }
+
+/// Below this fraction of the largest pivot, a direction of the scaled
+/// (unit-column) Gauss-Newton matrix is taken as absent: the surfaces are
+/// parallel along it to within 1e-10 radians.
+constexpr double kRankCut = 1e-10;
 
 /// The minimum-norm Gauss-Newton step in (u_a, v_a, u_b, v_b) for
 /// S_a - S_b = 0 under the constraint.
@@ -51,17 +77,16 @@ Eigen::Vector4d gauss_newton_step(const SurfaceDerivatives& da, const SurfaceDer
   m.block<3, 1>(0, 3) = -db.dv;
   rhs.head<3>() = -(da.point - db.point);
   int rows = 3;
-  if (constraint.fixed_count > 0) {
-    // Edge parameters stay put: their columns drop out of the step.
-    for (int k = 0; k < 4; ++k)
-      if (constraint.fixed[static_cast<std::size_t>(k)]) m.col(k).setZero();
-  } else if (constraint.plane_normal.squaredNorm() > 0) {
+  if (constraint.plane_normal.squaredNorm() > 0) {
     const Eigen::Vector3d& n = constraint.plane_normal;
     m(3, 0) = n.dot(da.du);
     m(3, 1) = n.dot(da.dv);
     rhs[3] = -n.dot(da.point - constraint.plane_point);
     rows = 4;
   }
+  // Edge parameters stay put: their columns drop out of the step.
+  for (int k = 0; k < 4; ++k)
+    if (constraint.fixed[static_cast<std::size_t>(k)]) m.col(k).setZero();
   // Column scaling keeps the minimum-norm step meaningful when u and s
   // live on very different parameter ranges.
   Eigen::Vector4d col_scale;
@@ -82,8 +107,13 @@ Eigen::Vector4d gauss_newton_step(const SurfaceDerivatives& da, const SurfaceDer
       return col_scale.cwiseProduct(lu.solve(rhs.head<4>()));
   }
   const Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1> r = rhs.head(rows);
-  return col_scale.cwiseProduct(
-      Eigen::Vector4d(Eigen::CompleteOrthogonalDecomposition<Small>(ms).solve(r)));
+  // Eigen's default rank cut (about 1e-15) keeps directions made of rounding:
+  // a face edge lying in the other face's plane gives the out-of-plane row
+  // only rounding in both matrix and residual, and their ratio slid points
+  // along the curve by a millimetre, onto the edge's end.
+  Eigen::CompleteOrthogonalDecomposition<Small> cod(ms);
+  cod.setThreshold(kRankCut);
+  return col_scale.cwiseProduct(Eigen::Vector4d(cod.solve(r)));
 }
 
 /// The curve's direction from both surfaces' first derivatives.
