@@ -277,6 +277,21 @@ TEST_CASE("curve tidying drops short pieces, opens out-and-back loops, joins and
     CHECK(out[1].points.front() == Eigen::Vector3d(5, 0, 0));
     CHECK(out[1].points.back() == Eigen::Vector3d(5, 0.0016, 0));
   }
+  SECTION("of two curves side by side, the shorter goes when what leans on it stays near") {
+    // b runs within eps/2 of a (two pieces of one curve along a tangential
+    // edge); c, longer than eps, lies within eps/2 of b only. b is dropped
+    // when c stays within 3/4 eps of a, and kept when c does not.
+    const auto side_by_side = [&](double c_offset) {
+      return argil::detail::tidy_curves(
+          {curve({{0, 0, 0}, {1, 0, 0}}), curve({{0.1, 0.0004, 0}, {0.9, 0.0004, 0}}),
+           curve({{0.5, c_offset, 0}, {0.5015, c_offset, 0}})},
+          eps);
+    };
+    const auto near = side_by_side(0.0007);
+    REQUIRE(near.size() == 1);
+    CHECK(near[0].points.front() == Eigen::Vector3d(0, 0, 0));
+    CHECK(side_by_side(0.0008).size() == 2);
+  }
   SECTION("a branch crossing another at a small angle stays whole") {
     // The second branch's middle piece runs within eps/2 of the first: it
     // joins its neighbours first, and the whole branch is not covered.

@@ -244,21 +244,45 @@ void drop_covered(std::vector<IntersectionCurve>& curves, std::vector<EndReaches
   runs.reserve(curves.size());
   for (const IntersectionCurve& c : curves) runs.emplace_back(c, within);
   std::vector<bool> dropped(curves.size(), false);
-  // A curve that covers a dropped one is kept, so no point of a dropped
-  // curve ends up near only another dropped curve.
-  std::vector<bool> anchored(curves.size(), false);
+  // A curve that covers a dropped one (its `leaning` pieces) is dropped only
+  // when each of those still lies within 3/4 eps of the kept curves (checked
+  // likewise, every point then within 15/16 eps); the curves that hold them so
+  // are kept (`hard`). So no point of a dropped curve ends up farther than
+  // eps from the kept ones. (Two pieces side by side, each covering some of
+  // the short pieces along a tangential edge, would otherwise both stay.)
+  std::vector<std::vector<std::size_t>> leaning(curves.size());
+  std::vector<bool> hard(curves.size(), false);
+  std::vector<ChordRuns> loose_runs;  // for 3/4 eps, built when first needed
   for (const std::size_t i : order) {
     if (curves[i].points.empty()) {
       dropped[i] = true;
       continue;
     }
-    if (anchored[i] || !(lengths[i] <= longest)) continue;
+    if (hard[i] || !(lengths[i] <= longest)) continue;
     // Its points, and its chords every eps/4, within eps/2 of kept curves:
-    // every point of it lies within eps of them.
+    // every point of it lies within 5/8 eps of them.
     const std::vector<std::size_t> by = covering(curves, bounds, runs, i, dropped, within);
     if (by.empty()) continue;
     dropped[i] = true;
-    for (const std::size_t j : by) anchored[j] = true;
+    std::vector<std::size_t> holding;
+    bool held = true;
+    for (const std::size_t piece : leaning[i]) {
+      if (loose_runs.empty())
+        for (const IntersectionCurve& c : curves) loose_runs.emplace_back(c, 0.75 * eps);
+      const std::vector<std::size_t> now =
+          covering(curves, bounds, loose_runs, piece, dropped, 0.75 * eps);
+      if (now.empty()) {
+        held = false;
+        break;
+      }
+      holding.insert(holding.end(), now.begin(), now.end());
+    }
+    if (!held) {
+      dropped[i] = false;
+      continue;
+    }
+    for (const std::size_t j : holding) hard[j] = true;
+    for (const std::size_t j : by) leaning[j].push_back(i);
   }
   std::size_t kept = 0;
   for (std::size_t i = 0; i < curves.size(); ++i) {

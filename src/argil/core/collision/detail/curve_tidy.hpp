@@ -76,7 +76,9 @@ struct EndReaches {
 /// Then drops every curve still no longer than eps: the surfaces meet there
 /// only within eps (faces that touch edge to edge, a loop less than eps/2
 /// across), which the query reports as its leaf pair's contact of depth 0.
-/// Last drops curves of any length that others cover within eps/2 (as above).
+/// Last drops curves of any length that others cover within eps/2 (as above);
+/// one that covered a dropped piece goes only if that piece stays within 3/4
+/// eps of the curves kept.
 std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps,
                                            const GapBridge& bridge = {},
                                            std::vector<EndReaches> reaches = {},
