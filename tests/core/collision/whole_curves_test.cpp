@@ -291,6 +291,12 @@ TEST_CASE("curve tidying drops short pieces, opens out-and-back loops, joins and
     REQUIRE(near.size() == 1);
     CHECK(near[0].points.front() == Eigen::Vector3d(0, 0, 0));
     CHECK(side_by_side(0.0008).size() == 2);
+    // A piece no longer than eps, dropped before the joins, leans on b too.
+    CHECK(argil::detail::tidy_curves(
+              {curve({{0, 0, 0}, {1, 0, 0}}), curve({{0.1, 0.0004, 0}, {0.9, 0.0004, 0}}),
+               curve({{0.5, 0.0008, 0}, {0.5005, 0.0008, 0}})},
+              eps)
+              .size() == 2);
   }
   SECTION("a branch crossing another at a small angle stays whole") {
     // The second branch's middle piece runs within eps/2 of the first: it

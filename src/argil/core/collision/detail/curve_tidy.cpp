@@ -226,13 +226,19 @@ std::vector<std::size_t> covering(const std::vector<IntersectionCurve>& curves,
 }
 
 /// Drops, shortest first, curves no longer than `longest` whose points and
-/// chords lie within eps/2 of other kept curves (see tidy_curves()).
-void drop_covered(std::vector<IntersectionCurve>& curves, std::vector<EndReaches>& reaches,
-                  double eps, double longest) {
+/// chords lie within eps/2 of other kept curves (see tidy_curves()); returns
+/// them. `ghosts` are curves an earlier pass dropped: they lean on the curves
+/// near them as this pass's drops do.
+std::vector<IntersectionCurve> drop_covered(std::vector<IntersectionCurve>& curves,
+                                            std::vector<EndReaches>& reaches, double eps,
+                                            double longest,
+                                            std::vector<IntersectionCurve> ghosts = {}) {
+  const std::size_t count = curves.size();
+  for (IntersectionCurve& g : ghosts) curves.push_back(std::move(g));
   std::vector<double> lengths(curves.size());
   for (std::size_t i = 0; i < curves.size(); ++i) lengths[i] = curves[i].length();
   // Shortest first, so of two duplicate pieces the longer one stays.
-  std::vector<std::size_t> order(curves.size());
+  std::vector<std::size_t> order(count);
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t x, std::size_t y) { return lengths[x] < lengths[y]; });
@@ -244,6 +250,7 @@ void drop_covered(std::vector<IntersectionCurve>& curves, std::vector<EndReaches
   runs.reserve(curves.size());
   for (const IntersectionCurve& c : curves) runs.emplace_back(c, within);
   std::vector<bool> dropped(curves.size(), false);
+  for (std::size_t g = count; g < curves.size(); ++g) dropped[g] = true;
   // A curve that covers a dropped one (its `leaning` pieces) is dropped only
   // when each of those still lies within 3/4 eps of the kept curves (checked
   // likewise, every point then within 15/16 eps); the curves that hold them so
@@ -253,6 +260,21 @@ void drop_covered(std::vector<IntersectionCurve>& curves, std::vector<EndReaches
   std::vector<std::vector<std::size_t>> leaning(curves.size());
   std::vector<bool> hard(curves.size(), false);
   std::vector<ChordRuns> loose_runs;  // for 3/4 eps, built when first needed
+  const auto loose = [&]() -> const std::vector<ChordRuns>& {
+    if (loose_runs.empty())
+      for (const IntersectionCurve& c : curves) loose_runs.emplace_back(c, 0.75 * eps);
+    return loose_runs;
+  };
+  for (std::size_t g = count; g < curves.size(); ++g) {
+    std::vector<std::size_t> by = covering(curves, bounds, runs, g, dropped, within);
+    if (!by.empty()) {
+      for (const std::size_t j : by) leaning[j].push_back(g);
+      continue;
+    }
+    // Moved off by the joins since (an overlap left out): held where it is.
+    for (const std::size_t j : covering(curves, bounds, loose(), g, dropped, 0.75 * eps))
+      hard[j] = true;
+  }
   for (const std::size_t i : order) {
     if (curves[i].points.empty()) {
       dropped[i] = true;
@@ -267,10 +289,8 @@ void drop_covered(std::vector<IntersectionCurve>& curves, std::vector<EndReaches
     std::vector<std::size_t> holding;
     bool held = true;
     for (const std::size_t piece : leaning[i]) {
-      if (loose_runs.empty())
-        for (const IntersectionCurve& c : curves) loose_runs.emplace_back(c, 0.75 * eps);
       const std::vector<std::size_t> now =
-          covering(curves, bounds, loose_runs, piece, dropped, 0.75 * eps);
+          covering(curves, bounds, loose(), piece, dropped, 0.75 * eps);
       if (now.empty()) {
         held = false;
         break;
@@ -284,9 +304,13 @@ void drop_covered(std::vector<IntersectionCurve>& curves, std::vector<EndReaches
     for (const std::size_t j : holding) hard[j] = true;
     for (const std::size_t j : by) leaning[j].push_back(i);
   }
+  std::vector<IntersectionCurve> gone;
   std::size_t kept = 0;
-  for (std::size_t i = 0; i < curves.size(); ++i) {
-    if (dropped[i]) continue;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (dropped[i]) {
+      if (!curves[i].points.empty()) gone.push_back(std::move(curves[i]));
+      continue;
+    }
     if (kept != i) {  // a vector moved onto itself would come out empty
       curves[kept] = std::move(curves[i]);
       reaches[kept] = reaches[i];
@@ -295,6 +319,7 @@ void drop_covered(std::vector<IntersectionCurve>& curves, std::vector<EndReaches
   }
   curves.resize(kept);
   reaches.resize(kept);
+  return gone;
 }
 
 /// One free end of an open curve: where it is and the direction the curve
@@ -705,7 +730,7 @@ std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves
   }
   // Only short pieces: a longer stretch of a branch that runs within eps/2 of
   // another (a crossing at a small angle) must stay, or the branch splits.
-  drop_covered(curves, reaches, eps, eps);
+  std::vector<IntersectionCurve> early = drop_covered(curves, reaches, eps, eps);
   while (join_one(curves, reaches, eps, nullptr)) {
   }
   for (std::size_t i = 0; i < curves.size(); ++i)
@@ -733,7 +758,7 @@ std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves
     curves.erase(curves.begin() + static_cast<long>(i));
     reaches.erase(reaches.begin() + static_cast<long>(i));
   }
-  drop_covered(curves, reaches, eps, std::numeric_limits<double>::infinity());
+  drop_covered(curves, reaches, eps, std::numeric_limits<double>::infinity(), std::move(early));
   // Pieces joined within eps can meet at points that repeat up to rounding.
   for (IntersectionCurve& c : curves) drop_repeated_points(c, 1e-6 * eps);
   return curves;
