@@ -1,6 +1,7 @@
 #include "argil/core/collision/detail/curve_end_march.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include "argil/core/collision/detail/curve_densifier.hpp"
@@ -11,6 +12,15 @@ namespace {
 
 /// At most this many points marched from one end.
 constexpr std::size_t kMaxPoints = 10000;
+
+/// `stop` is asked along the marched chords every this many tolerances (an
+/// eps): a long step must not pass the end of another piece unasked.
+constexpr double kStopSpacing = 3.0;
+
+/// A parameter on its domain edge whose rate along the curve points out of
+/// the domain by more than this fraction of its surface's rate: the curve
+/// leaves there (below it, the rate is rounding: the curve runs along the edge).
+constexpr double kLeaving = 1e-6;
 
 Eigen::Vector4d params_of(const PairPoint& p) {
   return {p.uv_a[0], p.uv_a[1], p.uv_b[0], p.uv_b[1]};
@@ -39,20 +49,31 @@ IntersectionCurve march_from_end(const SurfacePair& pair, const PairPoint& end,
   CurveTangent t = oriented(curve_tangent(pair.a, pair.b, end.uv_a, end.uv_b), outward);
   // The curve must leave the end the way the piece does (within 60 degrees):
   // otherwise the end is a turn the tangent does not describe.
-  if (t.unit.isZero(0.0) || !(t.unit.dot(outward) >= 0.5 * outward.norm())) return out;
+  if (t.unit.isZero(0.0) || !(outward.norm() > 0.0) ||
+      !(t.unit.dot(outward) >= 0.5 * outward.norm()))
+    return out;
   CurveDensifier densifier(pair, tolerance);
   PairPoint at = end;
   double step = 4.0 * tolerance;
   while (out.points.size() < kMaxPoints) {
     const Eigen::Vector4d x = params_of(at);
     Eigen::Vector4d rate(t.uv_a[0], t.uv_a[1], t.uv_b[0], t.uv_b[1]);
-    // A parameter on its domain edge stays there (a curve along the edge),
-    // and a step that would leave a domain is cut at its edge.
+    // A parameter on its domain edge: the curve leaves the domain there, or
+    // runs along the edge and the parameter stays on it. A step that would
+    // leave a domain is cut at its edge.
+    bool leaving = false;
+    for (int k = 0; k < 4; ++k) {
+      if (x[k] != lo[k] && x[k] != hi[k]) continue;
+      const double surface_rate = (k < 2 ? t.uv_a : t.uv_b).norm();
+      const double outward_rate = x[k] == hi[k] ? rate[k] : -rate[k];
+      if (outward_rate > kLeaving * surface_rate) leaving = true;
+      rate[k] = 0.0;
+    }
+    if (leaving) break;
     double fraction = 1.0;
     int edge = -1;  // the parameter whose domain edge cuts the step
     double edge_value = 0.0;
     for (int k = 0; k < 4; ++k) {
-      if (x[k] == lo[k] || x[k] == hi[k]) rate[k] = 0.0;
       const double to = x[k] + step * rate[k];
       const double bound = to > hi[k] ? hi[k] : to < lo[k] ? lo[k] : to;
       if (bound == to) continue;
@@ -84,14 +105,24 @@ IntersectionCurve march_from_end(const SurfacePair& pair, const PairPoint& end,
       continue;
     }
     const CurveTangent next_t = oriented(r->tangent, t.unit);
-    out.points.insert(out.points.end(), between->points.begin(), between->points.end());
-    out.uv_a.insert(out.uv_a.end(), between->uv_a.begin(), between->uv_a.end());
-    out.uv_b.insert(out.uv_b.end(), between->uv_b.begin(), between->uv_b.end());
-    out.points.push_back(r->point);
-    out.uv_a.push_back(r->uv_a);
-    out.uv_b.push_back(r->uv_b);
-    if (edge >= 0 || next_t.unit.isZero(0.0) || stop(r->point)) break;
-    if (between->points.empty()) step *= 2.0;
+    between->points.push_back(r->point);
+    between->uv_a.push_back(r->uv_a);
+    between->uv_b.push_back(r->uv_b);
+    // Up to the first chord along which `stop` accepts a point.
+    bool stopped = false;
+    Eigen::Vector3d from = at.point;
+    for (std::size_t k = 0; k < between->points.size() && !stopped; ++k) {
+      const Eigen::Vector3d& to = between->points[k];
+      const double samples = std::ceil((to - from).norm() / (kStopSpacing * tolerance));
+      for (double i = 1.0; i <= samples && !stopped; i += 1.0)
+        stopped = stop(from + (i / samples) * (to - from));
+      out.points.push_back(to);
+      out.uv_a.push_back(between->uv_a[k]);
+      out.uv_b.push_back(between->uv_b[k]);
+      from = to;
+    }
+    if (stopped || edge >= 0 || next_t.unit.isZero(0.0)) break;
+    if (between->points.size() == 1) step *= 2.0;
     at = {r->point, r->uv_a, r->uv_b};
     t = next_t;
   }

@@ -15,13 +15,14 @@ namespace argil {
 /// The refined points that continue a curve past its free end `end` (a point
 /// on both surfaces), leaving along `outward`, every chord within `tolerance`
 /// of the curve (CurveDensifier). Steps along the curve's tangent n_a x n_b
-/// (a parameter on its domain edge stays on it), refines each step across the
-/// curve, and doubles the step while no point is needed between steps or
-/// halves it, down to the tolerance, where a step does not refine ahead.
-/// Stops where the curve leaves either domain, where it no longer refines (a
-/// tangency, or no curve beyond the end), after a point that `stop` accepts
-/// (another piece reached), and at 1e4 points. Empty when the curve does not
-/// go on.
+/// (a parameter on its domain edge stays on it where the curve runs along the
+/// edge), refines each step across the curve, and doubles the step while no
+/// point is needed between steps or halves it, down to the tolerance, where a
+/// step does not refine ahead. Stops where the curve leaves either domain,
+/// where it no longer refines (a tangency, or no curve beyond the end), at the
+/// end of the first chord along which `stop` accepts a point (asked every 3
+/// tolerances: another piece reached), and at 1e4 points. Empty when the curve
+/// does not go on, or `outward` has no direction.
 IntersectionCurve march_from_end(const SurfacePair& pair, const PairPoint& end,
                                  const Eigen::Vector3d& outward, double tolerance,
                                  const std::function<bool(const Eigen::Vector3d&)>& stop);

@@ -681,22 +681,45 @@ void close_if_loop(IntersectionCurve& c, const EndReaches& ends, double eps, Bri
   }
 }
 
-/// Marches each free end of every open curve on (EndMarch), stopping within
-/// eps of another curve or of the curve's own other end (a loop).
+/// A curve no longer than eps: a place where the surfaces meet within eps
+/// (open, or a loop less than eps/2 across), not a branch of their
+/// intersection.
+bool is_touch(const IntersectionCurve& c, double eps) { return !(c.length() > eps); }
+
+/// The curve's points before the stretch of about `length` at its end.
+IntersectionCurve before_end(const IntersectionCurve& c, double length) {
+  std::size_t k = c.points.size() - 1;
+  for (double along = 0.0; k > 0 && along <= length; --k)
+    along += (c.points[k] - c.points[k - 1]).norm();
+  IntersectionCurve out;
+  out.points.assign(c.points.begin(), c.points.begin() + static_cast<long>(k));
+  return out;
+}
+
+/// Marches each free end of every open curve longer than eps (a touch is no
+/// branch: see is_touch()) on (EndMarch), stopping within eps of another curve
+/// longer than eps or of its own curve away from the end (a loop, or a march
+/// turned back). A march runs over touches: stopped at one, it left the rest
+/// of the curve unmarched (bearing.iges faces 160 and 167: 4.2 of 6.1 um).
 void march_ends(std::vector<IntersectionCurve>& curves, double eps, const EndMarch& march) {
   std::vector<Bounds> bounds;
-  bounds.reserve(curves.size());
-  for (const IntersectionCurve& c : curves) bounds.push_back(bounds_of(c, eps));
+  std::vector<bool> touch;
+  for (const IntersectionCurve& c : curves) {
+    bounds.push_back(bounds_of(c, eps));
+    touch.push_back(is_touch(c, eps));
+  }
   for (std::size_t i = 0; i < curves.size(); ++i) {
     IntersectionCurve& c = curves[i];
-    if (c.closed() || c.points.size() < 2) continue;
+    if (c.closed() || c.points.size() < 2 || touch[i]) continue;
     // The back end, then the front end reversed; reversed back after.
     for (int side = 0; side < 2; ++side) {
-      const Eigen::Vector3d other_end = c.points.front();
+      const IntersectionCurve own = before_end(c, 2.0 * eps);
+      const Bounds own_box = bounds_of(own, eps);
       const auto stop = [&](const Eigen::Vector3d& p) {
-        if ((p - other_end).norm() <= eps) return true;
+        if (!own.points.empty() && own_box.holds(p) && distance_to_curve(p, own) <= eps)
+          return true;
         for (std::size_t j = 0; j < curves.size(); ++j)
-          if (j != i && !curves[j].points.empty() && bounds[j].holds(p) &&
+          if (j != i && !touch[j] && !curves[j].points.empty() && bounds[j].holds(p) &&
               distance_to_curve(p, curves[j]) <= eps)
             return true;
         return false;
@@ -707,11 +730,6 @@ void march_ends(std::vector<IntersectionCurve>& curves, double eps, const EndMar
     bounds[i] = bounds_of(c, eps);
   }
 }
-
-/// A curve no longer than eps: a place where the surfaces meet within eps
-/// (open, or a loop less than eps/2 across), not a branch of their
-/// intersection.
-bool is_touch(const IntersectionCurve& c, double eps) { return !(c.length() > eps); }
 
 }  // namespace
 

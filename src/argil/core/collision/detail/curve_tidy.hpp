@@ -60,8 +60,8 @@ struct EndReaches {
 /// that starts or ends out and back over itself starts at its turn (the points
 /// left out lie within eps/2 of the rest). Then drops, shortest first, every curve
 /// no longer than eps whose points and chords (checked every eps/4) lie within
-/// eps/2 of other curves, and keeps those (a duplicate piece: every point of it
-/// stays within eps of the reported set). Then joins open curves
+/// eps/2 of other curves (a duplicate piece: every point of it stays within
+/// eps of the reported set, see the last step). Then joins open curves
 /// whose free ends lie within eps of each other and run on with a turn of at
 /// most a right angle, or that overlap with each end on the other (the
 /// overlap left out of one), and closes an open curve longer than 2 eps whose own
@@ -71,14 +71,15 @@ struct EndReaches {
 /// curve, or none), through the bridge's points; where two pieces
 /// overlap by up to kBridgeReach eps, each past the other's end (their refined ends
 /// slid along the curve), the overlapping points of one go first.
-/// With a `march`, then marches every free end on (stopping within eps of
-/// another curve, or of its own other end) and joins and closes as before.
+/// With a `march`, then marches every free end of a curve longer than eps on
+/// (stopping within eps of another curve, or of its own away from the end)
+/// and joins and closes as before.
 /// Then drops every curve still no longer than eps: the surfaces meet there
 /// only within eps (faces that touch edge to edge, a loop less than eps/2
 /// across), which the query reports as its leaf pair's contact of depth 0.
 /// Last drops curves of any length that others cover within eps/2 (as above);
-/// one that covered a dropped piece goes only if that piece stays within 3/4
-/// eps of the curves kept.
+/// one that covered a dropped piece, in this pass or the first, goes only if
+/// that piece stays within 3/4 eps of the curves kept (which then stay).
 std::vector<IntersectionCurve> tidy_curves(std::vector<IntersectionCurve> curves, double eps,
                                            const GapBridge& bridge = {},
                                            std::vector<EndReaches> reaches = {},
