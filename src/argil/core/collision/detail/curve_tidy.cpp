@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 namespace argil::detail {
 
@@ -702,10 +703,13 @@ IntersectionCurve before_end(const IntersectionCurve& c, double length) {
 /// turned back). A march runs over touches: stopped at one, it left the rest
 /// of the curve unmarched (bearing.iges faces 160 and 167: 4.2 of 6.1 um).
 void march_ends(std::vector<IntersectionCurve>& curves, double eps, const EndMarch& march) {
-  std::vector<Bounds> bounds;
+  // `curves` is not resized here, so the runs' references stay valid; a
+  // marched curve's runs are rebuilt.
+  std::vector<std::optional<ChordRuns>> runs(curves.size());
   std::vector<bool> touch;
-  for (const IntersectionCurve& c : curves) {
-    bounds.push_back(bounds_of(c, eps));
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    const IntersectionCurve& c = curves[i];
+    runs[i].emplace(c, eps);
     touch.push_back(is_touch(c, eps));
   }
   for (std::size_t i = 0; i < curves.size(); ++i) {
@@ -714,20 +718,17 @@ void march_ends(std::vector<IntersectionCurve>& curves, double eps, const EndMar
     // The back end, then the front end reversed; reversed back after.
     for (int side = 0; side < 2; ++side) {
       const IntersectionCurve own = before_end(c, 2.0 * eps);
-      const Bounds own_box = bounds_of(own, eps);
+      const ChordRuns own_runs(own, eps);
       const auto stop = [&](const Eigen::Vector3d& p) {
-        if (!own.points.empty() && own_box.holds(p) && distance_to_curve(p, own) <= eps)
-          return true;
+        if (own_runs.near(p)) return true;
         for (std::size_t j = 0; j < curves.size(); ++j)
-          if (j != i && !touch[j] && !curves[j].points.empty() && bounds[j].holds(p) &&
-              distance_to_curve(p, curves[j]) <= eps)
-            return true;
+          if (j != i && !touch[j] && runs[j]->near(p)) return true;
         return false;
       };
       append(c, march(end_point(c, false), end_of(c, false).outward, stop));
       reverse(c);
     }
-    bounds[i] = bounds_of(c, eps);
+    runs[i].emplace(c, eps);
   }
 }
 

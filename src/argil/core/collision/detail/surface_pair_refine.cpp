@@ -16,7 +16,6 @@ namespace {
 /// their edges: there they do not pin the point).
 struct CurveConstraint {
   std::array<bool, 4> fixed{false, false, false, false};
-  int fixed_count = 0;
   Eigen::Vector3d plane_normal = Eigen::Vector3d::Zero();  // zero: no plane
   Eigen::Vector3d plane_point = Eigen::Vector3d::Zero();
 };
@@ -46,16 +45,14 @@ CurveConstraint curve_constraint(const SurfaceDerivatives& da, const SurfaceDeri
                                  const Eigen::Vector4d& hi, int fixed) {
   CurveConstraint c;
   for (int k = 0; k < 4; ++k) {
-    if (x[k] == lo[k] || x[k] == hi[k] || k == fixed) {
-      c.fixed[static_cast<std::size_t>(k)] = true;
-      ++c.fixed_count;
-    }
+    if (x[k] == lo[k] || x[k] == hi[k] || k == fixed) c.fixed[static_cast<std::size_t>(k)] = true;
   }
   const Eigen::Vector3d t = unit_normal(da).cross(unit_normal(db));
   // Tangent surfaces have no curve direction: fall back to closest points.
   if (!(t.norm() > 1e-8)) return c;
-  if (c.fixed_count > 0 && pinned_by_fixed(da, db, c.fixed, t.normalized())) return c;
-  c.plane_normal = t.normalized();
+  const Eigen::Vector3d unit = t.normalized();
+  if (pinned_by_fixed(da, db, c.fixed, unit)) return c;
+  c.plane_normal = unit;
   c.plane_point = 0.5 * (da.point + db.point);
   return c;
 }
