@@ -7,8 +7,9 @@
 // (materials and the deformable body), haptic (proxies, coupling, the tick).
 
 // base
-#include "argil/core/base/number_text.hpp"  // IWYU pragma: export
-#include "argil/core/base/status.hpp"       // IWYU pragma: export
+#include "argil/core/base/chunked_vector.hpp"  // IWYU pragma: export
+#include "argil/core/base/number_text.hpp"     // IWYU pragma: export
+#include "argil/core/base/status.hpp"          // IWYU pragma: export
 // linalg
 #include "argil/core/linalg/banded_cholesky.hpp"  // IWYU pragma: export
 #include "argil/core/linalg/banded_lu.hpp"        // IWYU pragma: export

@@ -135,6 +135,59 @@ TEST_CASE("a sheet swept along a floor without reaching it does not cross it",
   }
 }
 
+namespace {
+
+/// What the random swept cases exercised.
+struct SweptTally {
+  int clear_runs = 0, swept_crossings = 0, passed_through = 0;
+};
+
+/// Checks the swept query of b (a copy of `patch`) from `from` to `to` against
+/// samples of the motion eps / 4 apart: every crossing the samples find is
+/// found, every reported one has a sampled pose within 3 eps, and b's point at
+/// its uv_b passes within eps of it. Motions whose start crosses are skipped.
+void check_against_sampling(const argil::SurfaceHierarchy& a, const argil::SurfaceHierarchy& b,
+                            const BSplineSurface& patch, const Pose& from, const Pose& to,
+                            double eps, SweptTally& tally) {
+  if (crosses(argil::collide(a, b, from, crossing_test(eps)))) return;
+  ++tally.clear_runs;
+  const argil::CollisionResult swept_result =
+      argil::collide_swept(a, b, from, to, crossing_test(eps));
+  const argil::Contact* crossing = first_crossing(swept_result);
+  const bool swept = crossing != nullptr;
+  tally.swept_crossings += swept ? 1 : 0;
+  const bool end_crosses = crosses(argil::collide(a, b, to, crossing_test(eps)));
+  if (swept && !end_crosses) ++tally.passed_through;
+  const double travel = (to.p - from.p).norm();
+  const int samples = std::max(1, static_cast<int>(std::ceil(travel / (0.25 * eps))));
+  bool sampled_crossing = false, sampled_near = false;
+  // The crossing's point on b (its uv_b) passes within eps of it on the
+  // way (a point anywhere else on b's leaf need not).
+  const Eigen::Vector3d on_b = crossing != nullptr
+                                   ? argil::evaluate(patch, crossing->uv_b[0], crossing->uv_b[1])
+                                   : Eigen::Vector3d::Zero();
+  double b_point_gap = std::numeric_limits<double>::infinity();
+  const CollisionRequest near{.tolerance = 3.0 * eps,
+                              .max_contacts = 1,
+                              .refine = false,
+                              .compute_depth = false,
+                              .curves = false};
+  for (int k = 1; k <= samples && !(sampled_crossing && sampled_near); ++k) {
+    const Pose at = argil::interpolate(from, to, static_cast<double>(k) / samples);
+    if (!sampled_crossing) sampled_crossing = crosses(argil::collide(a, b, at, crossing_test(eps)));
+    if (swept && !sampled_near) sampled_near = !argil::collide(a, b, at, near).contacts.empty();
+  }
+  for (int k = 0; swept && k <= samples; ++k) {
+    const Pose at = argil::interpolate(from, to, static_cast<double>(k) / samples);
+    b_point_gap = std::min(b_point_gap, (argil::apply(at, on_b) - crossing->point).norm());
+  }
+  if (sampled_crossing) CHECK(swept);  // no crossing missed
+  if (swept) CHECK(sampled_near);      // none reported far from the motion
+  if (swept) CHECK(b_point_gap <= eps);
+}
+
+}  // namespace
+
 TEST_CASE(
     "random swept graph patches: every crossing of a dense sampling of the motion is found, and "
     "every reported one has a sampled pose within 3 eps, and b's point at its uv_b passes within "
@@ -143,7 +196,7 @@ TEST_CASE(
   std::mt19937_64 rng(415);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double eps = 0.3;
-  int passed_through = 0, swept_crossings = 0, clear_runs = 0;
+  SweptTally tally;
   for (int trial = 0; trial < 40; ++trial) {
     CAPTURE(trial);
     const BSplineSurface surface = argil::test::graph_surface(rng, 100.0, 8.0, 0.0, 4, 3);
@@ -163,48 +216,66 @@ TEST_CASE(
     const Eigen::Quaterniond R0(Eigen::AngleAxisd(0.5 * unit(rng), axis));
     const double angle = trial % 2 == 0 ? 0.0 : 0.2 * unit(rng);
     const Eigen::Quaterniond R1 = Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis)) * R0;
-    const Pose from{R0, start}, to{R1, start + travel};
-    if (crosses(argil::collide(a, b, from, crossing_test(eps)))) continue;
-    ++clear_runs;
-    const argil::CollisionResult swept_result =
-        argil::collide_swept(a, b, from, to, crossing_test(eps));
-    const argil::Contact* crossing = first_crossing(swept_result);
-    const bool swept = crossing != nullptr;
-    swept_crossings += swept ? 1 : 0;
-    const bool end_crosses = crosses(argil::collide(a, b, to, crossing_test(eps)));
-    if (swept && !end_crosses) ++passed_through;
-    // Samples eps / 4 apart along the motion.
-    const int samples = static_cast<int>(std::ceil(travel.norm() / (0.25 * eps)));
-    bool sampled_crossing = false, sampled_near = false;
-    // The crossing's point on b (its uv_b) passes within eps of it on the
-    // way (a point anywhere else on b's leaf need not).
-    const Eigen::Vector3d on_b = crossing != nullptr
-                                     ? argil::evaluate(patch, crossing->uv_b[0], crossing->uv_b[1])
-                                     : Eigen::Vector3d::Zero();
-    double b_point_gap = std::numeric_limits<double>::infinity();
-    const CollisionRequest near{.tolerance = 3.0 * eps,
-                                .max_contacts = 1,
-                                .refine = false,
-                                .compute_depth = false,
-                                .curves = false};
-    for (int k = 1; k <= samples && !(sampled_crossing && sampled_near); ++k) {
-      const Pose at = argil::interpolate(from, to, static_cast<double>(k) / samples);
-      if (!sampled_crossing)
-        sampled_crossing = crosses(argil::collide(a, b, at, crossing_test(eps)));
-      if (swept && !sampled_near) sampled_near = !argil::collide(a, b, at, near).contacts.empty();
-    }
-    for (int k = 0; swept && k <= samples; ++k) {
-      const Pose at = argil::interpolate(from, to, static_cast<double>(k) / samples);
-      b_point_gap = std::min(b_point_gap, (argil::apply(at, on_b) - crossing->point).norm());
-    }
-    if (sampled_crossing) CHECK(swept);  // no crossing missed
-    if (swept) CHECK(sampled_near);      // none reported far from the motion
-    if (swept) CHECK(b_point_gap <= eps);
+    check_against_sampling(a, b, patch, {R0, start}, {R1, start + travel}, eps, tally);
   }
-  CAPTURE(clear_runs, swept_crossings, passed_through);
+  CAPTURE(tally.clear_runs, tally.swept_crossings, tally.passed_through);
   // The cases exercise what they test: clear starts, crossings, and crossings
   // that neither end shows.
-  CHECK(clear_runs >= 30);
-  CHECK(swept_crossings >= 10);
-  CHECK(passed_through >= 5);
+  CHECK(tally.clear_runs >= 30);
+  CHECK(tally.swept_crossings >= 10);
+  CHECK(tally.passed_through >= 5);
+}
+
+TEST_CASE(
+    "random graph patches sliding along a wavy surface just above it: every crossing a dense "
+    "sampling finds is found",
+    "[collision][swept]") {
+  // The swept bounds keep the translation apart from the turn (a tool sliding
+  // along a surface stays as far from it as at rest): these motions run
+  // nearly along the surface, a few eps above it at the start, so the way
+  // clips crests that neither end reaches.
+  std::mt19937_64 rng(2811);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double eps = 0.1;
+  SweptTally tally;
+  for (int trial = 0; trial < 60; ++trial) {
+    CAPTURE(trial);
+    const BSplineSurface surface = argil::test::graph_surface(rng, 40.0, 5.0, 0.0, 4, 3);
+    BSplineSurface patch = argil::test::graph_surface(rng, 10.0, 0.3, 0.0, 3, 2);
+    patch.control_points.col(0).array() -= 5.0;
+    patch.control_points.col(1).array() -= 5.0;
+    const argil::SurfaceHierarchy a = argil::test::hierarchy_for(surface);
+    const argil::SurfaceHierarchy b = argil::test::hierarchy_for(patch);
+    const Eigen::Quaterniond R0(Eigen::AngleAxisd(
+        0.1 * unit(rng),
+        Eigen::Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5).normalized()));
+    // Both ends lowered from above in eps steps to the last pose clear by
+    // more than eps: the line between them runs through the crests between
+    // and over the troughs.
+    const double angle = trial % 2 == 0 ? 0.0 : 0.02 * unit(rng);
+    const Eigen::Quaterniond R1 =
+        Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ())) * R0;
+    const CollisionRequest touch{.tolerance = eps,
+                                 .max_contacts = 1,
+                                 .refine = false,
+                                 .compute_depth = false,
+                                 .curves = false};
+    const auto lowered = [&](const Eigen::Quaterniond& R, Eigen::Vector3d p) {
+      p.z() = 12.0;
+      while (p.z() > -12.0 &&
+             argil::collide(a, b, Pose{R, p - Eigen::Vector3d(0, 0, eps)}, touch).contacts.empty())
+        p.z() -= eps;
+      return p;
+    };
+    const Eigen::Vector3d start =
+        lowered(R0, {10.0 + 20.0 * unit(rng), 10.0 + 20.0 * unit(rng), 0});
+    const double heading = 2.0 * M_PI * unit(rng), length = 3.0 + 9.0 * unit(rng);
+    const Eigen::Vector3d end =
+        lowered(R1, start + length * Eigen::Vector3d(std::cos(heading), std::sin(heading), 0.0));
+    const Eigen::Vector3d travel = end - start;
+    check_against_sampling(a, b, patch, {R0, start}, {R1, start + travel}, eps, tally);
+  }
+  CAPTURE(tally.clear_runs, tally.swept_crossings, tally.passed_through);
+  CHECK(tally.clear_runs >= 50);
+  CHECK(tally.passed_through >= 6);
 }

@@ -58,6 +58,11 @@ struct View {
   /// triangles (c00, c10, c11), (c00, c11, c01); +inf for blocks.
   double flatness = std::numeric_limits<double>::infinity();
   std::array<Eigen::Vector3d, 4> corners{};
+  /// A swept query's b: the node lies within `flatness` of its corner
+  /// triangles moved by t `sweep`, for some t in [-1, 1] (half the motion's
+  /// translation, kept apart from the flatness: a tool sliding along a
+  /// surface moves along its triangles' planes). Zero otherwise.
+  Eigen::Vector3d sweep = Eigen::Vector3d::Zero();
   /// The corner triangles' cheap bounds, placed: filled by corner_triangles()
   /// on first use (most views never need them).
   mutable std::optional<std::array<TriangleBound, 2>> triangles{};
@@ -84,13 +89,21 @@ bool is_thin(const View& v) { return v.flatness < 0.5 * v.radius; }
 /// lies near its plane. A triangle's plane is tried before the triangle
 /// itself: its distance is a lower bound, and usually the same one.
 bool sphere_apart_from_flat_patch(const View& node, const View& sphere, double eps) {
+  // A swept node's triangles move by up to |sweep|, and off their planes by
+  // the sweep's component along the normal only. (A swept sphere already
+  // holds the whole motion.)
+  const Eigen::Vector3d& h = node.sweep;
+  const double moved = h.norm();
   for (const TriangleBound& t : corner_triangles(node)) {
     const Eigen::Vector3d to_centre = sphere.center - t.t[0];
     if (t.length > 0.0 &&
-        std::abs(t.normal.dot(to_centre)) / t.length - sphere.radius - node.flatness > eps)
+        (std::abs(t.normal.dot(to_centre)) - std::abs(t.normal.dot(h))) / t.length - sphere.radius -
+                node.flatness >
+            eps)
       continue;
     const Eigen::Vector3d foot = closest_point_on_triangle(sphere.center, t.t[0], t.t[1], t.t[2]);
-    if (!((foot - sphere.center).norm() - sphere.radius - node.flatness > eps)) return false;
+    if (!((foot - sphere.center).norm() - moved - sphere.radius - node.flatness > eps))
+      return false;
   }
   return true;
 }
@@ -142,6 +155,11 @@ struct Sweep {
   Rigid start;
   Rigid middle;
   double reach = 0.0;
+  /// The reach split in two: half the translation, a point's straight line
+  /// spanning t half_translation (t in [-1, 1]) about its midpoint, and the
+  /// rest, from the turn (half its chord and the sagitta).
+  Eigen::Vector3d half_translation = Eigen::Vector3d::Zero();
+  double turn_reach = 0.0;
   double sagitta = 0.0;
   double travel = 0.0;  // the farthest any point of b moves [mm]
 };
@@ -259,8 +277,10 @@ class Side {
     // the sphere and box around both ends (which contain the corners'
     // straight lines), and the halfway bounds grown by how far any point
     // strays from its halfway position. Only the second keeps corner
-    // triangles (with the flatness grown alike), which separate a flat tool
-    // lying on a surface from it.
+    // triangles, which separate a flat tool lying on a surface from it: the
+    // flatness grows by the turn's part of the stray, and the translation's
+    // part is kept as a vector (View::sweep), so a tool sliding along a
+    // surface stays as far from it as it is at rest.
     const View start = placed_by(sweep_->start, own);
     View middle = placed_by(sweep_->middle, own);
     const double grow = sweep_->reach;
@@ -273,7 +293,8 @@ class Side {
     }
     middle.lo = (middle.lo.array() - grow).max(v.lo.cwiseMin(start.lo).array());
     middle.hi = (middle.hi.array() + grow).min(v.hi.cwiseMax(start.hi).array());
-    middle.flatness += grow;  // +inf stays +inf
+    middle.flatness += sweep_->turn_reach;  // +inf stays +inf
+    middle.sweep = sweep_->half_translation;
     return middle;
   }
 
@@ -338,15 +359,29 @@ bool farther_than(const TriangleBound& a, const TriangleBound& b, double eps) {
          beyond_plane(b.normal, b.length, b.t[0], a.t, eps);
 }
 
+/// The same for b moved by t h against a, for every t in [-1, 1]: the boxes
+/// grow by |h| per axis, and each plane test by h's part along its normal.
+bool farther_than(const TriangleBound& a, const TriangleBound& b, double eps,
+                  const Eigen::Vector3d& h) {
+  if ((((b.lo - a.hi).cwiseMax(a.lo - b.hi) - h.cwiseAbs()).array() > eps).any()) return true;
+  const auto along = [&h](const TriangleBound& t) {
+    return t.length > 0.0 ? std::abs(t.normal.dot(h)) / t.length : 0.0;
+  };
+  return beyond_plane(a.normal, a.length, a.t[0], b.t, eps + along(a)) ||
+         beyond_plane(b.normal, b.length, b.t[0], a.t, eps + along(b));
+}
+
 /// True when every corner triangle of node a is more than eps + both
 /// flatness bounds from every corner triangle of node b (cheap tests only),
 /// so the patches are more than eps apart. Separates tilted thin patches
 /// that sphere and axis-aligned box tests cannot. Both nodes thin.
 bool triangles_farther_than(const View& a, const View& b, double eps) {
   const double margin = eps + a.flatness + b.flatness;
+  const Eigen::Vector3d h = b.sweep - a.sweep;  // b's motion against a
+  const bool swept = !h.isZero(0.0);
   for (const TriangleBound& x : corner_triangles(a))
     for (const TriangleBound& y : corner_triangles(b))
-      if (!farther_than(x, y, margin)) return false;
+      if (swept ? !farther_than(x, y, margin, h) : !farther_than(x, y, margin)) return false;
   return true;
 }
 
@@ -1103,12 +1138,14 @@ CollisionResult collide_swept(const SurfaceHierarchy& ha, const SurfaceHierarchy
   // On its straight line a point is within half its chord (at most the
   // translation plus the rotation's chord) of the line's midpoint, which is
   // within the sagitta of the point's halfway position.
-  const double chord = (X_AB_to.p - X_AB_from.p).norm() + 2.0 * radius * std::sin(0.5 * angle);
+  const double turn_chord = 2.0 * radius * std::sin(0.5 * angle);
+  const double chord = (X_AB_to.p - X_AB_from.p).norm() + turn_chord;
   const Eigen::Quaterniond middle = from.slerp(0.5, to);
   return collide_placed(ha, hb, Rigid{to.toRotationMatrix(), X_AB_to.p}, request,
                         Sweep{Rigid{from.toRotationMatrix(), X_AB_from.p},
                               Rigid{middle.toRotationMatrix(), 0.5 * (X_AB_from.p + X_AB_to.p)},
-                              0.5 * chord + sagitta, sagitta, chord});
+                              0.5 * chord + sagitta, 0.5 * (X_AB_to.p - X_AB_from.p),
+                              0.5 * turn_chord + sagitta, sagitta, chord});
 }
 
 }  // namespace argil

@@ -470,36 +470,41 @@ DeformableBody::SolveRegion DeformableBody::region(const PoleWindow& window) con
 
 SymmetricBandMatrix DeformableBody::step_matrix(const SolveRegion& region, double dt) const {
   const PoleWindow& w = region.window;
-  SymmetricBandMatrix a(w.count_u() * w.count_v(), region.bandwidth);
+  SymmetricBandMatrix a =
+      SymmetricBandMatrix::unfilled(w.count_u() * w.count_v(), region.bandwidth);
+  fill_step_rows(region, dt, 0, a.size(), a);
+  tie_matrix(a, region.ties, region.rank);
+  return a;
+}
+
+void DeformableBody::fill_step_rows(const SolveRegion& region, double dt, int begin, int end,
+                                    SymmetricBandMatrix& a) const {
   const double scale = dt * material_.damping + dt * dt;  // multiplies K (springs and dashpots)
   const auto is_fixed = [&](Eigen::Index pole) {
     return fixed_[static_cast<std::size_t>(pole)] != 0;
   };
   const int nu = stiffness_.count_u(), nv = stiffness_.count_v();
   const int ru = stiffness_.reach_u(), rv = stiffness_.reach_v();
-  for (int i = w.i0; i < w.i1; ++i) {
-    for (int j = w.j0; j < w.j1; ++j) {
-      const Eigen::Index pa = static_cast<Eigen::Index>(i) * nv + j;
-      const int ra = region.rank[static_cast<std::size_t>(pa)];
-      if (is_fixed(pa)) {
-        a.at(ra, ra) = 1.0;  // a held point's velocity is zero: no coupling
-        continue;
-      }
-      a.at(ra, ra) += kMassToNewtonSecond2PerMm * masses_[pa];
-      for (int di = std::max(-ru, -i); di <= std::min(ru, nu - 1 - i); ++di) {
-        for (int dj = std::max(-rv, -j); dj <= std::min(rv, nv - 1 - j); ++dj) {
-          const Eigen::Index pb = static_cast<Eigen::Index>(i + di) * nv + (j + dj);
-          const int rb = region.rank[static_cast<std::size_t>(pb)];
-          // Lower half only; a pole outside the window is held (V = 0): its
-          // coupling enters the load through -K (P - P_rest) alone.
-          if (rb < 0 || rb > ra || is_fixed(pb)) continue;
-          a.at(ra, rb) += scale * stiffness_.at(i, j, di, dj);
-        }
+  for (int ra = begin; ra < end; ++ra) {
+    a.clear_row(ra);
+    const Eigen::Index pa = region.order[static_cast<std::size_t>(ra)];
+    const auto [i, j] = pole_ij(pa, nv);
+    if (is_fixed(pa)) {
+      a.at(ra, ra) = 1.0;  // a held point's velocity is zero: no coupling
+      continue;
+    }
+    a.at(ra, ra) += kMassToNewtonSecond2PerMm * masses_[pa];
+    for (int di = std::max(-ru, -i); di <= std::min(ru, nu - 1 - i); ++di) {
+      for (int dj = std::max(-rv, -j); dj <= std::min(rv, nv - 1 - j); ++dj) {
+        const Eigen::Index pb = static_cast<Eigen::Index>(i + di) * nv + (j + dj);
+        const int rb = region.rank[static_cast<std::size_t>(pb)];
+        // Lower half only; a pole outside the window is held (V = 0): its
+        // coupling enters the load through -K (P - P_rest) alone.
+        if (rb < 0 || rb > ra || is_fixed(pb)) continue;
+        a.at(ra, rb) += scale * stiffness_.at(i, j, di, dj);
       }
     }
   }
-  tie_matrix(a, region.ties, region.rank);
-  return a;
 }
 
 Result<StepResponse> DeformableBody::step_response(const std::vector<Eigen::Index>& poles,
@@ -641,8 +646,8 @@ Status DeformableBody::prepare_window(double dt) {
 
 Status DeformableBody::advance_pending(double dt, const PoleWindow& loads) {
   if (pending_) {
-    // This step's share of the pending factorisation: the matrix first, then
-    // rows at about bandwidth^2 / 2 multiply-adds each.
+    // This step's share of the pending factorisation: rows filled (a stencil
+    // each) and factorised (about bandwidth^2 / 2 multiply-adds each).
     // A step that would otherwise solve the whole net may spend that solve's
     // work instead (two sweeps, four columns): it is never dearer than the
     // whole-net step it replaces.
@@ -656,14 +661,28 @@ Status DeformableBody::advance_pending(double dt, const PoleWindow& loads) {
                  ? std::max(work, 8.0 * static_cast<double>(masses_.size()) * full_.bandwidth)
                  : std::numeric_limits<double>::infinity();
     }
+    const int stencil = (2 * stiffness_.reach_u() + 1) * (2 * stiffness_.reach_v() + 1);
     if (r.matrix.size() != size) {
-      r.matrix = step_matrix(r, dt);
-      const int stencil = (2 * stiffness_.reach_u() + 1) * (2 * stiffness_.reach_v() + 1);
-      work -= static_cast<double>(size) * stencil;
+      // Filled with the rows it factorises, so the matrix's memory is first
+      // touched over the steps too. Ties mix rows across the band: a region
+      // with ties (a C0 join's small nets) is filled at once.
+      if (r.ties.empty()) {
+        r.matrix = SymmetricBandMatrix::unfilled(size, r.bandwidth);
+        r.filled_rows = 0;
+      } else {
+        r.matrix = step_matrix(r, dt);
+        r.filled_rows = size;
+        work -= static_cast<double>(size) * stencil;
+      }
     }
-    const double per_row = 0.5 * r.bandwidth * r.bandwidth + r.bandwidth + 1.0;
+    const double fill = r.filled_rows < size ? stencil + r.bandwidth + 1.0 : 0.0;
+    const double per_row = 0.5 * r.bandwidth * r.bandwidth + r.bandwidth + 1.0 + fill;
     const int rows = std::max(1, static_cast<int>(std::min<double>(size, work / per_row)));
     const int last = std::min(size, r.factored_rows + rows);
+    if (r.filled_rows < last) {
+      fill_step_rows(r, dt, r.filled_rows, last, r.matrix);
+      r.filled_rows = last;
+    }
     if (Status f = BandedCholesky::factorize_rows(r.matrix, r.factored_rows, last); !f.ok())
       return f;
     r.factored_rows = last;

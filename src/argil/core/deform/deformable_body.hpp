@@ -217,7 +217,8 @@ class DeformableBody {
     std::vector<JoinRow> ties;        // the tied join rows inside the window
     int bandwidth = 0;
     double dt = 0.0;
-    SymmetricBandMatrix matrix;  // factorised in place up to factored_rows
+    SymmetricBandMatrix matrix;  // filled up to filled_rows, factorised up to factored_rows
+    int filled_rows = 0;
     int factored_rows = 0;
     std::optional<BandedCholesky> solver;  // once every row is factorised
     /// Opened on a body at rest: the poles outside stay at rest, so the
@@ -247,6 +248,10 @@ class DeformableBody {
   /// The implicit matrix M' + (h beta + h^2) K over a region's unknowns in
   /// band form; poles outside the region are held (V = 0).
   SymmetricBandMatrix step_matrix(const SolveRegion& region, double dt) const;
+  /// Rows [begin, end) of that matrix, ties not applied: a pole's row holds
+  /// only its own couplings, so rows fill one batch at a time.
+  void fill_step_rows(const SolveRegion& region, double dt, int begin, int end,
+                      SymmetricBandMatrix& a) const;
 
   SurfaceHierarchy hierarchy_;
   Material material_;

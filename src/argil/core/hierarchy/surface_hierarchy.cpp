@@ -221,8 +221,8 @@ void SurfaceHierarchy::stale_blocks(int id, int eu0, int eu1, int ev0, int ev1,
 
 void SurfaceHierarchy::release_nodes() {
   // Roots are the first nodes (build() creates them before any child).
-  nodes_.resize(roots_.size());
-  for (HierarchyNode& root : nodes_) root.children = {-1, -1, -1, -1};
+  nodes_.truncate(roots_.size());
+  for (std::size_t r = 0; r < nodes_.size(); ++r) nodes_[r].children = {-1, -1, -1, -1};
 }
 
 void SurfaceHierarchy::refresh(int id, QueryCounters* counters) const {
@@ -234,7 +234,7 @@ void SurfaceHierarchy::refresh(int id, QueryCounters* counters) const {
   if (self.parent < 0) {
     self.patch = bezier_patch(surface_, ops_, self.element_u, self.element_v);
   } else {
-    refresh(self.parent, counters);  // creates no nodes, so `self` stays valid
+    refresh(self.parent, counters);
     const HierarchyNode& parent = nodes_[static_cast<std::size_t>(self.parent)];
     subdivide_into(parent.patch, ops_.u->subdivision(), ops_.v->subdivision(),
                    {self.half_u, self.half_v}, self.patch);
@@ -266,7 +266,7 @@ int SurfaceHierarchy::child(int id, int half_u, int half_v) const {
   c.rect = parent.rect.quarter(half_u, half_v);
   c.version = 0;
   const int index = static_cast<int>(nodes_.size());
-  nodes_.push_back(std::move(c));  // may reallocate: no references held across this
+  nodes_.push_back(std::move(c));
   nodes_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(slot)] = index;
   return index;
 }

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "argil/core/base/chunked_vector.hpp"
 #include "argil/core/base/status.hpp"
 #include "argil/core/geometry/bezier.hpp"
 #include "argil/core/geometry/bspline_surface.hpp"
@@ -92,8 +93,8 @@ class SurfaceHierarchy {
   /// The node with fresh bounds (refreshing its ancestors first if needed).
   const HierarchyNode& node(int id, QueryCounters* counters = nullptr) const;
   /// Index of child (half_u, half_v) of `id`, created on first use.
-  /// Creating a node may reallocate the pool: references from node() do not
-  /// survive a call.
+  /// Creating a node never moves the others: references from node() stay
+  /// valid until the nodes are released.
   int child(int id, int half_u, int half_v) const;
 
   /// Number of nodes created so far (for tests and memory accounting).
@@ -130,7 +131,8 @@ class SurfaceHierarchy {
   /// node is fresh while its version is at least its element's.
   std::vector<std::uint64_t> element_version_;
   int stale_elements_ = 0;
-  mutable std::vector<HierarchyNode> nodes_;
+  // Chunked: growing the pool in a query never copies it (see ChunkedVector).
+  mutable ChunkedVector<HierarchyNode> nodes_;
   std::vector<int> roots_;
   mutable std::vector<ElementBlock> blocks_;
   std::size_t node_budget_ = std::size_t{1} << 15;  // about 25 MB of bicubic nodes

@@ -1,0 +1,63 @@
+// ChunkedVector: growth never moves an element, truncation frees the chunks
+// past the kept ones, and copies are deep.
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+#include "argil/core/base/chunked_vector.hpp"
+
+namespace {
+
+using argil::ChunkedVector;
+
+TEST_CASE("a chunked vector keeps its elements in place as it grows", "[chunked_vector]") {
+  ChunkedVector<std::string, 4> v;
+  CHECK(v.empty());
+  std::vector<const std::string*> addresses;
+  for (int i = 0; i < 37; ++i) {
+    v.push_back(std::string(40, static_cast<char>('a' + i % 26)) + std::to_string(i));
+    addresses.push_back(&v[static_cast<std::size_t>(i)]);
+  }
+  REQUIRE(v.size() == 37);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    CHECK(&v[i] == addresses[i]);  // not moved by any later push_back
+    CHECK(v[i].substr(40) == std::to_string(i));
+  }
+}
+
+TEST_CASE("truncating a chunked vector keeps the first elements and resets the rest",
+          "[chunked_vector]") {
+  ChunkedVector<std::string, 4> v;
+  for (int i = 0; i < 11; ++i) v.push_back(std::to_string(i));
+  const std::string* kept = &v[5];
+  v.truncate(6);
+  REQUIRE(v.size() == 6);
+  CHECK(&v[5] == kept);
+  CHECK(v[5] == "5");
+  // The kept chunk's later slots were reset: new elements start clean.
+  v.push_back("x");
+  CHECK(v[6] == "x");
+  v.truncate(0);
+  CHECK(v.empty());
+  v.push_back("y");
+  CHECK(v[0] == "y");
+}
+
+TEST_CASE("a copied chunked vector is independent of the original", "[chunked_vector]") {
+  ChunkedVector<int, 3> a;
+  for (int i = 0; i < 8; ++i) a.push_back(i * i);
+  ChunkedVector<int, 3> b = a;
+  b[2] = -1;
+  b.push_back(100);
+  CHECK(a[2] == 4);
+  CHECK(a.size() == 8);
+  REQUIRE(b.size() == 9);
+  CHECK(b[8] == 100);
+  ChunkedVector<int, 3> c;
+  c = b;
+  CHECK(c[2] == -1);
+  CHECK(&c[0] != &b[0]);
+}
+
+}  // namespace
