@@ -137,6 +137,14 @@ TEST_CASE("a sheet swept along a floor without reaching it does not cross it",
 
 namespace {
 
+/// A random graph patch 10 mm wide (degree up to 3) centred on its origin.
+BSplineSurface centred_patch(std::mt19937_64& rng, double amplitude) {
+  BSplineSurface patch = argil::test::graph_surface(rng, 10.0, amplitude, 0.0, 3, 2);
+  patch.control_points.col(0).array() -= 5.0;
+  patch.control_points.col(1).array() -= 5.0;
+  return patch;
+}
+
 /// What the random swept cases exercised.
 struct SweptTally {
   int clear_runs = 0, swept_crossings = 0, passed_through = 0;
@@ -200,9 +208,7 @@ TEST_CASE(
   for (int trial = 0; trial < 40; ++trial) {
     CAPTURE(trial);
     const BSplineSurface surface = argil::test::graph_surface(rng, 100.0, 8.0, 0.0, 4, 3);
-    BSplineSurface patch = argil::test::graph_surface(rng, 10.0, 1.0, 0.0, 3, 2);
-    patch.control_points.col(0).array() -= 5.0;
-    patch.control_points.col(1).array() -= 5.0;
+    const BSplineSurface patch = centred_patch(rng, 1.0);
     const argil::SurfaceHierarchy a = argil::test::hierarchy_for(surface);
     const argil::SurfaceHierarchy b = argil::test::hierarchy_for(patch);
     // Straight through (trial % 3 == 0), or anywhere; turning up to 0.2 rad
@@ -241,9 +247,7 @@ TEST_CASE(
   for (int trial = 0; trial < 60; ++trial) {
     CAPTURE(trial);
     const BSplineSurface surface = argil::test::graph_surface(rng, 40.0, 5.0, 0.0, 4, 3);
-    BSplineSurface patch = argil::test::graph_surface(rng, 10.0, 0.3, 0.0, 3, 2);
-    patch.control_points.col(0).array() -= 5.0;
-    patch.control_points.col(1).array() -= 5.0;
+    const BSplineSurface patch = centred_patch(rng, 0.3);
     const argil::SurfaceHierarchy a = argil::test::hierarchy_for(surface);
     const argil::SurfaceHierarchy b = argil::test::hierarchy_for(patch);
     const Eigen::Quaterniond R0(Eigen::AngleAxisd(
