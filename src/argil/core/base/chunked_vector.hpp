@@ -1,10 +1,11 @@
 #pragma once
-// ChunkedVector<T>: an indexed sequence that grows in fixed-size chunks. It
+// ChunkedVector<T, kChunk>: an indexed sequence that grows in chunks of kChunk. It
 // never moves its elements, so growth costs one small allocation per chunk
 // instead of a doubling reallocation: in the haptic tick a hierarchy that
 // grows its node pool from 2048 to 4096 nodes paid for copying 0.6 MB into
 // freshly mapped pages (8 ms on the benchmark machine, where a page fault
-// costs several microseconds); a chunk stays under malloc's mmap threshold.
+// costs several microseconds). Keep a chunk under malloc's mmap threshold
+// (128 KB by default), so chunks come from the heap.
 
 #include <algorithm>
 #include <cassert>
@@ -14,7 +15,7 @@
 
 namespace argil {
 
-template <class T, std::size_t kChunk = 64>
+template <class T, std::size_t kChunk>
 class ChunkedVector {
  public:
   ChunkedVector() = default;
