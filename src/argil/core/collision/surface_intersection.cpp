@@ -93,7 +93,6 @@ bool sphere_apart_from_flat_patch(const View& node, const View& sphere, double e
   // the sweep's component along the normal only. (A swept sphere already
   // holds the whole motion.)
   const Eigen::Vector3d& h = node.sweep;
-  const double moved = h.norm();
   for (const TriangleBound& t : corner_triangles(node)) {
     const Eigen::Vector3d to_centre = sphere.center - t.t[0];
     if (t.length > 0.0 &&
@@ -102,7 +101,7 @@ bool sphere_apart_from_flat_patch(const View& node, const View& sphere, double e
             eps)
       continue;
     const Eigen::Vector3d foot = closest_point_on_triangle(sphere.center, t.t[0], t.t[1], t.t[2]);
-    if (!((foot - sphere.center).norm() - moved - sphere.radius - node.flatness > eps))
+    if (!((foot - sphere.center).norm() - h.norm() - sphere.radius - node.flatness > eps))
       return false;
   }
   return true;
@@ -148,20 +147,21 @@ struct Rigid {
 };
 
 /// b's motion in a swept query: its placement at the start and halfway (the
-/// Side's own placement is the end); `reach`, how far any point of b strays
+/// Side's own placement is the end); reach(), how far any point of b strays
 /// from its halfway position on the way; `sagitta`, how far the corners'
 /// arcs stray from the straight lines the leaf tests assume [mm].
 struct Sweep {
   Rigid start;
   Rigid middle;
-  double reach = 0.0;
-  /// The reach split in two: half the translation, a point's straight line
+  /// The reach in two parts: half the translation, a point's straight line
   /// spanning t half_translation (t in [-1, 1]) about its midpoint, and the
   /// rest, from the turn (half its chord and the sagitta).
   Eigen::Vector3d half_translation = Eigen::Vector3d::Zero();
   double turn_reach = 0.0;
   double sagitta = 0.0;
   double travel = 0.0;  // the farthest any point of b moves [mm]
+
+  double reach() const { return half_translation.norm() + turn_reach; }
 };
 
 /// Entries of one side: blocks as -(id + 1), hierarchy nodes as id >= 0.
@@ -283,7 +283,7 @@ class Side {
     // surface stays as far from it as it is at rest.
     const View start = placed_by(sweep_->start, own);
     View middle = placed_by(sweep_->middle, own);
-    const double grow = sweep_->reach;
+    const double grow = sweep_->reach();
     const double travel = (v.center - start.center).norm();
     if (own.radius + 0.5 * travel < middle.radius + grow) {
       middle.center = 0.5 * (v.center + start.center);
@@ -377,7 +377,7 @@ bool farther_than(const TriangleBound& a, const TriangleBound& b, double eps,
 /// that sphere and axis-aligned box tests cannot. Both nodes thin.
 bool triangles_farther_than(const View& a, const View& b, double eps) {
   const double margin = eps + a.flatness + b.flatness;
-  const Eigen::Vector3d h = b.sweep - a.sweep;  // b's motion against a
+  const Eigen::Vector3d& h = b.sweep;  // only b moves in a swept query
   const bool swept = !h.isZero(0.0);
   for (const TriangleBound& x : corner_triangles(a))
     for (const TriangleBound& y : corner_triangles(b))
@@ -1141,11 +1141,11 @@ CollisionResult collide_swept(const SurfaceHierarchy& ha, const SurfaceHierarchy
   const double turn_chord = 2.0 * radius * std::sin(0.5 * angle);
   const double chord = (X_AB_to.p - X_AB_from.p).norm() + turn_chord;
   const Eigen::Quaterniond middle = from.slerp(0.5, to);
-  return collide_placed(ha, hb, Rigid{to.toRotationMatrix(), X_AB_to.p}, request,
-                        Sweep{Rigid{from.toRotationMatrix(), X_AB_from.p},
-                              Rigid{middle.toRotationMatrix(), 0.5 * (X_AB_from.p + X_AB_to.p)},
-                              0.5 * chord + sagitta, 0.5 * (X_AB_to.p - X_AB_from.p),
-                              0.5 * turn_chord + sagitta, sagitta, chord});
+  return collide_placed(
+      ha, hb, Rigid{to.toRotationMatrix(), X_AB_to.p}, request,
+      Sweep{Rigid{from.toRotationMatrix(), X_AB_from.p},
+            Rigid{middle.toRotationMatrix(), 0.5 * (X_AB_from.p + X_AB_to.p)},
+            0.5 * (X_AB_to.p - X_AB_from.p), 0.5 * turn_chord + sagitta, sagitta, chord});
 }
 
 }  // namespace argil

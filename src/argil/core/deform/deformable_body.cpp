@@ -668,21 +668,18 @@ Status DeformableBody::advance_pending(double dt, const PoleWindow& loads) {
       // with ties (a C0 join's small nets) is filled at once.
       if (r.ties.empty()) {
         r.matrix = SymmetricBandMatrix::unfilled(size, r.bandwidth);
-        r.filled_rows = 0;
       } else {
         r.matrix = step_matrix(r, dt);
-        r.filled_rows = size;
         work -= static_cast<double>(size) * stencil;
       }
     }
-    const double fill = r.filled_rows < size ? stencil + r.bandwidth + 1.0 : 0.0;
+    // Without ties the rows filled are the rows factorised.
+    const bool by_rows = r.ties.empty();
+    const double fill = by_rows ? stencil + r.bandwidth + 1.0 : 0.0;
     const double per_row = 0.5 * r.bandwidth * r.bandwidth + r.bandwidth + 1.0 + fill;
     const int rows = std::max(1, static_cast<int>(std::min<double>(size, work / per_row)));
     const int last = std::min(size, r.factored_rows + rows);
-    if (r.filled_rows < last) {
-      fill_step_rows(r, dt, r.filled_rows, last, r.matrix);
-      r.filled_rows = last;
-    }
+    if (by_rows) fill_step_rows(r, dt, r.factored_rows, last, r.matrix);
     if (Status f = BandedCholesky::factorize_rows(r.matrix, r.factored_rows, last); !f.ok())
       return f;
     r.factored_rows = last;

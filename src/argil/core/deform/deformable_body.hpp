@@ -217,8 +217,8 @@ class DeformableBody {
     std::vector<JoinRow> ties;        // the tied join rows inside the window
     int bandwidth = 0;
     double dt = 0.0;
-    SymmetricBandMatrix matrix;  // filled up to filled_rows, factorised up to factored_rows
-    int filled_rows = 0;
+    /// Factorised up to factored_rows; filled as far (whole with ties).
+    SymmetricBandMatrix matrix;
     int factored_rows = 0;
     std::optional<BandedCholesky> solver;  // once every row is factorised
     /// Opened on a body at rest: the poles outside stay at rest, so the
