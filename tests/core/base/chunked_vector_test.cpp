@@ -1,7 +1,9 @@
 // ChunkedVector: growth never moves an element, truncation frees the chunks
-// past the kept ones, and copies are deep.
+// past the kept ones, copies are deep, and every element added is destroyed
+// exactly once (chunks are raw storage).
 #include <catch2/catch.hpp>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -58,6 +60,28 @@ TEST_CASE("a copied chunked vector is independent of the original", "[chunked_ve
   c = b;
   CHECK(c[2] == -1);
   CHECK(&c[0] != &b[0]);
+}
+
+TEST_CASE("a chunked vector destroys each element it holds exactly once", "[chunked_vector]") {
+  // A shared_ptr's use count tells how many copies of it are alive.
+  const auto token = std::make_shared<int>(7);
+  {
+    ChunkedVector<std::shared_ptr<int>, 4> v;
+    for (int i = 0; i < 10; ++i) v.push_back(token);
+    CHECK(token.use_count() == 11);
+    v.truncate(3);  // within a chunk and across chunks
+    CHECK(token.use_count() == 4);
+    ChunkedVector<std::shared_ptr<int>, 4> copy = v;
+    CHECK(token.use_count() == 7);
+    ChunkedVector<std::shared_ptr<int>, 4> moved = std::move(copy);
+    CHECK(token.use_count() == 7);
+    CHECK(moved.size() == 3);
+    moved = v;  // copy-assigned over its own elements
+    CHECK(token.use_count() == 7);
+    v = std::move(moved);
+    CHECK(token.use_count() == 4);
+  }
+  CHECK(token.use_count() == 1);  // the vectors' destructors released the rest
 }
 
 }  // namespace

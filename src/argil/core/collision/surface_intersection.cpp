@@ -11,6 +11,7 @@
 #include <tuple>
 #include <vector>
 
+#include "argil/core/base/chunked_vector.hpp"
 #include "argil/core/collision/detail/contact_regions.hpp"
 #include "argil/core/collision/detail/curve_densifier.hpp"
 #include "argil/core/collision/detail/curve_end_march.hpp"
@@ -178,7 +179,8 @@ class Side {
         placed_(std::move(placed)),
         sweep_(std::move(sweep)) {}
 
-  /// The entry's bounds, placed. Valid until the next view() of this side.
+  /// The entry's bounds, placed. Views never move (a chunked store: a
+  /// doubling vector of them was fresh memory, page faults, in every tick).
   const View& view(int entry) {
     // An entry is read (and placed) once per query: the descent views each
     // node of one side against many of the other's.
@@ -315,7 +317,7 @@ class Side {
   // Views of the entries seen so far: ids index slots (-1: not yet seen),
   // slots index views, so a query pays 4 bytes per id, not a view.
   std::vector<int> node_slots_, block_slots_;
-  std::vector<View> views_;
+  ChunkedVector<View, 64> views_;
   std::vector<int> cone_slots_;  // node ids to cones_ (-1: not yet computed)
   std::vector<std::optional<NormalCone>> cones_;
 };
@@ -416,12 +418,33 @@ Eigen::Vector2d param_of(const std::array<Eigen::Vector2d, 3>& p, const Eigen::V
   return w[0] * p[0] + w[1] * p[1] + w[2] * p[2];
 }
 
-/// A leaf pair's contact before refinement.
+/// A leaf pair's contact before refinement (b's parameters in contact.uv_b).
 struct PendingContact {
   LeafContact leaf{};
-  Eigen::Vector2d uv_b = Eigen::Vector2d::Zero();
   bool crossing = false;  // on a crossing (depth 0) or a near-touch (depth -gap)
   double reach = 0.0;
+};
+
+/// A descent's contacts before refinement: the leaf contacts, and beside them
+/// what refinement reads. Kept apart so that the leaf contacts are finished
+/// and grouped where they lie: a tool lying on a face finds thousands, and a
+/// copy of them was fresh memory (page faults) in every haptic tick.
+struct PendingContacts {
+  struct Origin {
+    bool crossing = false;
+    double reach = 0.0;
+  };
+  std::vector<LeafContact> leaves;
+  std::vector<Origin> origins;
+
+  void add(const PendingContact& c) {
+    leaves.push_back(c.leaf);
+    origins.push_back({c.crossing, c.reach});
+  }
+  void append(const PendingContacts& other) {
+    leaves.insert(leaves.end(), other.leaves.begin(), other.leaves.end());
+    origins.insert(origins.end(), other.origins.begin(), other.origins.end());
+  }
 };
 
 double scale_of(const BSplineSurface& a, const BSplineSurface& b) {
@@ -532,39 +555,44 @@ detail::EndMarch march_for(const SurfacePair& pair, double eps) {
 
 /// Moves a near-touch contact to a local closest pair when that is no farther
 /// apart than the start: depth -gap, or 0 where the surfaces turn out to cross.
-void refine_near_touch(const SurfacePair& pair, PendingContact& p) {
-  Contact& c = p.leaf.contact;
+void refine_near_touch(const SurfacePair& pair, Contact& c, double reach) {
   const double before =
-      (evaluate(pair.a, c.uv_a[0], c.uv_a[1]) - evaluate(pair.b, p.uv_b[0], p.uv_b[1])).norm();
-  const std::optional<RefinedPair> r = refine_near(pair, {c.point, c.uv_a, p.uv_b}, false, p.reach);
+      (evaluate(pair.a, c.uv_a[0], c.uv_a[1]) - evaluate(pair.b, c.uv_b[0], c.uv_b[1])).norm();
+  const std::optional<RefinedPair> r = refine_near(pair, {c.point, c.uv_a, c.uv_b}, false, reach);
   if (!r || !(r->gap <= before)) return;
   c.point = r->point;
   c.uv_a = r->uv_a;
-  p.uv_b = r->uv_b;
+  c.uv_b = r->uv_b;
   // Gauss-Newton stops at a crossing (gap ~ 0) or a local closest pair.
   c.depth = r->gap <= 1e-12 * pair.scale ? 0.0 : -r->gap;
 }
 
-/// The leaf contact of a pending one: refined when asked, with a's normal and
-/// tangents at its final parameters.
-LeafContact finish_contact(const SurfacePair& pair, PendingContact p, bool refine) {
-  Contact& c = p.leaf.contact;
-  if (refine && p.crossing) {
-    if (const std::optional<RefinedPair> r =
-            refine_near(pair, {c.point, c.uv_a, p.uv_b}, true, p.reach)) {
-      c.point = r->point;
-      c.uv_a = r->uv_a;
-      p.uv_b = r->uv_b;
-    }
-  } else if (refine) {
-    refine_near_touch(pair, p);
+/// Refines a pending contact onto the exact surfaces: its point, parameters
+/// and depth, what regions are grouped and ranked by (a's normal and
+/// tangents are left to with_frame, for the contacts kept).
+void refine_contact(const SurfacePair& pair, Contact& c, const PendingContacts::Origin& origin) {
+  if (!origin.crossing) {
+    refine_near_touch(pair, c, origin.reach);
+    return;
   }
-  const SurfaceDerivatives d = evaluate_derivatives(pair.a, c.uv_a[0], c.uv_a[1], 1);
-  Contact finished = contact_at(pair.a, c.uv_a, d, c.depth);
-  finished.point = c.point;
-  finished.uv_b = p.uv_b;
-  p.leaf.contact = finished;
-  return p.leaf;
+  if (const std::optional<RefinedPair> r =
+          refine_near(pair, {c.point, c.uv_a, c.uv_b}, true, origin.reach)) {
+    c.point = r->point;
+    c.uv_a = r->uv_a;
+    c.uv_b = r->uv_b;
+  }
+}
+
+/// The contact with a's normal and tangents at its parameters (its point,
+/// between the two surfaces, stays). Only the contacts a query returns get
+/// them: a tool lying on a face finds thousands of leaf pairs and keeps 64.
+Contact with_frame(const BSplineSurface& a, const Contact& c) {
+  const SurfaceDerivatives d = evaluate_derivatives(a, c.uv_a[0], c.uv_a[1], 1);
+  Contact framed = contact_at(a, c.uv_a, d, c.depth);
+  framed.point = c.point;
+  framed.uv_b = c.uv_b;
+  framed.region = c.region;
+  return framed;
 }
 
 /// True when node pair (va, vb) is certainly more than eps apart: spheres,
@@ -687,7 +715,7 @@ LeafPairFindings leaf_crossings(const LeafTriangles& la, const LeafTriangles& lb
         PendingContact c;
         c.leaf.contact.point = 0.5 * (s.points[0] + s.points[1]);
         c.leaf.contact.uv_a = 0.5 * (s.uv_a[0] + s.uv_a[1]);
-        c.uv_b = 0.5 * (s.uv_b[0] + s.uv_b[1]);
+        c.leaf.contact.uv_b = 0.5 * (s.uv_b[0] + s.uv_b[1]);
         c.crossing = true;
         out.contact = c;
       }
@@ -719,7 +747,7 @@ std::optional<PendingContact> leaf_near_touch(const LeafTriangles& la, const Lea
       PendingContact c;
       c.leaf.contact.point = 0.5 * (d.point_a + d.point_b);
       c.leaf.contact.uv_a = param_of(la.params[i], d.bary_a);
-      c.uv_b = param_of(lb.params[j], d.bary_b);
+      c.leaf.contact.uv_b = param_of(lb.params[j], d.bary_b);
       c.leaf.contact.depth = -d.distance;
       out = c;
     }
@@ -781,7 +809,7 @@ class PairDescent {
     while (!stack.empty()) {
       const auto [ea, eb] = stack.back();
       stack.pop_back();
-      const View& va = sa_.view(ea);  // two sides: neither view() moves the other's
+      const View& va = sa_.view(ea);
       const View& vb = sb_.view(eb);
       if (pair_apart(va, vb, apart_)) continue;
       if (!(va.flat && vb.flat)) {
@@ -820,7 +848,7 @@ class PairDescent {
   }
 
   std::vector<detail::Segment> segments;
-  std::vector<PendingContact> pending;
+  PendingContacts pending;
 
  private:
   /// The tolerance coarse leaves are flat to, 0 for none: only refined
@@ -952,7 +980,7 @@ class PairDescent {
     if (!found.contact) return false;
     found.contact->reach = reach;
     found.contact->leaf.rect = la.rect;
-    pending.push_back(*found.contact);
+    pending.add(*found.contact);
     return true;
   }
 
@@ -973,7 +1001,7 @@ class PairDescent {
     if (!c) return false;
     c->reach = 2.0 * (la.radius + lb.radius) + request_.tolerance;
     c->leaf.rect = la.rect;
-    pending.push_back(*c);
+    pending.add(*c);
     return true;
   }
 
@@ -995,7 +1023,8 @@ class PairDescent {
     PendingContact c;
     c.leaf.contact.point = hit->point;
     c.leaf.contact.uv_a = param_of(la.params[static_cast<std::size_t>(hit->triangle)], hit->bary);
-    c.uv_b = param_of(lb.params[static_cast<std::size_t>(hit->triangle_b)], hit->bary_b);
+    c.leaf.contact.uv_b =
+        param_of(lb.params[static_cast<std::size_t>(hit->triangle_b)], hit->bary_b);
     c.crossing = true;
     return c;
   }
@@ -1069,7 +1098,7 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
     } else {
       PairDescent way(ha, hb, placed_b, sweep, PairDescent::Pass::way, request, result.counters);
       way.run();
-      descent.pending.insert(descent.pending.end(), way.pending.begin(), way.pending.end());
+      descent.pending.append(way.pending);
     }
   }
   if (request.curves) {
@@ -1098,19 +1127,21 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
           std::move(end_reaches),
           request.refine ? march_for(pair, request.tolerance) : detail::EndMarch{});
   }
-  std::vector<LeafContact> leaves;
-  leaves.reserve(descent.pending.size());
-  for (const PendingContact& p : descent.pending)
-    leaves.push_back(finish_contact(pair, p, request.refine));
+  std::vector<LeafContact>& leaves = descent.pending.leaves;
+  if (request.refine)
+    for (std::size_t i = 0; i < leaves.size(); ++i)
+      refine_contact(pair, leaves[i].contact, descent.pending.origins[i]);
   // Penetration needs each region's full extent, so trim only after adding it.
   const bool penetration = request.compute_depth && !request.first_crossing_only;
   ContactRegions regions =
       group_regions(leaves, penetration ? std::numeric_limits<int>::max() : request.max_contacts);
   result.contacts = std::move(regions.contacts);
   result.region_count = regions.region_count;
-  if (!penetration) return result;
-  add_penetration_contacts(pair.a, pair.b, result.contacts);
-  rank_regions(result.contacts, result.region_count, request.max_contacts);
+  if (penetration) {
+    add_penetration_contacts(pair.a, pair.b, result.contacts);
+    rank_regions(result.contacts, result.region_count, request.max_contacts);
+  }
+  for (Contact& c : result.contacts) c = with_frame(pair.a, c);
   return result;
 }
 

@@ -44,19 +44,8 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
 
 SegmentParameters closest_on_segments(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
                                       const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
-  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  if (a <= 0 && e <= 0) return {};
-  if (a <= 0) return {0.0, std::clamp(f / e, 0.0, 1.0)};
-  const double c = d1.dot(r);
-  if (e <= 0) return {std::clamp(-c / a, 0.0, 1.0), 0.0};
-  const double b = d1.dot(d2);
-  const double denom = a * e - b * b;
-  const double s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-  const double t = (b * s + f) / e;
-  if (t < 0) return {std::clamp(-c / a, 0.0, 1.0), 0.0};
-  if (t > 1) return {std::clamp((b - c) / a, 0.0, 1.0), 1.0};
-  return {s, t};
+  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0;
+  return closest_on_segments(d1, d1.squaredNorm(), d2, d2.squaredNorm(), p0 - q0);
 }
 
 double segment_segment_distance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,

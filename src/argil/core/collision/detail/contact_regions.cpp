@@ -45,7 +45,8 @@ void rank_and_sort(std::vector<Item>& items, int regions, ContactOf contact_of) 
     Contact& c = contact_of(item);
     c.region = rank[static_cast<std::size_t>(c.region)];
   }
-  // Sorted by index, then moved once: the items are large.
+  // Sorted by index, then permuted in place by swaps: the items are large,
+  // and a copy of thousands of them is fresh memory in every haptic tick.
   std::vector<std::size_t> order_of_items(items.size());
   std::iota(order_of_items.begin(), order_of_items.end(), std::size_t{0});
   std::stable_sort(order_of_items.begin(), order_of_items.end(), [&](std::size_t x, std::size_t y) {
@@ -55,33 +56,47 @@ void rank_and_sort(std::vector<Item>& items, int regions, ContactOf contact_of) 
     if (a.depth != b.depth) return a.depth > b.depth;
     return std::tie(a.uv_a[0], a.uv_a[1]) < std::tie(b.uv_a[0], b.uv_a[1]);
   });
-  std::vector<Item> sorted;
-  sorted.reserve(items.size());
-  for (const std::size_t i : order_of_items) sorted.push_back(std::move(items[i]));
-  items = std::move(sorted);
+  // Position i takes items[order_of_items[i]]: each cycle of the
+  // permutation is followed once, marked done by pointing at itself.
+  for (std::size_t start = 0; start < items.size(); ++start) {
+    std::size_t at = start;
+    while (order_of_items[at] != start) {
+      const std::size_t from = order_of_items[at];
+      std::swap(items[at], items[from]);
+      order_of_items[at] = at;
+      at = from;
+    }
+    order_of_items[at] = at;
+  }
 }
 
-/// Keeps every region's deepest (first) contact, then fills up to
-/// max_contacts in order; the kept contacts stay grouped by region.
-void trim(std::vector<Contact>& contacts, int max_contacts) {
-  std::vector<bool> keep(contacts.size(), false);
-  int kept = 0;
-  for (std::size_t i = 0; i < contacts.size() && kept < max_contacts; ++i) {
-    if (i == 0 || contacts[i].region != contacts[i - 1].region) {
+/// Which of `contacts` (sorted by region) to keep: every region's deepest
+/// (first) contact, then the rest in order up to max_contacts. The kept
+/// positions come out in order, so they stay grouped by region.
+template <class Item, class ContactOf>
+std::vector<std::size_t> kept_positions(const std::vector<Item>& items, int max_contacts,
+                                        ContactOf contact_of) {
+  const std::size_t n = items.size();
+  const auto limit = static_cast<std::size_t>(std::max(max_contacts, 0));
+  std::vector<bool> keep(n, false);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n && kept < limit; ++i) {
+    if (i == 0 || contact_of(items[i]).region != contact_of(items[i - 1]).region) {
       keep[i] = true;
       ++kept;
     }
   }
-  for (std::size_t i = 0; i < contacts.size() && kept < max_contacts; ++i) {
+  for (std::size_t i = 0; i < n && kept < limit; ++i) {
     if (!keep[i]) {
       keep[i] = true;
       ++kept;
     }
   }
-  std::size_t next = 0;
-  for (std::size_t i = 0; i < contacts.size(); ++i)
-    if (keep[i]) contacts[next++] = contacts[i];
-  contacts.resize(next);
+  std::vector<std::size_t> positions;
+  positions.reserve(kept);
+  for (std::size_t i = 0; i < n; ++i)
+    if (keep[i]) positions.push_back(i);
+  return positions;
 }
 
 /// A grid over the leaves' rectangles, cells about the median leaf's size
@@ -202,33 +217,47 @@ void join_in_grid(const std::vector<LeafContact>& leaves, std::vector<int>& pare
 /// needs the grid.
 constexpr double kSweepTestsPerLeaf = 512.0;
 
-/// Joins (union-find) every two leaves whose closed rectangles touch: a sweep
-/// in u (only rectangles whose u ranges overlap can touch), handing over to the
-/// grid once it has tested kSweepTestsPerLeaf pairs per leaf. Which pairs are
-/// joined first does not change the components, and region numbers depend
-/// only on them, so the sweep's joins before the hand-over stand.
+/// Joins (union-find) every two leaves whose closed rectangles touch: leaves
+/// on the same rectangle first (a tool lying on a face meets each of the
+/// face's leaves with several of its own), then a sweep in u over one leaf
+/// per rectangle (only rectangles whose u ranges overlap can touch), handing
+/// over to the grid once it has tested kSweepTestsPerLeaf pairs per leaf.
+/// Which pairs are joined first does not change the components, and region
+/// numbers depend only on them, so the joins before the hand-over stand.
 void join_touching(const std::vector<LeafContact>& leaves, std::vector<int>& parent) {
   const std::size_t n = leaves.size();
   if (n < 2) return;
-  std::vector<int> by_u0(n);
-  std::iota(by_u0.begin(), by_u0.end(), 0);
-  std::stable_sort(by_u0.begin(), by_u0.end(), [&](int a, int b) {
-    return leaves[static_cast<std::size_t>(a)].rect.u0 <
-           leaves[static_cast<std::size_t>(b)].rect.u0;
+  const auto rect_of = [&](int i) { return leaves[static_cast<std::size_t>(i)].rect; };
+  std::vector<int> by_rect(n);
+  std::iota(by_rect.begin(), by_rect.end(), 0);
+  std::sort(by_rect.begin(), by_rect.end(), [&](int a, int b) {
+    const ParamRect ra = rect_of(a), rb = rect_of(b);
+    return std::tie(ra.u0, ra.v0, ra.u1, ra.v1) < std::tie(rb.u0, rb.v0, rb.u1, rb.v1);
   });
-  std::vector<double> u0(n);
-  for (std::size_t x = 0; x < n; ++x) u0[x] = leaves[static_cast<std::size_t>(by_u0[x])].rect.u0;
-  const double budget = kSweepTestsPerLeaf * static_cast<double>(n);
-  double tests = 0.0;
+  // One leaf per distinct rectangle, in order of u0; the others joined to it.
+  std::vector<int> distinct;
   for (std::size_t x = 0; x < n; ++x) {
-    const LeafContact& li = leaves[static_cast<std::size_t>(by_u0[x])];
-    for (std::size_t y = x + 1; y < n && u0[y] <= li.rect.u1; ++y) {
+    const ParamRect r = rect_of(by_rect[x]);
+    if (!distinct.empty()) {
+      const ParamRect last = rect_of(distinct.back());
+      if (std::tie(r.u0, r.v0, r.u1, r.v1) == std::tie(last.u0, last.v0, last.u1, last.v1)) {
+        parent[static_cast<std::size_t>(find(parent, by_rect[x]))] = find(parent, distinct.back());
+        continue;
+      }
+    }
+    distinct.push_back(by_rect[x]);
+  }
+  const double budget = kSweepTestsPerLeaf * static_cast<double>(distinct.size());
+  double tests = 0.0;
+  for (std::size_t x = 0; x < distinct.size(); ++x) {
+    const ParamRect ri = rect_of(distinct[x]);
+    for (std::size_t y = x + 1; y < distinct.size() && rect_of(distinct[y]).u0 <= ri.u1; ++y) {
       if (++tests > budget) {
         join_in_grid(leaves, parent);
         return;
       }
-      if (li.rect.touches(leaves[static_cast<std::size_t>(by_u0[y])].rect))
-        parent[static_cast<std::size_t>(find(parent, by_u0[x]))] = find(parent, by_u0[y]);
+      if (ri.touches(rect_of(distinct[y])))
+        parent[static_cast<std::size_t>(find(parent, distinct[x]))] = find(parent, distinct[y]);
     }
   }
 }
@@ -249,19 +278,22 @@ ContactRegions group_regions(std::vector<LeafContact>& leaves, int max_contacts)
     leaves[static_cast<std::size_t>(i)].contact.region =
         region_of_root[static_cast<std::size_t>(root)];
   }
-  rank_and_sort(
-      leaves, regions, [](auto& l) -> auto& { return l.contact; });
+  const auto contact_of = [](auto& l) -> auto& { return l.contact; };
+  rank_and_sort(leaves, regions, contact_of);
+  // Only the kept contacts are copied out (a haptic tick keeps 64 of thousands).
   std::vector<Contact> contacts;
-  contacts.reserve(leaves.size());
-  for (const LeafContact& l : leaves) contacts.push_back(l.contact);
-  trim(contacts, max_contacts);
+  for (const std::size_t i : kept_positions(leaves, max_contacts, contact_of))
+    contacts.push_back(leaves[i].contact);
   return {std::move(contacts), regions};
 }
 
 void rank_regions(std::vector<Contact>& contacts, int region_count, int max_contacts) {
-  rank_and_sort(
-      contacts, region_count, [](auto& c) -> auto& { return c; });
-  trim(contacts, max_contacts);
+  const auto contact_of = [](auto& c) -> auto& { return c; };
+  rank_and_sort(contacts, region_count, contact_of);
+  std::size_t next = 0;
+  for (const std::size_t i : kept_positions(contacts, max_contacts, contact_of))
+    contacts[next++] = contacts[i];
+  contacts.resize(next);
 }
 
 }  // namespace argil
