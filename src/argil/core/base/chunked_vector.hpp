@@ -57,7 +57,8 @@ class ChunkedVector {
 
   /// Appends `value`; references to the other elements stay valid.
   void push_back(T value) {
-    if (size_ == chunks_.size() * kChunk) chunks_.push_back(std::make_unique_for_overwrite<Storage[]>(kChunk));
+    if (size_ == chunks_.size() * kChunk)
+      chunks_.push_back(std::make_unique_for_overwrite<Storage[]>(kChunk));
     ::new (static_cast<void*>(slot(size_))) T(std::move(value));
     ++size_;
   }

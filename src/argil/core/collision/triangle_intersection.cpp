@@ -338,10 +338,6 @@ SegmentParameters nearest_on_edges(const TriangleFrame& a, std::size_t i, const 
                              a.corner[i] - b.corner[j]);
 }
 
-Eigen::Vector3d on(const Triangle& t, const Eigen::Vector3d& w) {
-  return w[0] * t[0] + w[1] * t[1] + w[2] * t[2];
-}
-
 }  // namespace
 
 TriangleDistance triangle_distance(const Triangle& a, const Triangle& b) {
@@ -360,9 +356,9 @@ TriangleDistance triangle_distance(const Triangle& a, const Triangle& b) {
   };
   for (std::size_t k = 0; k < 3; ++k) {
     const Eigen::Vector3d wb = nearest_weights(fb, a[k]);
-    consider(a[k], on(b, wb), Eigen::Vector3d::Unit(static_cast<int>(k)), wb);
+    consider(a[k], point_of(b, wb), Eigen::Vector3d::Unit(static_cast<int>(k)), wb);
     const Eigen::Vector3d wa = nearest_weights(fa, b[k]);
-    consider(on(a, wa), b[k], wa, Eigen::Vector3d::Unit(static_cast<int>(k)));
+    consider(point_of(a, wa), b[k], wa, Eigen::Vector3d::Unit(static_cast<int>(k)));
   }
   for (std::size_t i = 0; i < 3; ++i) {
     const std::size_t i1 = (i + 1) % 3;
