@@ -93,6 +93,12 @@ TEST_CASE("points and derivatives up to order 2 agree with OpenCASCADE to 1e-12 
           gp_Pnt p0;
           oc->D0(u, v, p0);
           CHECK((eig(p0) - d.point).norm() <= 1e-12 * size);
+          // Ours too, to the bit: first order alone takes its own basis path.
+          const argil::SurfaceDerivatives d1 = argil::evaluate_derivatives(s, u, v, 1);
+          CHECK(d1.point == d.point);
+          CHECK(d1.du == d.du);
+          CHECK(d1.dv == d.dv);
+          CHECK(argil::evaluate(s, u, v) == d.point);
         }
       }
       const double rel[3] = {err[0] / size, err[1] / d1_scale, err[2] / d2_scale};

@@ -33,20 +33,6 @@ std::vector<char> held_poles(int nu, int nv, const BoundaryConditions& c) {
   return fixed;
 }
 
-/// Sum over the rows of `box` of the entrywise product of a and b (the whole
-/// matrices summed at once when the box is the whole net, as before windows).
-double box_dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const PoleWindow& box, int nu,
-               int nv) {
-  if (box == PoleWindow{0, nu, 0, nv}) return (a.array() * b.array()).sum();
-  double sum = 0.0;
-  for (int i = box.i0; i < box.i1; ++i)
-    for (int j = box.j0; j < box.j1; ++j) {
-      const Eigen::Index r = static_cast<Eigen::Index>(i) * nv + j;
-      sum += a.row(r).dot(b.row(r));
-    }
-  return sum;
-}
-
 /// The three abscissae of pole i's yield cell along one direction: halfway to
 /// the previous Greville point, its own, halfway to the next.
 std::array<double, 3> yield_cell_abscissae(const Eigen::VectorXd& greville, int i) {
@@ -76,7 +62,7 @@ void DeformableBody::plastic_flow(const ControlNet& points, const PoleWindow& mo
   const PoleWindow cells = moved.grown(yield_reach_[0], yield_reach_[1], nu, nv);
   // A C0 join's rows spread the flow one more pole each way of their `on` pole.
   const PoleWindow flowing = cells.grown(2, 2, nu, nv);
-  const PoleWindow k_rows = flowing.grown(ku, kv, nu, nv);  // where K flow may be nonzero
+  const PoleWindow k_rows = flowing.grown(ku, kv, nu, nv);  // K flow's stencils read these
   const PoleWindow seen = cells.grown(yield_reach_[0], yield_reach_[1], nu, nv).united(k_rows);
   const auto each = [](const PoleWindow& box, int width, const auto& f) {
     for (int i = box.i0; i < box.i1; ++i)
@@ -87,7 +73,8 @@ void DeformableBody::plastic_flow(const ControlNet& points, const PoleWindow& mo
     stretch_.row(r) = points.row(r) - rest_.row(r);
     pole_stretch[r] = stretch_.row(r).norm();
   });
-  bool flows = false;
+  std::vector<Eigen::Index>& flowing_poles = flowing_poles_;
+  flowing_poles.clear();
   each(cells, nv, [&](Eigen::Index i) {
     const auto [ci, cj] = pole_ij(i, nv);
     const YieldBasis& bu = yield_basis_[0];
@@ -103,9 +90,9 @@ void DeformableBody::plastic_flow(const ControlNet& points, const PoleWindow& mo
         largest = std::max(largest, sample_stretch(su, sv).norm());
     if (!(largest > material_.yield)) return;
     flow_.row(i) = (1.0 - material_.yield / largest) * stretch_.row(i);
-    flows = true;
+    flowing_poles.push_back(i);
   });
-  if (flows) {
+  if (!flowing_poles.empty()) {
     // Across a C0 join the three poles of a row move so the join keeps its
     // angle: the smallest change to their flows with (after - on) = ratio (on
     // - before), the same condition the joint term holds the displacement to.
@@ -113,23 +100,34 @@ void DeformableBody::plastic_flow(const ControlNet& points, const PoleWindow& mo
     for (const JoinRow& r : join_rows_) {
       const Eigen::RowVector3d miss = (flow_.row(r.after) - flow_.row(r.on)) -
                                       r.ratio * (flow_.row(r.on) - flow_.row(r.before));
+      if (miss.isZero(0.0)) continue;
       const double c2 = r.ratio * r.ratio + (1.0 + r.ratio) * (1.0 + r.ratio) + 1.0;
       flow_.row(r.before) -= (r.ratio / c2) * miss;
       flow_.row(r.on) += ((1.0 + r.ratio) / c2) * miss;
       flow_.row(r.after) -= (1.0 / c2) * miss;
+      flowing_poles.insert(flowing_poles.end(), {r.before, r.on, r.after});
     }
+    std::sort(flowing_poles.begin(), flowing_poles.end());
+    flowing_poles.erase(std::unique(flowing_poles.begin(), flowing_poles.end()),
+                        flowing_poles.end());
     // Flow dissipates: it may not raise the stored energy 1/2 U^T K U, U = P
     // - P_rest (moving rest points one by one can, where a neighbour
     // stretched more). Along the flow the energy is a parabola in its
     // fraction alpha, E0 - alpha flow.K U + alpha^2 / 2 flow.K flow; take the
-    // largest alpha up to 1 that does not raise it.
-    stiffness_.multiply_rows(flow_, k_rows.i0, k_rows.i1, k_rows.j0, k_rows.j1, k_flow_);
-    const double along = box_dot(k_flow_, stretch_, k_rows, nu, nv);
-    const double curve = box_dot(k_flow_, flow_, k_rows, nu, nv);
+    // largest alpha up to 1 that does not raise it. K is symmetric, so both
+    // products need K's rows at the flowing poles only (flow is zero elsewhere).
+    double along = 0.0, curve = 0.0;
+    for (const Eigen::Index p : flowing_poles) {
+      const auto [i, j] = pole_ij(p, nv);
+      along += flow_.row(p).dot(stiffness_.row_product(stretch_, i, j));
+      curve += flow_.row(p).dot(stiffness_.row_product(flow_, i, j));
+    }
     const double fraction = curve > 0.0 ? std::clamp(2.0 * along / curve, 0.0, 1.0) : 1.0;
-    each(flowing, nv, [&](Eigen::Index i) { rest_.row(i) += fraction * flow_.row(i); });
-    // flow_ is zero between steps (multiply_rows reads around the rows it writes).
-    each(flowing, nv, [&](Eigen::Index i) { flow_.row(i).setZero(); });
+    // flow_ is zero between steps (row products read around the rows they use).
+    for (const Eigen::Index p : flowing_poles) {
+      rest_.row(p) += fraction * flow_.row(p);
+      flow_.row(p).setZero();
+    }
   }
   // Every control point's own stretch stays within kPlasticStretchCap yields,
   // so a high-degree net cannot drift in patterns the surface barely shows.
@@ -256,7 +254,7 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
     }
   }
   body.velocities_ = ControlNet::Zero(n, 3);
-  body.stretch_ = body.force_ = body.flow_ = body.k_flow_ = Eigen::MatrixXd::Zero(n, 3);
+  body.stretch_ = body.force_ = body.flow_ = Eigen::MatrixXd::Zero(n, 3);
   body.stretch_norm_ = Eigen::VectorXd::Zero(n);
   // A local window reaches a few influence lengths of the loads: the bending
   // length (D / k_a)^(1/4) and the membrane's sqrt(A / k_a), in poles at the

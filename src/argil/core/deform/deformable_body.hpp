@@ -298,8 +298,9 @@ class DeformableBody {
   bool step_local_ = false;  // this step solves local_ (else full_)
   bool step_idle_ = false;   // this step changes nothing: exactly at rest, no load
   // Scratch over the whole net; a local step touches only rows near its window.
-  Eigen::MatrixXd stretch_, force_, flow_, k_flow_;
+  Eigen::MatrixXd stretch_, force_, flow_;
   Eigen::VectorXd stretch_norm_;
+  std::vector<Eigen::Index> flowing_poles_;  // plastic flow's non-zero rows
   // Between begin_step and finish_step, in solve order.
   RowMajorMatrix work_;
   /// The last pattern scattered over the net (zero elsewhere).

@@ -37,6 +37,8 @@ class PoleStencilMatrix {
   /// (over di, then dj).
   void multiply_rows(const Eigen::Ref<const Eigen::MatrixXd>& x, int i0, int i1, int j0, int j1,
                      Eigen::Ref<Eigen::MatrixXd> y) const;
+  /// Row (i, j) of K x for x with three columns, summed as multiply_rows sums it.
+  Eigen::RowVector3d row_product(const Eigen::Ref<const Eigen::MatrixXd>& x, int i, int j) const;
   /// sum over columns c of x_c^T K x_c.
   double quadratic_form(const Eigen::Ref<const Eigen::MatrixXd>& x) const;
   /// this += scale * other (same structure).
@@ -44,6 +46,8 @@ class PoleStencilMatrix {
 
  private:
   double& entry(int i, int j, int di, int dj) { return values_[index(i, j, di, dj)]; }
+  /// Row (i, j) of K times three columns of one-row-per-pole data.
+  void row_sums(const double* const (&column)[3], int i, int j, double (&sum)[3]) const;
   std::size_t index(int i, int j, int di, int dj) const {
     const std::size_t pole = static_cast<std::size_t>(i) * static_cast<std::size_t>(count_v_) +
                              static_cast<std::size_t>(j);

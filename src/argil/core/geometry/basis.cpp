@@ -67,6 +67,20 @@ void basis_derivatives(int p, const Eigen::VectorXd& U, int span, double t, int 
   const int top = std::min(order, p);
   for (int k = top + 1; k <= order; ++k) out.row(k).setZero();
   if (top == 0) return;
+  if (top == 1) {
+    // First derivatives alone (most callers): the recurrence below for k = 1,
+    // p (N_{r-1,p-1} / (u_{r+p} - u_r) - N_{r,p-1} / (u_{r+p+1} - u_{r+1})),
+    // with each knot difference's reciprocal taken once for both neighbours
+    // (-(1 / x) is -1 / x to the bit, so the values are the recurrence's).
+    std::array<double, kN> inverse;
+    for (int r = 0; r < p; ++r) inverse[r] = 1.0 / ndu[p][r];
+    for (int r = 0; r <= p; ++r) {
+      double d = r >= 1 ? inverse[r - 1] * ndu[r - 1][p - 1] : 0.0;
+      if (r < p) d += -inverse[r] * ndu[r][p - 1];
+      out(1, r) = d * p;
+    }
+    return;
+  }
 
   std::array<std::array<double, kN>, 2> a;
   for (int r = 0; r <= p; ++r) {

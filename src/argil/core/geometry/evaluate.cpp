@@ -26,25 +26,32 @@ void contract(const BSplineSurface& s, int su, int sv, const BasisRows& bu, cons
   const bool rational = s.is_rational();
   for (int a = 0; a <= p; ++a) {
     // Contract over v first: one 4-vector per v-derivative order for this row.
-    Vector4 r0 = Vector4::Zero(), r1 = Vector4::Zero(), r2 = Vector4::Zero();
+    // Plain arrays: a pole packed into a 4-vector on the stack was reloaded
+    // as pairs across two scalar stores (a store-forwarding stall on every
+    // pole, most of this function's time).
+    double r0[4] = {0, 0, 0, 0}, r1[4] = {0, 0, 0, 0}, r2[4] = {0, 0, 0, 0};
     for (int b = 0; b <= q; ++b) {
       const Eigen::Index k = s.pole_index(su - p + a, sv - q + b);
       const double w = rational ? s.weights[k] : 1.0;
-      Vector4 pw;
-      pw << w * s.control_points.row(k).transpose(), w;
-      r0 += bv(0, b) * pw;
-      if constexpr (Order >= 1) r1 += bv(1, b) * pw;
-      if constexpr (Order >= 2) r2 += bv(2, b) * pw;
+      const double pw[4] = {w * s.control_points(k, 0), w * s.control_points(k, 1),
+                            w * s.control_points(k, 2), w};
+      for (int c = 0; c < 4; ++c) {
+        r0[c] += bv(0, b) * pw[c];
+        if constexpr (Order >= 1) r1[c] += bv(1, b) * pw[c];
+        if constexpr (Order >= 2) r2[c] += bv(2, b) * pw[c];
+      }
     }
-    h.a00 += bu(0, a) * r0;
-    if constexpr (Order >= 1) {
-      h.a10 += bu(1, a) * r0;
-      h.a01 += bu(0, a) * r1;
-    }
-    if constexpr (Order >= 2) {
-      h.a20 += bu(2, a) * r0;
-      h.a11 += bu(1, a) * r1;
-      h.a02 += bu(0, a) * r2;
+    for (int c = 0; c < 4; ++c) {
+      h.a00[c] += bu(0, a) * r0[c];
+      if constexpr (Order >= 1) {
+        h.a10[c] += bu(1, a) * r0[c];
+        h.a01[c] += bu(0, a) * r1[c];
+      }
+      if constexpr (Order >= 2) {
+        h.a20[c] += bu(2, a) * r0[c];
+        h.a11[c] += bu(1, a) * r1[c];
+        h.a02[c] += bu(0, a) * r2[c];
+      }
     }
   }
 }
