@@ -1,6 +1,7 @@
 #include "argil/core/collision/detail/surface_pair_refine.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <limits>
 
@@ -102,6 +103,26 @@ Eigen::Vector4d gauss_newton_step(const SurfaceDerivatives& da, const SurfaceDer
     const Eigen::PartialPivLU<Eigen::Matrix4d> lu{Eigen::Matrix4d(ms)};
     if (lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 1e-8)
       return col_scale.cwiseProduct(lu.solve(rhs.head<4>()));
+  }
+  const auto fixed_count = std::count(constraint.fixed.begin(), constraint.fixed.end(), true);
+  if (rows == 3 && fixed_count == 1) {
+    // A point held on a leaf edge (one parameter fixed, no plane): the three
+    // free columns make a square system, solved the same way. The fixed
+    // column is zero, so the minimum-norm step leaves it at 0 as this does.
+    std::array<int, 3> free{};
+    Eigen::Matrix3d square;
+    for (int k = 0, c = 0; k < 4; ++k) {
+      if (constraint.fixed[static_cast<std::size_t>(k)]) continue;
+      free[static_cast<std::size_t>(c)] = k;
+      square.col(c++) = ms.col(k);
+    }
+    const Eigen::PartialPivLU<Eigen::Matrix3d> lu{square};
+    if (lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 1e-8) {
+      const Eigen::Vector3d solved = lu.solve(rhs.head<3>());
+      Eigen::Vector4d step = Eigen::Vector4d::Zero();
+      for (int c = 0; c < 3; ++c) step[free[static_cast<std::size_t>(c)]] = solved[c];
+      return col_scale.cwiseProduct(step);
+    }
   }
   const Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1> r = rhs.head(rows);
   // Eigen's default rank cut (about 1e-15) keeps directions made of rounding:
