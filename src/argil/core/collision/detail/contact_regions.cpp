@@ -228,24 +228,22 @@ void join_touching(const std::vector<LeafContact>& leaves, std::vector<int>& par
   const std::size_t n = leaves.size();
   if (n < 2) return;
   const auto rect_of = [&](int i) { return leaves[static_cast<std::size_t>(i)].rect; };
+  // Rectangles in order of u0 (then the rest, so equal ones are neighbours).
+  const auto key = [&](int i) {
+    const ParamRect& r = leaves[static_cast<std::size_t>(i)].rect;
+    return std::tie(r.u0, r.v0, r.u1, r.v1);
+  };
   std::vector<int> by_rect(n);
   std::iota(by_rect.begin(), by_rect.end(), 0);
-  std::sort(by_rect.begin(), by_rect.end(), [&](int a, int b) {
-    const ParamRect ra = rect_of(a), rb = rect_of(b);
-    return std::tie(ra.u0, ra.v0, ra.u1, ra.v1) < std::tie(rb.u0, rb.v0, rb.u1, rb.v1);
-  });
+  std::sort(by_rect.begin(), by_rect.end(), [&](int a, int b) { return key(a) < key(b); });
   // One leaf per distinct rectangle, in order of u0; the others joined to it.
   std::vector<int> distinct;
-  for (std::size_t x = 0; x < n; ++x) {
-    const ParamRect r = rect_of(by_rect[x]);
-    if (!distinct.empty()) {
-      const ParamRect last = rect_of(distinct.back());
-      if (std::tie(r.u0, r.v0, r.u1, r.v1) == std::tie(last.u0, last.v0, last.u1, last.v1)) {
-        parent[static_cast<std::size_t>(find(parent, by_rect[x]))] = find(parent, distinct.back());
-        continue;
-      }
+  for (const int i : by_rect) {
+    if (!distinct.empty() && key(i) == key(distinct.back())) {
+      parent[static_cast<std::size_t>(find(parent, i))] = find(parent, distinct.back());
+      continue;
     }
-    distinct.push_back(by_rect[x]);
+    distinct.push_back(i);
   }
   const double budget = kSweepTestsPerLeaf * static_cast<double>(distinct.size());
   double tests = 0.0;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <optional>
 
 #include "argil/core/geometry/evaluate.hpp"
 
@@ -63,6 +64,35 @@ CurveConstraint curve_constraint(const SurfaceDerivatives& da, const SurfaceDeri
 /// parallel along it to within 1e-10 radians.
 constexpr double kRankCut = 1e-10;
 
+/// The scaled Gauss-Newton matrix, at most 4 x 4, on the stack: a curve
+/// refines thousands of points, and a heap-sized solve spent more on
+/// allocation than on arithmetic.
+using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::ColMajor, 4, 4>;
+
+/// The step from the N free columns of `ms` (its N rows) by LU: square and
+/// well conditioned (a transversal crossing, or a point held on a leaf edge
+/// without the plane), its one solution is the minimum-norm one, at a
+/// fraction of the cost; held columns are zero and their entries stay 0. The
+/// columns have unit norm; nullopt at a pivot below 1e-8 (rank deficient).
+template <int N>
+std::optional<Eigen::Vector4d> square_step(const SmallMatrix& ms,
+                                           const Eigen::Matrix<double, 5, 1>& rhs,
+                                           const std::array<bool, 4>& fixed) {
+  std::array<int, N> free{};
+  Eigen::Matrix<double, N, N> square;
+  for (int k = 0, c = 0; k < 4; ++k) {
+    if (fixed[static_cast<std::size_t>(k)]) continue;
+    free[static_cast<std::size_t>(c)] = k;
+    square.col(c++) = ms.col(k);
+  }
+  const Eigen::PartialPivLU<Eigen::Matrix<double, N, N>> lu{square};
+  if (!(lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 1e-8)) return std::nullopt;
+  const Eigen::Matrix<double, N, 1> solved = lu.solve(rhs.template head<N>());
+  Eigen::Vector4d step = Eigen::Vector4d::Zero();
+  for (int c = 0; c < N; ++c) step[free[static_cast<std::size_t>(c)]] = solved[c];
+  return step;
+}
+
 /// The minimum-norm Gauss-Newton step in (u_a, v_a, u_b, v_b) for
 /// S_a - S_b = 0 under the constraint.
 Eigen::Vector4d gauss_newton_step(const SurfaceDerivatives& da, const SurfaceDerivatives& db,
@@ -92,44 +122,18 @@ Eigen::Vector4d gauss_newton_step(const SurfaceDerivatives& da, const SurfaceDer
     const double n = m.col(k).head(rows).norm();
     col_scale[k] = n > 0 ? 1.0 / n : 1.0;
   }
-  // At most 4 x 4, on the stack: a curve refines thousands of points, and a
-  // heap-sized solve spent more on allocation than on arithmetic.
-  using Small = Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::ColMajor, 4, 4>;
-  const Small ms = m.topRows(rows) * col_scale.asDiagonal();
-  if (rows == 4) {
-    // Square and well conditioned (a transversal crossing): the one solution
-    // is the minimum-norm one, and LU finds it at a fraction of the cost. The
-    // columns have unit norm; a pivot below 1e-8 is taken as rank deficient.
-    const Eigen::PartialPivLU<Eigen::Matrix4d> lu{Eigen::Matrix4d(ms)};
-    if (lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 1e-8)
-      return col_scale.cwiseProduct(lu.solve(rhs.head<4>()));
-  }
-  const auto fixed_count = std::count(constraint.fixed.begin(), constraint.fixed.end(), true);
-  if (rows == 3 && fixed_count == 1) {
-    // A point held on a leaf edge (one parameter fixed, no plane): the three
-    // free columns make a square system, solved the same way. The fixed
-    // column is zero, so the minimum-norm step leaves it at 0 as this does.
-    std::array<int, 3> free{};
-    Eigen::Matrix3d square;
-    for (int k = 0, c = 0; k < 4; ++k) {
-      if (constraint.fixed[static_cast<std::size_t>(k)]) continue;
-      free[static_cast<std::size_t>(c)] = k;
-      square.col(c++) = ms.col(k);
-    }
-    const Eigen::PartialPivLU<Eigen::Matrix3d> lu{square};
-    if (lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 1e-8) {
-      const Eigen::Vector3d solved = lu.solve(rhs.head<3>());
-      Eigen::Vector4d step = Eigen::Vector4d::Zero();
-      for (int c = 0; c < 3; ++c) step[free[static_cast<std::size_t>(c)]] = solved[c];
-      return col_scale.cwiseProduct(step);
-    }
-  }
+  const SmallMatrix ms = m.topRows(rows) * col_scale.asDiagonal();
+  const auto free_count = 4 - std::count(constraint.fixed.begin(), constraint.fixed.end(), true);
+  std::optional<Eigen::Vector4d> step;
+  if (rows == 4 && free_count == 4) step = square_step<4>(ms, rhs, constraint.fixed);
+  if (rows == 3 && free_count == 3) step = square_step<3>(ms, rhs, constraint.fixed);
+  if (step) return col_scale.cwiseProduct(*step);
   const Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1> r = rhs.head(rows);
   // Eigen's default rank cut (about 1e-15) keeps directions made of rounding:
   // a face edge lying in the other face's plane gives the out-of-plane row
   // only rounding in both matrix and residual, and their ratio slid points
   // along the curve by a millimetre, onto the edge's end.
-  Eigen::CompleteOrthogonalDecomposition<Small> cod(ms);
+  Eigen::CompleteOrthogonalDecomposition<SmallMatrix> cod(ms);
   cod.setThreshold(kRankCut);
   return col_scale.cwiseProduct(Eigen::Vector4d(cod.solve(r)));
 }
