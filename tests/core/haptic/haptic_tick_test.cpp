@@ -221,6 +221,40 @@ TEST_CASE("a B-spline tool stops on a surface without crossing it and slides alo
   }
 }
 
+TEST_CASE("a B-spline tool sticks below mu N and slips to mu N within eps and beyond",
+          "[haptic]") {
+  const double mu = 0.5, press = 2.0, eps = 0.05;  // N = k press = 2 N, mu N = 1 N
+  // Pulls [N] = tangential offsets [mm] at k = 1: two that stick, a slip of
+  // eps / 2 (one swept query) and slips of 0.5 and 2 mm (stick point tested,
+  // then a move).
+  for (const double pull : {0.5, 0.9, mu * press + 0.5 * eps, 1.5, 3.0}) {
+    CAPTURE(pull);
+    argil::HapticWorld w = world(argil::SurfaceToolShape{bowl_cap()}, eps);
+    REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), mu).ok());
+    REQUIRE(w.step(at(45, 45, 10), 1e-3).status.ok());
+    REQUIRE(w.step(at(45, 45, -press), 1e-3).status.ok());  // lands on the floor
+    REQUIRE(w.proxy().in_contact);
+    const double rest = w.proxy().X_WT.p.z();
+    for (int t = 0; t < 3; ++t) REQUIRE(w.step(at(45, 45, rest - press), 1e-3).status.ok());
+    REQUIRE(w.proxy().X_WT.p.z() == rest);
+    REQUIRE(w.proxy().outward_normal.z() == Approx(1.0).epsilon(1e-9));
+    const argil::TickResult r = w.step(at(45 + pull, 45, rest - press), 1e-3);
+    REQUIRE(r.status.ok());
+    CHECK(r.proxy.in_contact);
+    CHECK(r.proxy.X_WT.p.z() == rest);
+    CHECK(r.force.z() == Approx(press).epsilon(1e-12));
+    if (pull < mu * press) {
+      CHECK(r.proxy.stuck);
+      CHECK(r.proxy.X_WT.p.x() == 45.0);
+      CHECK(r.force.x() == Approx(-pull).epsilon(1e-12));
+    } else {
+      CHECK_FALSE(r.proxy.stuck);
+      CHECK(r.proxy.X_WT.p.x() == Approx(45 + pull - mu * press).epsilon(1e-12));
+      CHECK(-r.force.x() == Approx(mu * press).epsilon(1e-9));  // |F_t| = mu N
+    }
+  }
+}
+
 TEST_CASE("friction outside [0, kMaxFriction] is refused for deformable and rigid bodies",
           "[haptic]") {
   argil::HapticWorld w = world(argil::SphereToolShape{5.0});

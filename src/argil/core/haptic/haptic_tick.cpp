@@ -237,6 +237,9 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
   // 3. Contacts and the coupling force; 4. the bodies stepped under it.
   const ContactSummary summary = summarize(move.body_contacts, options_.tolerance);
   next.in_contact = summary.contacts > 0;
+  next.outward_normal = move.outward_normal;
+  for (int b = 0; b < body_count() && next.friction < 0.0; ++b)
+    if (!move.body_contacts[static_cast<std::size_t>(b)].empty()) next.friction = friction(b);
   const CouplingOptions& coupling = options_.coupling;
   const Eigen::Vector3d spring =
       coupling.stiffness * (device.X_WD.p - next.X_WT.p) + coupling.damping * (v_WD - next.v_WT);

@@ -44,6 +44,12 @@ struct ProxyState {
   Eigen::Vector3d v_WT = Eigen::Vector3d::Zero();  // velocity of T's origin in W [mm/s]
   bool in_contact = false;
   bool stuck = false;  // held by static friction this tick
+  /// The contacts the tick ended with: their mean outward normal (zero
+  /// without contacts) and the friction coefficient of the first body they
+  /// touch (-1 without). The B-spline tool's next tick decides stick or slip
+  /// with them (explicit friction), so it needs no query at its stick point.
+  Eigen::Vector3d outward_normal = Eigen::Vector3d::Zero();
+  double friction = -1.0;
 };
 
 struct [[nodiscard]] TickResult {
@@ -200,7 +206,7 @@ class HapticWorld {
   /// The proxy's move this tick (steps 1-2) and its contacts with every body.
   struct [[nodiscard]] ProxyMove {
     Status status;
-    ProxyState next;  // v_WT is filled in by step()
+    ProxyState next;  // v_WT, in_contact, outward_normal and friction are filled in by step()
     std::vector<std::vector<Contact>> body_contacts;
     /// Unit normal from the surfaces towards the proxy (zero without contacts).
     Eigen::Vector3d outward_normal = Eigen::Vector3d::Zero();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "argil/core/base/number_text.hpp"
 #include "argil/core/collision/contact.hpp"
@@ -74,6 +75,14 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
   return out;
 }
 
+std::optional<ToolContacts> SurfaceToolProxy::slip(
+    const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT_from,
+    const Pose& X_WT_to) {
+  if (X_WT_from.R.coeffs() != X_WT_to.R.coeffs() || (X_WT_to.p - X_WT_from.p).norm() > eps_)
+    return std::nullopt;
+  return contacts(surfaces, X_WT_to, X_WT_from, true);
+}
+
 SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
     const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT) {
   return crossing(surfaces, X_WT, std::nullopt);
@@ -104,27 +113,33 @@ SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
 SurfaceToolProxy::Advance SurfaceToolProxy::bisect(
     const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& clear,
     const Pose& crossing_pose, bool swept) {
-  double lo = 0.0, hi = 1.0;
-  const double span = (crossing_pose.p - clear.p).norm();
+  // The search runs over whole steps of eps / 2 along the way (the last one
+  // ends at crossing_pose), so which poses it tests and where it stops depend
+  // on the crossing tests alone, not on the rounding of the span: a tool
+  // moved a rounding apart stops at the same step.
+  const double step = 0.5 * eps_ / (crossing_pose.p - clear.p).norm();
+  const std::int64_t steps = static_cast<std::int64_t>(std::ceil(std::min(1.0 / step, 1e15)));
+  std::int64_t lo = 0, hi = steps;
+  const auto at = [&](std::int64_t n) {
+    return interpolate(clear, crossing_pose, n >= steps ? 1.0 : static_cast<double>(n) * step);
+  };
   // Swept, each test sweeps from the last pose found clear, so the stop is
   // reached without crossing on the way.
-  const auto test = [&](double t) -> std::optional<Status> {
-    Crossing c =
-        crossing(surfaces, interpolate(clear, crossing_pose, t),
-                 swept ? std::optional<Pose>(interpolate(clear, crossing_pose, lo)) : std::nullopt);
+  const auto test = [&](std::int64_t n) -> std::optional<Status> {
+    Crossing c = crossing(surfaces, at(n), swept ? std::optional<Pose>(at(lo)) : std::nullopt);
     if (!c.status.ok()) return std::move(c.status);
-    (c.crosses ? hi : lo) = t;
+    (c.crosses ? hi : lo) = n;
     return std::nullopt;
   };
   // A tool resting on a surface is blocked within a few eps of where it
-  // starts: eps / 2 ahead first, doubling, before halving the interval.
-  for (double t = 0.5 * eps_ / span; t < hi && (hi - lo) * span > 0.5 * eps_; t *= 2.0)
-    if (std::optional<Status> failed = test(t))
-      return {std::move(*failed), interpolate(clear, crossing_pose, lo), true, std::nullopt};
-  for (int i = 0; i < kMaxBisections && (hi - lo) * span > 0.5 * eps_; ++i)
-    if (std::optional<Status> failed = test(0.5 * (lo + hi)))
-      return {std::move(*failed), interpolate(clear, crossing_pose, lo), true, std::nullopt};
-  return {Status::success(), interpolate(clear, crossing_pose, lo), true, std::nullopt};
+  // starts: one step ahead first, doubling, before halving the interval.
+  for (std::int64_t n = 1; n < hi && hi - lo > 1; n *= 2)
+    if (std::optional<Status> failed = test(n))
+      return {std::move(*failed), at(lo), true, std::nullopt};
+  for (int i = 0; i < kMaxBisections && hi - lo > 1; ++i)
+    if (std::optional<Status> failed = test(lo + (hi - lo) / 2))
+      return {std::move(*failed), at(lo), true, std::nullopt};
+  return {Status::success(), at(lo), true, std::nullopt};
 }
 
 SurfaceToolProxy::Advance SurfaceToolProxy::stop_before(

@@ -81,6 +81,15 @@ class SurfaceToolProxy {
     unknown,  // tested first, and pushed out when it crosses
     clear,    // the caller has just found it crosses nothing, at these surfaces
   };
+  /// A short slip in one query: the contacts at X_WT_to, swept from
+  /// X_WT_from (the descent stops at the first crossing, which `crosses`
+  /// reports). For a translation of at most eps only, else nothing: the
+  /// swept leaf test looks for leaves that meet during the motion, not for
+  /// leaves that already cross at its start, and within eps a start that
+  /// crosses (a surface moved into the tool) and an end that does not is a
+  /// contact within the tolerance, not a pass-through.
+  std::optional<ToolContacts> slip(const std::vector<const SurfaceHierarchy*>& surfaces,
+                                   const Pose& X_WT_from, const Pose& X_WT_to);
   /// Moves from X_WT_from towards X_WT_to (rotation interpolated by slerp);
   /// the contacts where it stopped.
   ToolMove move(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT_from,

@@ -2,6 +2,7 @@
 // conservatively, sticks or slips, and its contacts with every body. The
 // advance tests crossings against the whole surfaces; contacts outside a
 // body's trims are dropped (material only), for friction and load alike.
+#include <algorithm>
 #include <optional>
 
 #include "argil/core/deform/contact_response.hpp"
@@ -19,32 +20,39 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
   // when it decides the tick, else by a move towards the device.
   std::optional<ToolMove> moved;
   bool stick_clear = false;  // the stick point was tested and crosses nothing
-  if (previous.in_contact) {
-    // Friction: the stick point keeps the last position with the new rotation.
+  if (previous.in_contact && previous.friction >= 0.0) {
+    // Friction, explicit: stick or slip is decided with the normal and the
+    // body of the contacts the last tick ended with. The stick point keeps
+    // the last position with the new rotation.
     const Pose stick{device.X_WD.R, previous.X_WT.p};
-    ToolContacts at = surface_tool_->contacts(surfs, stick);
-    if (!at.status.ok()) return {std::move(at.status), {}, {}, {0, 0, 0}};
-    drop_contacts_outside_trims(at.per_surface);
-    double mu = -1.0;  // of the first body touched
-    for (int b = 0; b < body_count() && mu < 0.0; ++b)
-      if (!at.per_surface[static_cast<std::size_t>(b)].empty()) mu = friction(b);
-    stick_clear = !at.crosses;
-    if (!at.crosses && mu >= 0.0) {
-      const FrictionOutcome fr =
-          coulomb_friction(k * (device.X_WD.p - stick.p), at.outward_normal, mu, k);
-      if (fr.normal_force > 0.0) {
-        out.next.stuck = fr.stick;
-        if (fr.stick) {
-          // The surfaces do not move within the proxy's part of the tick:
-          // the stick point's contacts are the tick's.
-          moved = ToolMove{Status::success(), stick, std::move(at)};
-        } else {
-          Pose slid = stick;
-          slid.p += fr.slide;
-          // The stick point crosses nothing (just tested): no push-out query.
-          moved = surface_tool_->move(surfs, stick, slid, SurfaceToolProxy::Start::clear);
-          if (moved->status.ok()) drop_contacts_outside_trims(moved->contacts.per_surface);
-        }
+    const FrictionOutcome fr = coulomb_friction(k * (device.X_WD.p - stick.p),
+                                                previous.outward_normal, previous.friction, k);
+    Pose slid = stick;
+    slid.p += fr.slide;
+    // One query for the tick: at the stick point, or swept from it along a
+    // short slip. Pulled off, or on a slip it cannot take (turned, or longer
+    // than eps), the tool tests its stick point first, and moves from there.
+    std::optional<ToolContacts> at;
+    if (fr.normal_force > 0.0)
+      at = fr.stick ? std::optional<ToolContacts>(surface_tool_->contacts(surfs, stick))
+                    : surface_tool_->slip(surfs, stick, slid);
+    const bool one_query = at.has_value();
+    if (!at) at = surface_tool_->contacts(surfs, stick);
+    if (!at->status.ok()) return {std::move(at->status), {}, {}, {0, 0, 0}};
+    drop_contacts_outside_trims(at->per_surface);
+    // A swept slip that crosses nothing clears its end; its start only to
+    // within eps.
+    stick_clear = !at->crosses && !(one_query && !fr.stick);
+    const bool touches = std::any_of(at->per_surface.begin(), at->per_surface.end(),
+                                     [](const std::vector<Contact>& c) { return !c.empty(); });
+    if (fr.normal_force > 0.0 && !at->crosses && touches) {
+      out.next.stuck = fr.stick;
+      if (one_query) {
+        moved = ToolMove{Status::success(), fr.stick ? stick : slid, std::move(*at)};
+      } else {
+        // The stick point crosses nothing (just tested): no push-out query.
+        moved = surface_tool_->move(surfs, stick, slid, SurfaceToolProxy::Start::clear);
+        if (moved->status.ok()) drop_contacts_outside_trims(moved->contacts.per_surface);
       }
     }
   }
