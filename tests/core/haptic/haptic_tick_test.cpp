@@ -221,8 +221,7 @@ TEST_CASE("a B-spline tool stops on a surface without crossing it and slides alo
   }
 }
 
-TEST_CASE("a B-spline tool sticks below mu N and slips to mu N within eps and beyond",
-          "[haptic]") {
+TEST_CASE("a B-spline tool sticks below mu N and slips to mu N within eps and beyond", "[haptic]") {
   const double mu = 0.5, press = 2.0, eps = 0.05;  // N = k press = 2 N, mu N = 1 N
   // Pulls [N] = tangential offsets [mm] at k = 1: two that stick, a slip of
   // eps / 2 (one swept query) and slips of 0.5 and 2 mm (stick point tested,
