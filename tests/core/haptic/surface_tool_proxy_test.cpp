@@ -69,6 +69,27 @@ TEST_CASE("a B-spline tool moved onto a floor stops within eps / 2 of crossing i
       CHECK(std::abs(again.X_WT.p.z() - m.X_WT.p.z()) <= 0.5 * kEps);
       CHECK_FALSE(f.proxy.crossing(floor, again.X_WT).crosses);
       check_contacts_at_end(f.proxy, floor, again);
+
+      // Given the contacts where it starts, a move blocked there keeps them
+      // (a marked copy comes back) and ends where it did without them; a
+      // move that leaves its start queries where it ends.
+      argil::ToolContacts marked = m.contacts;
+      marked.per_surface[0].push_back(argil::Contact{.depth = 42.0});
+      const argil::ToolMove kept = f.proxy.move(floor, m.X_WT, argil::Pose::at({x, 40.0, -2.0}),
+                                                argil::SurfaceToolProxy::Start::clear, &marked);
+      REQUIRE(kept.status.ok());
+      CHECK(kept.X_WT.p == again.X_WT.p);
+      if (again.X_WT.p == m.X_WT.p) {
+        REQUIRE(kept.contacts.per_surface[0].size() == marked.per_surface[0].size());
+        CHECK(kept.contacts.per_surface[0].back().depth == 42.0);
+      } else {
+        check_contacts_at_end(f.proxy, floor, kept);
+      }
+      const argil::ToolMove lifted = f.proxy.move(floor, m.X_WT, argil::Pose::at({x, 40.0, 3.0}),
+                                                  argil::SurfaceToolProxy::Start::clear, &marked);
+      REQUIRE(lifted.status.ok());
+      CHECK(lifted.X_WT.p.z() == Approx(3.0).margin(1e-12));
+      check_contacts_at_end(f.proxy, floor, lifted);
     }
   }
 }

@@ -190,10 +190,17 @@ SurfaceToolProxy::Advance SurfaceToolProxy::advance(
   return {Status::success(), end, false, std::move(at)};
 }
 
-ToolMove SurfaceToolProxy::arrive(const std::vector<const SurfaceHierarchy*>& surfaces,
-                                  Advance end) {
+namespace {
+
+bool same_pose(const Pose& a, const Pose& b) { return a.p == b.p && a.R.coeffs() == b.R.coeffs(); }
+
+}  // namespace
+
+ToolMove SurfaceToolProxy::arrive(const std::vector<const SurfaceHierarchy*>& surfaces, Advance end,
+                                  const Pose& known_at, const ToolContacts* known) {
   if (!end.status.ok()) return {std::move(end.status), end.X_WT, {}};
-  if (!end.contacts) end.contacts = contacts(surfaces, end.X_WT);
+  if (!end.contacts)
+    end.contacts = known && same_pose(end.X_WT, known_at) ? *known : contacts(surfaces, end.X_WT);
   Status status = end.contacts->status;
   return {std::move(status), end.X_WT, std::move(*end.contacts)};
 }
@@ -220,17 +227,23 @@ ToolMove SurfaceToolProxy::push_out(const std::vector<const SurfaceHierarchy*>& 
 }
 
 ToolMove SurfaceToolProxy::move(const std::vector<const SurfaceHierarchy*>& surfaces,
-                                const Pose& X_WT_from, const Pose& X_WT_to, Start from) {
+                                const Pose& X_WT_from, const Pose& X_WT_to, Start from,
+                                const ToolContacts* at_from) {
   // The tool is never re-posed, so its nodes only grow: bound them here.
   hierarchy_.keep_within_node_budget();
   ToolMove start = from == Start::clear ? ToolMove{Status::success(), X_WT_from, {}}
                                         : push_out(surfaces, X_WT_from, X_WT_to);
   if (!start.status.ok()) return start;
+  if (from != Start::clear) at_from = nullptr;
   Advance stop = advance(surfaces, start.X_WT, X_WT_to);
-  if (!stop.status.ok() || !stop.blocked) return arrive(surfaces, std::move(stop));
+  if (!stop.status.ok() || !stop.blocked)
+    return arrive(surfaces, std::move(stop), X_WT_from, at_from);
   // Slide: the rest of the move without its component into the surface. A
-  // search's stop comes with its contacts (its confirming swept query).
-  ToolContacts touch = stop.contacts ? std::move(*stop.contacts) : contacts(surfaces, stop.X_WT);
+  // search's stop comes with its contacts (its confirming swept query), and
+  // one that did not leave the start has the caller's.
+  ToolContacts touch = stop.contacts                                ? std::move(*stop.contacts)
+                       : at_from && same_pose(stop.X_WT, X_WT_from) ? *at_from
+                                                                    : contacts(surfaces, stop.X_WT);
   if (!touch.status.ok()) return {std::move(touch.status), stop.X_WT, {}};
   Eigen::Vector3d rest = X_WT_to.p - stop.X_WT.p;
   const double into = rest.dot(touch.outward_normal);
@@ -241,7 +254,7 @@ ToolMove SurfaceToolProxy::move(const std::vector<const SurfaceHierarchy*>& surf
     return {Status::success(), stop.X_WT, std::move(touch)};
   Pose slide_to = X_WT_to;
   slide_to.p = stop.X_WT.p + rest;
-  return arrive(surfaces, advance(surfaces, stop.X_WT, slide_to));
+  return arrive(surfaces, advance(surfaces, stop.X_WT, slide_to), stop.X_WT, &touch);
 }
 
 }  // namespace argil

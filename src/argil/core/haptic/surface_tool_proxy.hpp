@@ -91,9 +91,13 @@ class SurfaceToolProxy {
   std::optional<ToolContacts> slip(const std::vector<const SurfaceHierarchy*>& surfaces,
                                    const Pose& X_WT_from, const Pose& X_WT_to);
   /// Moves from X_WT_from towards X_WT_to (rotation interpolated by slerp);
-  /// the contacts where it stopped.
+  /// the contacts where it stopped. `at_from`: the contacts at X_WT_from,
+  /// when the caller has just queried them there (Start::clear): a move
+  /// blocked where it starts (within the stop's resolution, eps / 2) keeps
+  /// them instead of querying the same pose again.
   ToolMove move(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT_from,
-                const Pose& X_WT_to, Start start = Start::unknown);
+                const Pose& X_WT_to, Start start = Start::unknown,
+                const ToolContacts* at_from = nullptr);
   /// The tool's hierarchy, in its own frame T.
   const SurfaceHierarchy& hierarchy() const { return hierarchy_; }
   /// Diagonal of the tool's control-point box [mm].
@@ -121,8 +125,10 @@ class SurfaceToolProxy {
   /// from the last pose found clear.
   Advance bisect(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& clear,
                  const Pose& crossing_pose, bool swept);
-  /// An advance's end with its contacts (queried now when it has none).
-  ToolMove arrive(const std::vector<const SurfaceHierarchy*>& surfaces, Advance end);
+  /// An advance's end with its contacts: queried now when it has none,
+  /// unless it ends at `known_at`, whose contacts `known` are.
+  ToolMove arrive(const std::vector<const SurfaceHierarchy*>& surfaces, Advance end,
+                  const Pose& known_at, const ToolContacts* known);
   /// A start pose that crosses pushed out along the contact normal.
   ToolMove push_out(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from,
                     const Pose& to);

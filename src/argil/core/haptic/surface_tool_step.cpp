@@ -19,7 +19,8 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
   // Where the proxy ends this tick and its contacts there: set by friction
   // when it decides the tick, else by a move towards the device.
   std::optional<ToolMove> moved;
-  bool stick_clear = false;  // the stick point was tested and crosses nothing
+  // The contacts at the stick point when it was tested and crosses nothing.
+  std::optional<ToolContacts> at_stick;
   if (previous.in_contact && previous.friction >= 0.0) {
     // Friction, explicit: stick or slip is decided with the normal and the
     // body of the contacts the last tick ended with. The stick point keeps
@@ -40,9 +41,6 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
     if (!at) at = surface_tool_->contacts(surfs, stick);
     if (!at->status.ok()) return {std::move(at->status), {}, {}, {0, 0, 0}};
     drop_contacts_outside_trims(at->per_surface);
-    // A swept slip that crosses nothing clears its end; its start only to
-    // within eps.
-    stick_clear = !at->crosses && !(one_query && !fr.stick);
     const bool touches = std::any_of(at->per_surface.begin(), at->per_surface.end(),
                                      [](const std::vector<Contact>& c) { return !c.empty(); });
     if (fr.normal_force > 0.0 && !at->crosses && touches) {
@@ -51,18 +49,29 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
         moved = ToolMove{Status::success(), fr.stick ? stick : slid, std::move(*at)};
       } else {
         // The stick point crosses nothing (just tested): no push-out query.
-        moved = surface_tool_->move(surfs, stick, slid, SurfaceToolProxy::Start::clear);
+        moved = surface_tool_->move(surfs, stick, slid, SurfaceToolProxy::Start::clear, &*at);
         if (moved->status.ok()) drop_contacts_outside_trims(moved->contacts.per_surface);
       }
+    } else if (one_query && !fr.stick && !at->crosses) {
+      // The slip ends clear, off the material (the body's step drew it away):
+      // the move towards the device starts there, known clear.
+      moved = surface_tool_->move(surfs, slid, device.X_WD, SurfaceToolProxy::Start::clear, &*at);
+      if (moved->status.ok()) drop_contacts_outside_trims(moved->contacts.per_surface);
+    } else if (!at->crosses && (fr.stick || !one_query)) {
+      // (A swept slip that crosses nothing clears its end; its start only
+      // to within eps.)
+      at_stick = std::move(at);
     }
   }
   if (!moved) {
     // An unturned tool's stick point is where the move starts: when it was
-    // found clear there, the move's own test of its start is not repeated.
-    const bool start_clear = stick_clear && device.X_WD.R.coeffs() == previous.X_WT.R.coeffs();
+    // found clear there, the move's own test of its start is not repeated,
+    // and a move blocked where it starts keeps its contacts.
+    const bool start_clear = at_stick && device.X_WD.R.coeffs() == previous.X_WT.R.coeffs();
     moved = surface_tool_->move(
         surfs, previous.X_WT, device.X_WD,
-        start_clear ? SurfaceToolProxy::Start::clear : SurfaceToolProxy::Start::unknown);
+        start_clear ? SurfaceToolProxy::Start::clear : SurfaceToolProxy::Start::unknown,
+        start_clear ? &*at_stick : nullptr);
     if (moved->status.ok()) drop_contacts_outside_trims(moved->contacts.per_surface);
   }
   if (!moved->status.ok()) return {std::move(moved->status), {}, {}, {0, 0, 0}};
