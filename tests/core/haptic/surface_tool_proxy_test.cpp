@@ -195,3 +195,25 @@ TEST_CASE("a B-spline tool moved through a surface in one substep stops on it", 
     }
   }
 }
+
+TEST_CASE("a B-spline tool turned in place on a floor stops before its rim dips in", "[haptic]") {
+  // No translation: the stop search has no way to step along, and must stop
+  // where the turn starts rather than where it crosses.
+  Fixture f;
+  const std::vector<const argil::SurfaceHierarchy*> floor{&f.flat};
+  const argil::ToolMove rest =
+      f.proxy.move(floor, argil::Pose::at({40.0, 40.0, 5.0}), argil::Pose::at({40.0, 40.0, -2.0}));
+  REQUIRE(rest.status.ok());
+  REQUIRE_FALSE(rest.contacts.per_surface[0].empty());
+  for (const double angle : {0.15, 0.3}) {
+    CAPTURE(angle);
+    const argil::Pose turned{Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX())),
+                             rest.X_WT.p};
+    REQUIRE(f.proxy.crossing(floor, turned).crosses);  // the rim dips into the floor
+    const argil::ToolMove m =
+        f.proxy.move(floor, rest.X_WT, turned, argil::SurfaceToolProxy::Start::clear);
+    REQUIRE(m.status.ok());
+    CHECK_FALSE(f.proxy.crossing(floor, m.X_WT).crosses);
+    check_contacts_at_end(f.proxy, floor, m);
+  }
+}

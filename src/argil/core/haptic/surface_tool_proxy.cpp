@@ -113,15 +113,21 @@ SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
 SurfaceToolProxy::Advance SurfaceToolProxy::bisect(
     const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& clear,
     const Pose& crossing_pose, bool swept) {
-  // The search runs over whole steps of eps / 2 along the way (the last one
-  // ends at crossing_pose), so which poses it tests and where it stops depend
-  // on the crossing tests alone, not on the rounding of the span: a tool
-  // moved a rounding apart stops at the same step.
-  const double step = 0.5 * eps_ / (crossing_pose.p - clear.p).norm();
+  // The search counts whole steps of eps / 2 along the way (the last one ends
+  // at crossing_pose): where it stops is a step count the crossing tests
+  // decide. Comparing the bracket's width with eps / 2 instead hung on
+  // rounding, as doubling then halving makes that width exactly eps / 2.
+  const double span = (crossing_pose.p - clear.p).norm();
+  // A way shorter than a step (or not a length) stops where it starts.
+  if (!(span > 0.5 * eps_) || !std::isfinite(span))
+    return {Status::success(), clear, true, std::nullopt};
+  const double step = 0.5 * eps_ / span;
   const std::int64_t steps = static_cast<std::int64_t>(std::ceil(std::min(1.0 / step, 1e15)));
   std::int64_t lo = 0, hi = steps;
   const auto at = [&](std::int64_t n) {
-    return interpolate(clear, crossing_pose, n >= steps ? 1.0 : static_cast<double>(n) * step);
+    return n == 0 ? clear
+                  : interpolate(clear, crossing_pose,
+                                n >= steps ? 1.0 : static_cast<double>(n) * step);
   };
   // Swept, each test sweeps from the last pose found clear, so the stop is
   // reached without crossing on the way.

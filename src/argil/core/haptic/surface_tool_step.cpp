@@ -31,12 +31,15 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
     Pose slid = stick;
     slid.p += fr.slide;
     // One query for the tick: at the stick point, or swept from it along a
-    // short slip. Pulled off, or on a slip it cannot take (turned, or longer
-    // than eps), the tool tests its stick point first, and moves from there.
+    // slip of at most eps (a translation: both poses have the device's
+    // rotation). Pulled off, or on a longer slip, the tool tests its stick
+    // point first, and moves from there.
     std::optional<ToolContacts> at;
     if (fr.normal_force > 0.0)
       at = fr.stick ? std::optional<ToolContacts>(surface_tool_->contacts(surfs, stick))
                     : surface_tool_->slip(surfs, stick, slid);
+    // A slip whose way crosses (a crease, a bump ahead) is taken as below.
+    if (at && !fr.stick && at->status.ok() && at->crosses) at.reset();
     const bool one_query = at.has_value();
     if (!at) at = surface_tool_->contacts(surfs, stick);
     if (!at->status.ok()) return {std::move(at->status), {}, {}, {0, 0, 0}};
