@@ -60,9 +60,9 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
       // the move towards the device starts there, known clear.
       moved = surface_tool_->move(surfs, slid, device.X_WD, SurfaceToolProxy::Start::clear, &*at);
       if (moved->status.ok()) drop_contacts_outside_trims(moved->contacts.per_surface);
-    } else if (!at->crosses && (fr.stick || !one_query)) {
-      // (A swept slip that crosses nothing clears its end; its start only
-      // to within eps.)
+    } else if (!at->crosses) {
+      // Here `at` is the stick point's (a swept slip clear of everything was
+      // taken above).
       at_stick = std::move(at);
     }
   }
