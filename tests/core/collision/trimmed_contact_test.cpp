@@ -169,6 +169,30 @@ TEST_CASE("a sphere touches a trimmed face inside its trims or on its edge, as b
   CHECK(clear > 50);
 }
 
+TEST_CASE("a sphere keeps max_contacts contacts on the material, not before the trims",
+          "[collision][trim]") {
+  // Kept to max_contacts after the trims leave out the contacts off the
+  // material: as many as the material has, up to max_contacts. (Kept first,
+  // a sphere whose deepest contacts lie beyond the edge lost the others.)
+  Fixture f;
+  const double eps = 0.01, radius = 3.0;
+  std::mt19937_64 rng(21);
+  int capped = 0;
+  for (const Eigen::Vector3d& centre : query_points(f, rng, 400)) {
+    CAPTURE(centre.x(), centre.y(), centre.z());
+    const CollisionResult all =
+        collide_sphere(f.trimmed(), centre, radius, {.tolerance = eps, .max_contacts = 100000});
+    const CollisionResult few =
+        collide_sphere(f.trimmed(), centre, radius, {.tolerance = eps, .max_contacts = 2});
+    REQUIRE(all.status.ok());
+    REQUIRE(few.status.ok());
+    CHECK(few.contacts.size() == std::min<std::size_t>(2, all.contacts.size()));
+    capped += all.contacts.size() > 2 ? 1 : 0;
+  }
+  WARN(capped << " of 400 spheres have more than 2 contacts on the material");
+  CHECK(capped > 20);
+}
+
 TEST_CASE("an untrimmed TrimmedSurface answers as the whole surface", "[collision][trim]") {
   Fixture f;
   const TrimRegion whole;

@@ -221,6 +221,51 @@ TEST_CASE("a B-spline tool stops on a surface without crossing it and slides alo
   }
 }
 
+TEST_CASE("a B-spline tool turned into a floor keeps the rotation its move stopped at",
+          "[haptic]") {
+  // The hand turns the resting cap in place by 0.3 rad about x, which dips
+  // its rim 3 mm into the floor: the proxy stops turning where the rim
+  // touches, and its pose (rotation included) never crosses, with or without
+  // friction. Turned back, it follows the hand again.
+  const double eps = 0.05, press = 2.0;
+  const argil::BSplineSurface tool = bowl_cap();
+  argil::OperatorCache cache;
+  argil::SurfaceToolProxy check = argil::SurfaceToolProxy::create(tool, eps, cache).value();
+  for (const double mu : {0.0, 0.5}) {
+    CAPTURE(mu);
+    argil::HapticWorld w = world(argil::SurfaceToolShape{tool}, eps);
+    REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), mu).ok());
+    const argil::SurfaceHierarchy floor = w.hierarchy(0);
+    const std::vector<const argil::SurfaceHierarchy*> floors{&floor};
+    REQUIRE(w.step(at(45, 45, 10), 1e-3).status.ok());
+    REQUIRE(w.step(at(45, 45, -press), 1e-3).status.ok());
+    REQUIRE(w.proxy().in_contact);
+    const double rest = w.proxy().X_WT.p.z();
+    for (int t = 1; t <= 6; ++t) {
+      argil::DeviceSample turned = at(45, 45, rest - press);
+      turned.X_WD.R = Eigen::Quaterniond(Eigen::AngleAxisd(0.05 * t, Eigen::Vector3d::UnitX()));
+      const argil::TickResult r = w.step(turned, 1e-3);
+      REQUIRE(r.status.ok());
+      CAPTURE(t);
+      CHECK(r.proxy.in_contact);
+      CHECK_FALSE(check.crossing(floors, r.proxy.X_WT).crosses);
+    }
+    const argil::Pose& stopped = w.proxy().X_WT;
+    REQUIRE(
+        check
+            .crossing(floors, {Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())),
+                               stopped.p})
+            .crosses);
+    const double turn = stopped.R.angularDistance(Eigen::Quaterniond::Identity());
+    CHECK(turn > 0.0);  // it turned until the rim touched
+    CHECK(turn < 0.3);  // and no further
+    const argil::TickResult back = w.step(at(45, 45, rest - press), 1e-3);
+    REQUIRE(back.status.ok());
+    CHECK(back.proxy.X_WT.R.angularDistance(Eigen::Quaterniond::Identity()) == 0.0);
+    CHECK_FALSE(check.crossing(floors, back.proxy.X_WT).crosses);
+  }
+}
+
 TEST_CASE("a B-spline tool sticks below mu N and slips to mu N within eps and beyond", "[haptic]") {
   const double mu = 0.5, press = 2.0, eps = 0.05;  // N = k press = 2 N, mu N = 1 N
   // Pulls [N] = tangential offsets [mm] at k = 1: two that stick, a slip of

@@ -167,3 +167,39 @@ TEST_CASE("the B-spline tool's contacts outside the trims are dropped", "[haptic
 }
 
 }  // namespace argil
+
+namespace argil {
+
+TEST_CASE("the B-spline tool keeps max_contacts contacts on the material beside a trimmed edge",
+          "[haptic][trim]") {
+  // The plate is cut at x = 45 and the cap pressed just beyond the cut: its
+  // deepest contacts lie off the material. Kept to max_contacts only after
+  // those are left out, it keeps as many as it has on the material, up to
+  // max_contacts (it kept 64 first, whatever the world's option, which could
+  // leave a few or none).
+  BSplineSurface cap = test::asymmetric_plate(12.0, 0.0);
+  for (Eigen::Index k = 0; k < cap.control_points.rows(); ++k) {
+    const double x = cap.control_points(k, 0) - 6.0, y = cap.control_points(k, 1) - 6.0;
+    cap.control_points.row(k) << x, y, 0.05 * (x * x + y * y);
+  }
+  const auto material_contacts = [&](int max_contacts) {
+    WorldOptions o;
+    o.tolerance = 0.05;
+    o.max_contacts = max_contacts;
+    HapticWorld w = HapticWorld::create(SurfaceToolShape{cap}, o).value();
+    const int body = w.add_rigid(test::asymmetric_plate(kSize, 0.0), 0.0).value();
+    REQUIRE(w.set_trim(body, cut_at(45.0)).ok());
+    REQUIRE(w.step(device_at({45.6, 45, 5}), 1e-3).status.ok());
+    TickResult r;
+    for (int k = 0; k < 10; ++k) r = w.step(device_at({45.6, 45, -2}), 1e-3);
+    REQUIRE(r.status.ok());
+    for (const Contact& c : r.body_contacts[0]) CHECK(w.trim(body).contains(c.uv_a));
+    return static_cast<int>(r.body_contacts[0].size());
+  };
+  const int all = material_contacts(100000);
+  CAPTURE(all);
+  REQUIRE(all > 8);
+  CHECK(material_contacts(8) == 8);
+}
+
+}  // namespace argil

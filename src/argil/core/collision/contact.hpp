@@ -9,6 +9,8 @@
 
 namespace argil {
 
+class TrimRegion;
+
 /// What a collision query should do. Lengths in model units [mm].
 struct CollisionRequest {
   /// eps: certified geometric tolerance. Leaves are Bezier sub-patches whose
@@ -40,6 +42,13 @@ struct CollisionRequest {
   /// use the contacts only when nothing crosses: a crossing then costs what
   /// the yes/no test costs, not a descent over the whole overlap.
   bool stop_at_crossing = false;
+  /// Surface-surface queries on a trimmed face a: the part of a's domain that
+  /// is material (null or empty: all of it). Near touches whose uv_a it does
+  /// not contain are left out before the contacts are ranked and kept to
+  /// max_contacts, so a face whose material is a small part of the overlap
+  /// keeps max_contacts of its own. Crossings are kept wherever they lie: the
+  /// surfaces still cross there.
+  const TrimRegion* material_a = nullptr;
 };
 
 /// A polyline along the intersection of two surfaces: points [mm] and their

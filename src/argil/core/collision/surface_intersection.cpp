@@ -24,6 +24,7 @@
 #include "argil/core/collision/triangle_intersection.hpp"
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/core/geometry/triangle_distance.hpp"
+#include "argil/core/geometry/trim_region.hpp"
 #include "argil/core/hierarchy/normal_cone.hpp"
 
 namespace argil {
@@ -1135,6 +1136,10 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   if (request.refine)
     for (std::size_t i = 0; i < leaves.size(); ++i)
       refine_contact(pair, leaves[i].contact, descent.pending.origins[i]);
+  if (request.material_a && !request.material_a->empty())
+    std::erase_if(leaves, [&](const LeafContact& l) {
+      return l.contact.depth < 0.0 && !request.material_a->contains(l.contact.uv_a);
+    });
   // Penetration needs each region's full extent, so trim only after adding it.
   const bool penetration = request.compute_depth && !request.first_crossing_only;
   ContactRegions regions =

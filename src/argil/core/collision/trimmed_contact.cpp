@@ -49,15 +49,23 @@ ClosestPoint closest_point(const TrimmedSurface& s, const Eigen::Vector3d& p_W,
 
 CollisionResult collide_sphere(const TrimmedSurface& s, const Eigen::Vector3d& p_WC, double radius,
                                const CollisionRequest& request) {
-  CollisionResult result = collide(*s.hierarchy, *make_sphere(p_WC, radius), request);
-  if (!result.status.ok() || !trimmed(s)) return result;
+  if (!trimmed(s)) return collide(*s.hierarchy, *make_sphere(p_WC, radius), request);
+  // Every contact is looked at before they are kept to max_contacts: those
+  // off the material would otherwise crowd out the ones on it.
+  CollisionRequest all = request;
+  all.max_contacts = std::numeric_limits<int>::max();
+  CollisionResult result = collide(*s.hierarchy, *make_sphere(p_WC, radius), all);
+  if (!result.status.ok()) return result;
   std::vector<Contact> dropped;
   std::erase_if(result.contacts, [&](const Contact& c) {
     if (s.trim->contains(c.uv_a)) return false;
     dropped.push_back(c);
     return true;
   });
-  if (dropped.empty()) return result;
+  if (dropped.empty()) {
+    rank_regions(result.contacts, result.region_count, request.max_contacts);
+    return result;
+  }
   const BSplineSurface& surface = s.hierarchy->surface();
   const TrimEdgePoint edge =
       closest_edge_search(*s.hierarchy, *s.trim, p_WC, request.tolerance, result.counters);

@@ -38,7 +38,9 @@ ClosestPoint closest_point(const TrimmedSurface& surface, const Eigen::Vector3d&
 /// depth radius - distance, and `normal` the unit vector from the edge point
 /// to the centre (the surface normal when the centre is on the edge). It joins
 /// the region of the left-out contact nearest to it; regions are then ranked
-/// and kept to max_contacts as collide() does. Untrimmed: collide() itself.
+/// and kept to max_contacts as collide() does (every contact is looked at
+/// before that, so those off the material do not crowd out the ones on it).
+/// Untrimmed: collide() itself.
 CollisionResult collide_sphere(const TrimmedSurface& surface, const Eigen::Vector3d& p_WC,
                                double radius, const CollisionRequest& request = {});
 

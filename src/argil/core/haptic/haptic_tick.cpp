@@ -93,7 +93,7 @@ Status HapticWorld::install_tool(const ToolShape& tool) {
     return Status::success();
   }
   Result<SurfaceToolProxy> proxy = SurfaceToolProxy::create(
-      std::get<SurfaceToolShape>(tool).surface, options_.tolerance, *cache_);
+      std::get<SurfaceToolShape>(tool).surface, options_.tolerance, *cache_, options_.max_contacts);
   if (!proxy.ok()) {
     Status s = proxy.status();
     s.message = "tool surface: " + s.message;

@@ -11,25 +11,27 @@
 namespace argil {
 
 SurfaceToolProxy::SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy hierarchy,
-                                   double eps)
+                                   double eps, int max_contacts)
     : hierarchy_(std::move(hierarchy)),
       centre_T_(tool.control_points.colwise().mean().transpose()),
       eps_(eps),
       size_(control_point_box(tool).diagonal()),
-      reach_(tool.control_points.rowwise().norm().maxCoeff()) {}
+      reach_(tool.control_points.rowwise().norm().maxCoeff()),
+      max_contacts_(max_contacts) {}
 
 Result<SurfaceToolProxy> SurfaceToolProxy::create(const BSplineSurface& tool, double eps,
-                                                  OperatorCache& cache) {
+                                                  OperatorCache& cache, int max_contacts) {
   Result<SurfaceHierarchy> h = SurfaceHierarchy::build(tool, cache);
   if (!h.ok()) return h.status();
   // Every query of the tool runs at eps: a tool that eps cannot resolve (eps
   // above its size) would touch nothing and pass through every surface.
-  if (Status s = check_request({.tolerance = eps}, h.value()); !s.ok()) {
+  if (Status s = check_request({.tolerance = eps, .max_contacts = max_contacts}, h.value());
+      !s.ok()) {
     s.message = "a tool " + number_text(control_point_box(tool).diagonal()) +
                 " mm across (its control points' box) is too small for the tolerance: " + s.message;
     return s;
   }
-  return SurfaceToolProxy(tool, std::move(h).value(), eps);
+  return SurfaceToolProxy(tool, std::move(h).value(), eps, max_contacts);
 }
 
 ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy*>& surfaces,
@@ -50,11 +52,12 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
     if (!surfaces[b]) continue;  // out of reach
     // Only contacts: a crossing is a contact of depth 0 (no curves chained).
     const CollisionRequest request{.tolerance = eps_,
-                                   .max_contacts = 64,
+                                   .max_contacts = max_contacts_,
                                    .refine = false,
                                    .compute_depth = false,
                                    .curves = false,
-                                   .stop_at_crossing = partial_when_crossing};
+                                   .stop_at_crossing = partial_when_crossing,
+                                   .material_a = b < materials_.size() ? materials_[b] : nullptr};
     CollisionResult r = swept_from
                             ? collide_swept(*surfaces[b], hierarchy_, *swept_from, X_WT, request)
                             : collide(*surfaces[b], hierarchy_, X_WT, request);

@@ -11,6 +11,7 @@
 
 #include "argil/core/collision/contact.hpp"
 #include "argil/core/geometry/pose.hpp"
+#include "argil/core/geometry/trim_region.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
 
 namespace argil {
@@ -62,8 +63,18 @@ class SurfaceToolProxy {
   /// `tool` in its own frame T; fails when it does not validate, or with
   /// invalid_argument when eps is outside the range its queries allow for it
   /// (check_request): a tool smaller than eps would pass through surfaces.
+  /// A contact query keeps at most `max_contacts` (>= 1) per surface.
   static Result<SurfaceToolProxy> create(const BSplineSurface& tool, double eps,
-                                         OperatorCache& cache);
+                                         OperatorCache& cache, int max_contacts = 64);
+
+  /// The material of the surfaces the next queries name, by their position
+  /// in the list (null, empty or past the end: the whole surface). Contacts
+  /// off the material are left out before each surface's contacts are kept
+  /// to max_contacts (CollisionRequest::material_a), so a trimmed face keeps
+  /// max_contacts of its own; crossings count wherever they lie.
+  void set_materials(std::vector<const TrimRegion*> materials) {
+    materials_ = std::move(materials);
+  }
 
   /// Whether the tool at a pose crosses any surface. A failed query counts as
   /// crossing (with its status): the proxy must not move where it cannot
@@ -112,7 +123,8 @@ class SurfaceToolProxy {
     bool blocked = false;
     std::optional<ToolContacts> contacts;  // at X_WT, when the advance queried them
   };
-  SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy hierarchy, double eps);
+  SurfaceToolProxy(const BSplineSurface& tool, SurfaceHierarchy hierarchy, double eps,
+                   int max_contacts);
   /// From a pose that does not cross towards `to`: the last pose that does
   /// not. Its last substep is tested with the contact query.
   Advance advance(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& from,
@@ -148,6 +160,8 @@ class SurfaceToolProxy {
   double eps_;
   double size_;
   double reach_;  // largest distance of a control point from T's origin [mm]
+  int max_contacts_;
+  std::vector<const TrimRegion*> materials_;
 };
 
 }  // namespace argil

@@ -14,6 +14,9 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
                                                       const DeviceSample& device,
                                                       const std::vector<char>& reach) {
   const std::vector<const SurfaceHierarchy*> surfs = surfaces(reach);
+  std::vector<const TrimRegion*> materials;
+  for (int b = 0; b < body_count(); ++b) materials.push_back(&trim(b));
+  surface_tool_->set_materials(std::move(materials));
   const double k = options_.coupling.stiffness;
   ProxyMove out;
   // Where the proxy ends this tick and its contacts there: set by friction
@@ -78,8 +81,10 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
     if (moved->status.ok()) drop_contacts_outside_trims(moved->contacts.per_surface);
   }
   if (!moved->status.ok()) return {std::move(moved->status), {}, {}, {0, 0, 0}};
-  // The proxy keeps the device's rotation; its position is where the move stopped.
-  out.next.X_WT = {device.X_WD.R, moved->X_WT.p};
+  // The proxy's pose is where the move stopped, rotation too: a turn blocked
+  // part way (a rim that would dip into a surface) keeps the tool where it is
+  // clear, and the next tick turns on from there towards the hand.
+  out.next.X_WT = moved->X_WT;
   out.body_contacts = std::move(moved->contacts.per_surface);
   out.outward_normal = moved->contacts.outward_normal;
   return out;
