@@ -603,11 +603,13 @@ bool pair_apart(const View& va, const View& vb, double eps) {
   if ((va.center - vb.center).norm() > va.radius + vb.radius + eps) return true;
   if (((va.lo - vb.hi).array() > eps).any() || ((vb.lo - va.hi).array() > eps).any()) return true;
   // A nearly flat side bounds by its triangles (worth it when flatness is
-  // well below its radius). Each test is conservative on its own, so their
-  // order is only cost: the cheap bounds of two thin sides' triangles first,
-  // then the exact distances of a sphere to a flat side's triangles.
+  // well below its radius). Each test is conservative on its own, so which
+  // run is only cost: two thin sides compare their triangles' cheap bounds
+  // (the sphere tests after a failed one pruned 6% of what they examined,
+  // and cost more than splitting those pairs), one thin side measures the
+  // other's sphere against its triangles.
   const bool thin_a = is_thin(va), thin_b = is_thin(vb);
-  if (thin_a && thin_b && triangles_farther_than(va, vb, eps)) return true;
+  if (thin_a && thin_b) return triangles_farther_than(va, vb, eps);
   if (thin_a && sphere_apart_from_flat_patch(va, vb, eps)) return true;
   return thin_b && sphere_apart_from_flat_patch(vb, va, eps);
 }
