@@ -299,6 +299,62 @@ TEST_CASE("a B-spline tool sticks below mu N and slips to mu N within eps and be
   }
 }
 
+TEST_CASE("a B-spline tool whose short slip would cross a wall stops before it with friction",
+          "[haptic]") {
+  // The cap rests on a floor with its rim within eps of a wall (a contact),
+  // and is pulled towards the wall past mu N by a slip shorter than eps but
+  // longer than the gap. That slip is one swept query, which crosses the
+  // wall: the tick then tests the stick point and moves from there towards
+  // the slip's end, and stops before the wall.
+  const double mu = 0.5, press = 2.0, eps = 0.05, gap = 0.01;
+  const argil::BSplineSurface tool = bowl_cap();
+  argil::BSplineSurface wall = wavy_sheet(4, 10.0, 0.0);
+  for (Eigen::Index k = 0; k < wall.control_points.rows(); ++k) {  // the plane x = 46 + gap
+    const Eigen::RowVector3d p = wall.control_points.row(k);
+    wall.control_points.row(k) << 46.0 + gap, 30.0 + p.x(), -5.0 + p.y() / 2.0;
+  }
+  argil::HapticWorld w = world(argil::SurfaceToolShape{tool}, eps);
+  REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), mu).ok());
+  REQUIRE(w.add_rigid(wall, mu).ok());
+  REQUIRE(w.step(at(40, 45, 10), 1e-3).status.ok());
+  REQUIRE(w.step(at(40, 45, -press), 1e-3).status.ok());  // lands on the floor
+  const double rest = w.proxy().X_WT.p.z();
+  for (int t = 0; t < 3; ++t) REQUIRE(w.step(at(40, 45, rest - press), 1e-3).status.ok());
+  REQUIRE(w.proxy().in_contact);
+  const double x0 = w.proxy().X_WT.p.x();  // the rim at x0 + 6, within eps of the wall
+  REQUIRE(46.0 + gap - (x0 + 6.0) < 0.04);
+
+  // Pressed along the contacts' normal and pulled along the surface towards
+  // the wall past mu N: a slip of 0.045 mm. As the tick works it out, that
+  // slip crosses the wall.
+  const argil::Pose stick = w.proxy().X_WT;
+  const Eigen::Vector3d n = w.proxy().outward_normal;
+  const Eigen::Vector3d along = (Eigen::Vector3d::UnitX() - n.x() * n).normalized();
+  const Eigen::Vector3d hand = stick.p + (mu * press + 0.045) * along - press * n;
+  const argil::DeviceSample device = at(hand.x(), hand.y(), hand.z());
+  const argil::FrictionOutcome fr = argil::coulomb_friction(device.X_WD.p - stick.p, n, mu, 1.0);
+  REQUIRE_FALSE(fr.stick);
+  REQUIRE(fr.slide.norm() == Approx(0.045).epsilon(1e-9));
+  const argil::SurfaceHierarchy floor_h = w.hierarchy(0), wall_h = w.hierarchy(1);
+  const std::vector<const argil::SurfaceHierarchy*> both{&floor_h, &wall_h};
+  argil::OperatorCache cache;
+  argil::SurfaceToolProxy check = argil::SurfaceToolProxy::create(tool, eps, cache).value();
+  argil::Pose slid = stick;
+  slid.p += fr.slide;
+  const std::optional<argil::ToolContacts> swept = check.slip(both, stick, slid);
+  REQUIRE(swept);
+  REQUIRE(swept->crosses);
+
+  const argil::TickResult r = w.step(device, 1e-3);
+  REQUIRE(r.status.ok());
+  CHECK_FALSE(check.crossing(both, r.proxy.X_WT).crosses);
+  CHECK(r.proxy.in_contact);
+  CHECK_FALSE(r.proxy.stuck);
+  CHECK(r.proxy.X_WT.p.x() > x0);          // it slid towards the wall
+  CHECK(r.proxy.X_WT.p.x() < 40.0 + gap);  // and stopped before it
+  CHECK(r.force.x() < 0.0);                // the hand is held back
+}
+
 TEST_CASE("friction outside [0, kMaxFriction] is refused for deformable and rigid bodies",
           "[haptic]") {
   argil::HapticWorld w = world(argil::SphereToolShape{5.0});
