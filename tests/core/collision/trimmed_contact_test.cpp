@@ -1,6 +1,7 @@
 // Contact with material only: the closest point of a trimmed face and a
 // sphere's contacts with it, against brute force on a dense sampling of the
 // material and of the face's edge, on the u/v-asymmetric rational surface.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
@@ -172,8 +173,8 @@ TEST_CASE("a sphere touches a trimmed face inside its trims or on its edge, as b
 TEST_CASE("a sphere keeps max_contacts contacts on the material, not before the trims",
           "[collision][trim]") {
   // Kept to max_contacts after the trims leave out the contacts off the
-  // material: as many as the material has, up to max_contacts. (Kept first,
-  // a sphere whose deepest contacts lie beyond the edge lost the others.)
+  // material: as many as the material has, up to max_contacts, and each of
+  // them one of the material's.
   Fixture f;
   const double eps = 0.01, radius = 3.0;
   std::mt19937_64 rng(21);
@@ -187,6 +188,9 @@ TEST_CASE("a sphere keeps max_contacts contacts on the material, not before the 
     REQUIRE(all.status.ok());
     REQUIRE(few.status.ok());
     CHECK(few.contacts.size() == std::min<std::size_t>(2, all.contacts.size()));
+    for (const Contact& c : few.contacts)
+      CHECK(std::any_of(all.contacts.begin(), all.contacts.end(),
+                        [&c](const Contact& a) { return a.uv_a == c.uv_a; }));
     capped += all.contacts.size() > 2 ? 1 : 0;
   }
   WARN(capped << " of 400 spheres have more than 2 contacts on the material");

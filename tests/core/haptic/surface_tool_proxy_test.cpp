@@ -13,10 +13,12 @@ using argil::test::bowl_cap;
 using argil::test::wavy_sheet;
 
 constexpr double kEps = 0.05;
+const int kMaxContacts = argil::WorldOptions{}.max_contacts;  // as a world keeps
 
 struct Fixture {
   argil::OperatorCache cache;
-  argil::SurfaceToolProxy proxy = argil::SurfaceToolProxy::create(bowl_cap(), kEps, cache).value();
+  argil::SurfaceToolProxy proxy =
+      argil::SurfaceToolProxy::create(bowl_cap(), kEps, cache, kMaxContacts).value();
   argil::SurfaceHierarchy flat =
       argil::SurfaceHierarchy::build(wavy_sheet(10, 10.0, 0.0), cache).value();
   argil::SurfaceHierarchy wavy =
@@ -173,7 +175,8 @@ TEST_CASE("a B-spline tool moved through a surface in one substep stops on it", 
   argil::BSplineSurface sheet = wavy_sheet(4, 2.0, 0.0);
   sheet.control_points.col(0).array() -= 3.0;
   sheet.control_points.col(1).array() -= 3.0;
-  argil::SurfaceToolProxy flat_tool = argil::SurfaceToolProxy::create(sheet, kEps, f.cache).value();
+  argil::SurfaceToolProxy flat_tool =
+      argil::SurfaceToolProxy::create(sheet, kEps, f.cache, kMaxContacts).value();
   const std::vector<const argil::SurfaceHierarchy*> floor{&f.flat};
   // Straight, and turning by 0.3 rad about a tilted axis on the way.
   const Eigen::Quaterniond turned(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 0).normalized()));

@@ -38,6 +38,16 @@ TrimRegion holed(double radius) {
   return TrimRegion::create(loops).value();
 }
 
+/// A bowl-shaped cap 12 mm across, lowest at its frame origin (z = 0.05 r^2).
+BSplineSurface small_cap() {
+  BSplineSurface cap = test::asymmetric_plate(12.0, 0.0);
+  for (Eigen::Index k = 0; k < cap.control_points.rows(); ++k) {
+    const double x = cap.control_points(k, 0) - 6.0, y = cap.control_points(k, 1) - 6.0;
+    cap.control_points.row(k) << x, y, 0.05 * (x * x + y * y);
+  }
+  return cap;
+}
+
 /// The plate cut at x = `edge` [mm]: material for x <= edge.
 TrimRegion cut_at(double edge) {
   return TrimRegion::create({test::rectangle_loop({0, 0}, {edge / kSize, 1}, true)}).value();
@@ -142,14 +152,9 @@ TEST_CASE("set_trim refuses an unknown body and trims that miss the domain", "[h
 }
 
 TEST_CASE("the B-spline tool's contacts outside the trims are dropped", "[haptic][trim]") {
-  // A small bowl-shaped cap (lowest at its frame origin), pressed onto the
-  // plate inside a hole and on material. The advance still stops it on the
-  // whole surface: only its contacts follow the trims.
-  BSplineSurface tool = test::asymmetric_plate(12.0, 0.0);
-  for (Eigen::Index k = 0; k < tool.control_points.rows(); ++k) {
-    const double x = tool.control_points(k, 0) - 6.0, y = tool.control_points(k, 1) - 6.0;
-    tool.control_points.row(k) << x, y, 0.05 * (x * x + y * y);
-  }
+  // Pressed onto the plate inside a hole and on material. The advance still
+  // stops it on the whole surface: only its contacts follow the trims.
+  const BSplineSurface tool = small_cap();
   for (const double x : {45.0, 20.0}) {  // in the hole, then on material
     CAPTURE(x);
     WorldOptions o;
@@ -166,27 +171,42 @@ TEST_CASE("the B-spline tool's contacts outside the trims are dropped", "[haptic
   }
 }
 
-}  // namespace argil
-
-namespace argil {
+TEST_CASE("the B-spline tool slides over a hole along the whole surface that holds it up",
+          "[haptic][trim]") {
+  // Held up in a hole by the trimmed-away plate (no contact, no force on the
+  // body), the cap is dragged 5 mm along it: it slides with the hand (the
+  // normal it slides along is the whole surface's), without contacts.
+  WorldOptions o;
+  o.tolerance = 0.05;
+  HapticWorld w = HapticWorld::create(SurfaceToolShape{small_cap()}, o).value();
+  const int body = w.add_rigid(test::asymmetric_plate(kSize, 0.0), 0.0).value();
+  REQUIRE(w.set_trim(body, holed(15.0)).ok());
+  REQUIRE(w.step(device_at({45, 45, 5}), 1e-3).status.ok());
+  for (int k = 0; k < 10; ++k) REQUIRE(w.step(device_at({45, 45, -2}), 1e-3).status.ok());
+  const double rest = w.proxy().X_WT.p.z();  // held up by the plate
+  REQUIRE(rest > -2.0);
+  TickResult r;
+  for (int k = 1; k <= 10; ++k) {
+    r = w.step(device_at({45.0 + 0.5 * k, 45, -2}), 1e-3);
+    REQUIRE(r.status.ok());
+    CHECK(r.contacts == 0);
+  }
+  CHECK(r.proxy.X_WT.p.x() == Approx(50.0).margin(o.tolerance));
+  CHECK(r.proxy.X_WT.p.z() == Approx(rest).margin(o.tolerance));
+  CHECK(w.proxy().outward_normal.z() == Approx(1.0).epsilon(1e-9));
+}
 
 TEST_CASE("the B-spline tool keeps max_contacts contacts on the material beside a trimmed edge",
           "[haptic][trim]") {
   // The plate is cut at x = 45 and the cap pressed just beyond the cut: its
-  // deepest contacts lie off the material. Kept to max_contacts only after
-  // those are left out, it keeps as many as it has on the material, up to
-  // max_contacts (it kept 64 first, whatever the world's option, which could
-  // leave a few or none).
-  BSplineSurface cap = test::asymmetric_plate(12.0, 0.0);
-  for (Eigen::Index k = 0; k < cap.control_points.rows(); ++k) {
-    const double x = cap.control_points(k, 0) - 6.0, y = cap.control_points(k, 1) - 6.0;
-    cap.control_points.row(k) << x, y, 0.05 * (x * x + y * y);
-  }
-  const auto material_contacts = [&](int max_contacts) {
+  // deepest contacts lie off the material. Kept to max_contacts after those
+  // are set apart, it keeps as many as it has on the material, up to
+  // max_contacts, whatever the world's option.
+  const auto material_contacts = [](int max_contacts) {
     WorldOptions o;
     o.tolerance = 0.05;
     o.max_contacts = max_contacts;
-    HapticWorld w = HapticWorld::create(SurfaceToolShape{cap}, o).value();
+    HapticWorld w = HapticWorld::create(SurfaceToolShape{small_cap()}, o).value();
     const int body = w.add_rigid(test::asymmetric_plate(kSize, 0.0), 0.0).value();
     REQUIRE(w.set_trim(body, cut_at(45.0)).ok());
     REQUIRE(w.step(device_at({45.6, 45, 5}), 1e-3).status.ok());
@@ -198,8 +218,8 @@ TEST_CASE("the B-spline tool keeps max_contacts contacts on the material beside 
   };
   const int all = material_contacts(100000);
   CAPTURE(all);
-  REQUIRE(all > 8);
-  CHECK(material_contacts(8) == 8);
+  REQUIRE(all >= 8);  // twice the cap below: the cap, not the material, decides
+  CHECK(material_contacts(4) == 4);
 }
 
 }  // namespace argil

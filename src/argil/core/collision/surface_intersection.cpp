@@ -448,6 +448,27 @@ struct PendingContacts {
   }
 };
 
+/// The near touches whose uv_a `material` does not contain, moved out of
+/// `pending` (in their order); crossings stay wherever they lie. Nothing
+/// moves for a null or empty material.
+std::vector<LeafContact> take_off_material(PendingContacts& pending, const TrimRegion* material) {
+  std::vector<LeafContact> off;
+  if (!material || material->empty()) return off;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < pending.leaves.size(); ++i) {
+    if (!pending.origins[i].crossing && !material->contains(pending.leaves[i].contact.uv_a)) {
+      off.push_back(pending.leaves[i]);
+      continue;
+    }
+    pending.leaves[kept] = pending.leaves[i];
+    pending.origins[kept] = pending.origins[i];
+    ++kept;
+  }
+  pending.leaves.resize(kept);
+  pending.origins.resize(kept);
+  return off;
+}
+
 double scale_of(const BSplineSurface& a, const BSplineSurface& b) {
   return std::max({control_point_box(a).diagonal(), control_point_box(b).diagonal(),
                    std::numeric_limits<double>::min()});
@@ -1138,10 +1159,7 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   if (request.refine)
     for (std::size_t i = 0; i < leaves.size(); ++i)
       refine_contact(pair, leaves[i].contact, descent.pending.origins[i]);
-  if (request.material_a && !request.material_a->empty())
-    std::erase_if(leaves, [&](const LeafContact& l) {
-      return l.contact.depth < 0.0 && !request.material_a->contains(l.contact.uv_a);
-    });
+  std::vector<LeafContact> off_material = take_off_material(descent.pending, request.material_a);
   // Penetration needs each region's full extent, so trim only after adding it.
   const bool penetration = request.compute_depth && !request.first_crossing_only;
   ContactRegions regions =
@@ -1153,6 +1171,10 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
     rank_regions(result.contacts, result.region_count, request.max_contacts);
   }
   for (Contact& c : result.contacts) c = with_frame(pair.a, c);
+  if (!off_material.empty()) {
+    result.off_material = group_regions(off_material, request.max_contacts).contacts;
+    for (Contact& c : result.off_material) c = with_frame(pair.a, c);
+  }
   return result;
 }
 

@@ -1,6 +1,7 @@
 #include "argil/core/haptic/surface_tool_proxy.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 
@@ -47,7 +48,9 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
   hierarchy_.keep_within_node_budget();
   const Eigen::Vector3d centre = apply(X_WT, centre_T_);
   ToolContacts out;
+  Eigen::Vector3d off_material_normal = Eigen::Vector3d::Zero();
   out.per_surface.resize(surfaces.size());
+  assert(materials_.empty() || materials_.size() == surfaces.size());
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
     if (!surfaces[b]) continue;  // out of reach
     // Only contacts: a crossing is a contact of depth 0 (no curves chained).
@@ -57,7 +60,7 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
                                    .compute_depth = false,
                                    .curves = false,
                                    .stop_at_crossing = partial_when_crossing,
-                                   .material_a = b < materials_.size() ? materials_[b] : nullptr};
+                                   .material_a = materials_.empty() ? nullptr : materials_[b]};
     CollisionResult r = swept_from
                             ? collide_swept(*surfaces[b], hierarchy_, *swept_from, X_WT, request)
                             : collide(*surfaces[b], hierarchy_, X_WT, request);
@@ -65,15 +68,23 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
       out.status = std::move(r.status);
       break;
     }
-    for (const Contact& c : r.contacts) {
-      out.crosses = out.crosses || c.depth >= 0.0;
-      const double sign = c.normal.dot(centre - c.point) < 0.0 ? -1.0 : 1.0;
-      out.outward_normal += sign * c.normal;
-    }
+    // Touches off the material (a trimmed-away part still blocks the tool)
+    // count for crossing, and give the normal only where the tool touches
+    // no material: friction presses on the body, not on what was cut away.
+    const auto add = [&](const std::vector<Contact>& touches, Eigen::Vector3d& normal) {
+      for (const Contact& c : touches) {
+        out.crosses = out.crosses || c.depth >= 0.0;
+        const double sign = c.normal.dot(centre - c.point) < 0.0 ? -1.0 : 1.0;
+        normal += sign * c.normal;
+      }
+    };
+    add(r.contacts, out.outward_normal);
+    add(r.off_material, off_material_normal);
     out.per_surface[b] = std::move(r.contacts);
     // The caller uses partial contacts only when nothing crosses.
     if (partial_when_crossing && out.crosses) break;
   }
+  if (out.outward_normal.squaredNorm() == 0.0) out.outward_normal = off_material_normal;
   if (out.outward_normal.squaredNorm() > 0.0) out.outward_normal.normalize();
   return out;
 }

@@ -21,10 +21,14 @@ struct [[nodiscard]] ToolContacts {
   /// Not ok when a collision query failed (its status; the contacts of the
   /// surfaces before it are kept).
   Status status;
-  std::vector<std::vector<Contact>> per_surface;  // contacts of surface b (its side a)
+  /// Contacts of surface b (its side a), on its material only (set_materials).
+  std::vector<std::vector<Contact>> per_surface;
+  /// Any crossing, on the material or off it.
   bool crosses = false;
   /// Mean unit normal of the contacts, oriented from the surfaces towards the
-  /// tool's control-point centre (zero without contacts).
+  /// tool's control-point centre: of those on the material (crossings
+  /// included), or, where the tool touches no material, of the touches off it
+  /// (held up over a hole by the trimmed-away surface); zero without any.
   Eigen::Vector3d outward_normal = Eigen::Vector3d::Zero();
 };
 
@@ -65,13 +69,15 @@ class SurfaceToolProxy {
   /// (check_request): a tool smaller than eps would pass through surfaces.
   /// A contact query keeps at most `max_contacts` (>= 1) per surface.
   static Result<SurfaceToolProxy> create(const BSplineSurface& tool, double eps,
-                                         OperatorCache& cache, int max_contacts = 64);
+                                         OperatorCache& cache, int max_contacts);
 
-  /// The material of the surfaces the next queries name, by their position
-  /// in the list (null, empty or past the end: the whole surface). Contacts
-  /// off the material are left out before each surface's contacts are kept
-  /// to max_contacts (CollisionRequest::material_a), so a trimmed face keeps
-  /// max_contacts of its own; crossings count wherever they lie.
+  /// The material of the surfaces the queries name, by their position in the
+  /// list (null or empty: the whole surface), until cleared (an empty list).
+  /// A surface's contacts are its material's, kept to max_contacts after
+  /// those off it are set apart (CollisionRequest::material_a); crossings are
+  /// the whole surface's, and so is the normal where no material is touched
+  /// (ToolContacts::outward_normal). The caller keeps the regions alive while
+  /// they are set.
   void set_materials(std::vector<const TrimRegion*> materials) {
     materials_ = std::move(materials);
   }
@@ -87,6 +93,12 @@ class SurfaceToolProxy {
   Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
   /// The tool posed at X_WT, collided with every surface.
   ToolContacts contacts(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
+  /// The same, for callers that use the contacts only when nothing crosses:
+  /// the queries stop at the first crossing (`crosses`, the contacts partial).
+  ToolContacts contacts_unless_crossing(const std::vector<const SurfaceHierarchy*>& surfaces,
+                                        const Pose& X_WT) {
+    return contacts(surfaces, X_WT, std::nullopt, true);
+  }
   /// What the caller knows of a move's start pose.
   enum class Start {
     unknown,  // tested first, and pushed out when it crosses

@@ -14,9 +14,15 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
                                                       const DeviceSample& device,
                                                       const std::vector<char>& reach) {
   const std::vector<const SurfaceHierarchy*> surfs = surfaces(reach);
+  // The bodies' trims, set for this tick's queries only: the proxy holds no
+  // pointers into the world between ticks.
   std::vector<const TrimRegion*> materials;
   for (int b = 0; b < body_count(); ++b) materials.push_back(&trim(b));
   surface_tool_->set_materials(std::move(materials));
+  struct ClearMaterials {
+    SurfaceToolProxy& proxy;
+    ~ClearMaterials() { proxy.set_materials({}); }
+  } clear_materials{*surface_tool_};
   const double k = options_.coupling.stiffness;
   ProxyMove out;
   // Where the proxy ends this tick and its contacts there: set by friction
@@ -36,15 +42,18 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
     // One query for the tick: at the stick point, or swept from it along a
     // slip of at most eps (a translation: both poses have the device's
     // rotation). Pulled off, or on a longer slip, the tool tests its stick
-    // point first, and moves from there.
+    // point first, and moves from there. The stick point's contacts are used
+    // only when it crosses nothing, so its query stops at a crossing (a turn
+    // the proxy could not follow crosses there tick after tick).
     std::optional<ToolContacts> at;
     if (fr.normal_force > 0.0)
-      at = fr.stick ? std::optional<ToolContacts>(surface_tool_->contacts(surfs, stick))
-                    : surface_tool_->slip(surfs, stick, slid);
+      at = fr.stick
+               ? std::optional<ToolContacts>(surface_tool_->contacts_unless_crossing(surfs, stick))
+               : surface_tool_->slip(surfs, stick, slid);
     // A slip whose way crosses (a crease, a bump ahead) is taken as below.
     if (at && !fr.stick && at->status.ok() && at->crosses) at.reset();
     const bool one_query = at.has_value();
-    if (!at) at = surface_tool_->contacts(surfs, stick);
+    if (!at) at = surface_tool_->contacts_unless_crossing(surfs, stick);
     if (!at->status.ok()) return {std::move(at->status), {}, {}, {0, 0, 0}};
     drop_contacts_outside_trims(at->per_surface);
     const bool touches = std::any_of(at->per_surface.begin(), at->per_surface.end(),
