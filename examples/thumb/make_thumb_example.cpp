@@ -1,8 +1,9 @@
 // Makes the thumb example's inputs from the bearing (tests/data/bearing.iges):
 //  face.json   face 161, a trimmed conical band about 35 x 5 micrometres, refined
-//              exactly by knot insertion (28 x 9 poles) so a tool can shape it locally;
-//  thumb.json  the "thumb": a bicubic pad 6 x 3 micrometres, 1.5 deep, its lowest
-//              point 1.5 micrometres below the tool frame's origin on -z;
+//              exactly by knot insertion (29 x 9 poles) so a tool can shape it locally;
+//  thumb.json  the "thumb": a bicubic pad 6 x 3 micrometres whose control net is 1.5
+//              deep (the surface's lowest point is 0.9 micrometres below the tool
+//              frame's origin on -z);
 //  drag.json   a script: approach along the face normal, engage, press, drag the
 //              thumb along u from 0.22 to 0.45 following the face (position and
 //              orientation: the pad's -z along the inward normal, x along S_u),
