@@ -41,8 +41,11 @@ Status check_script_fits(const RunInputs& in) {
 }
 
 std::string scene_name_of(const std::filesystem::path& scene_path) {
-  return scene_path.stem().string() == "scene" ? scene_path.parent_path().filename().string()
-                                               : scene_path.stem().string();
+  if (scene_path.stem().string() != "scene") return scene_path.stem().string();
+  // The folder's name, also for a bare "scene.json" (the working folder).
+  std::error_code error;
+  const std::filesystem::path absolute = std::filesystem::absolute(scene_path, error);
+  return (error ? scene_path : absolute).parent_path().filename().string();
 }
 
 }  // namespace
