@@ -43,11 +43,11 @@ struct CollisionRequest {
   /// the yes/no test costs, not a descent over the whole overlap.
   bool stop_at_crossing = false;
   /// Surface-surface queries on a trimmed face a: the part of a's domain that
-  /// is material (null or empty: all of it). Near touches whose uv_a it does
-  /// not contain go to CollisionResult::off_material instead of `contacts`,
-  /// before either is ranked and kept to max_contacts, so a face whose
-  /// material is a small part of the overlap keeps max_contacts of its own.
-  /// Crossings stay in `contacts` wherever they lie: the surfaces still cross.
+  /// is material (null or empty: all of it). Contacts whose uv_a it does not
+  /// contain, crossings included, go to CollisionResult::off_material instead
+  /// of `contacts`, before either is ranked and kept to max_contacts, so a
+  /// face whose material is a small part of the overlap keeps max_contacts of
+  /// its own.
   const TrimRegion* material_a = nullptr;
 };
 
@@ -93,10 +93,11 @@ struct [[nodiscard]] CollisionResult {
   /// Surface-surface queries: intersection curves, chained from the leaf
   /// triangle segments (empty for other queries).
   std::vector<IntersectionCurve> curves;
-  /// Surface-surface queries given request.material_a: the near touches off
-  /// the material, grouped, ranked and kept to max_contacts as `contacts`
-  /// are (their regions numbered apart, not refined): where the whole
-  /// surface touches, for callers that move against it (a tool's slide).
+  /// Surface-surface queries given request.material_a: the contacts off the
+  /// material (a crossing there has depth 0), grouped, ranked and kept to
+  /// max_contacts as `contacts` are (their regions numbered apart, not
+  /// refined): where the whole surface touches or crosses, for callers that
+  /// move against it (a tool's advance and slide).
   std::vector<Contact> off_material;
 };
 

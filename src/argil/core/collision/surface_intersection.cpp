@@ -448,15 +448,14 @@ struct PendingContacts {
   }
 };
 
-/// The near touches whose uv_a `material` does not contain, moved out of
-/// `pending` (in their order); crossings stay wherever they lie. Nothing
-/// moves for a null or empty material.
+/// The contacts whose uv_a `material` does not contain, moved out of
+/// `pending` (in their order). Nothing moves for a null or empty material.
 std::vector<LeafContact> take_off_material(PendingContacts& pending, const TrimRegion* material) {
   std::vector<LeafContact> off;
   if (!material || material->empty()) return off;
   std::size_t kept = 0;
   for (std::size_t i = 0; i < pending.leaves.size(); ++i) {
-    if (!pending.origins[i].crossing && !material->contains(pending.leaves[i].contact.uv_a)) {
+    if (!material->contains(pending.leaves[i].contact.uv_a)) {
       off.push_back(pending.leaves[i]);
       continue;
     }

@@ -1,6 +1,5 @@
 // HapticWorld's trims: which part of each body's domain is material.
 #include <algorithm>
-#include <map>
 #include <string>
 
 #include "argil/core/base/number_text.hpp"
@@ -45,21 +44,6 @@ std::vector<TrimmedSurface> HapticWorld::trimmed_surfaces(const std::vector<char
   for (int b = 0; b < body_count(); ++b)
     out.push_back({reach[static_cast<std::size_t>(b)] ? &hierarchy(b) : nullptr, &trim(b)});
   return out;
-}
-
-void HapticWorld::drop_contacts_outside_trims(std::vector<std::vector<Contact>>& per_body) const {
-  for (std::size_t b = 0; b < per_body.size(); ++b) {
-    const TrimRegion& region = trim(static_cast<int>(b));
-    if (region.empty()) continue;
-    std::vector<Contact>& contacts = per_body[b];
-    std::erase_if(contacts, [&](const Contact& c) { return !region.contains(c.uv_a); });
-    // Region ids stay dense, in their order of appearance.
-    std::map<int, int> renumbered;
-    for (Contact& c : contacts) {
-      const auto [at, added] = renumbered.emplace(c.region, static_cast<int>(renumbered.size()));
-      c.region = at->second;
-    }
-  }
 }
 
 }  // namespace argil

@@ -239,8 +239,6 @@ class HapticWorld {
   /// After the bodies stepped: the largest motion, the bounds, and which
   /// bodies out of reach fall asleep.
   void settle(const std::vector<char>& reach);
-  /// Removes the contacts outside their body's trims (body_trim.cpp).
-  void drop_contacts_outside_trims(std::vector<std::vector<Contact>>& per_body) const;
   /// The world's tolerance checked against the documented range for a body.
   Status check_tolerance(const SurfaceHierarchy& surface) const;
   int add_body(Body body);

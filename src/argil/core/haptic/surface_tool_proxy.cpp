@@ -68,18 +68,20 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
       out.status = std::move(r.status);
       break;
     }
-    // Touches off the material (a trimmed-away part still blocks the tool)
-    // count for crossing, and give the normal only where the tool touches
-    // no material: friction presses on the body, not on what was cut away.
-    const auto add = [&](const std::vector<Contact>& touches, Eigen::Vector3d& normal) {
+    // Contacts off the material (a trimmed-away part still blocks the tool)
+    // count for crossing, and their crossings for the normal; their touches
+    // give it only where the tool touches no material: friction presses on
+    // the body, not on what was cut away.
+    const auto add = [&](const std::vector<Contact>& touches, bool on_material) {
       for (const Contact& c : touches) {
-        out.crosses = out.crosses || c.depth >= 0.0;
+        const bool crossing = c.depth >= 0.0;
+        out.crosses = out.crosses || crossing;
         const double sign = c.normal.dot(centre - c.point) < 0.0 ? -1.0 : 1.0;
-        normal += sign * c.normal;
+        (on_material || crossing ? out.outward_normal : off_material_normal) += sign * c.normal;
       }
     };
-    add(r.contacts, out.outward_normal);
-    add(r.off_material, off_material_normal);
+    add(r.contacts, true);
+    add(r.off_material, false);
     out.per_surface[b] = std::move(r.contacts);
     // The caller uses partial contacts only when nothing crosses.
     if (partial_when_crossing && out.crosses) break;

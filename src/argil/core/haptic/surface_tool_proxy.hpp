@@ -11,7 +11,6 @@
 
 #include "argil/core/collision/contact.hpp"
 #include "argil/core/geometry/pose.hpp"
-#include "argil/core/geometry/trim_region.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
 
 namespace argil {
@@ -21,14 +20,16 @@ struct [[nodiscard]] ToolContacts {
   /// Not ok when a collision query failed (its status; the contacts of the
   /// surfaces before it are kept).
   Status status;
-  /// Contacts of surface b (its side a), on its material only (set_materials).
+  /// Contacts of surface b (its side a), on its material only (set_materials),
+  /// regions numbered densely.
   std::vector<std::vector<Contact>> per_surface;
   /// Any crossing, on the material or off it.
   bool crosses = false;
   /// Mean unit normal of the contacts, oriented from the surfaces towards the
-  /// tool's control-point centre: of those on the material (crossings
-  /// included), or, where the tool touches no material, of the touches off it
-  /// (held up over a hole by the trimmed-away surface); zero without any.
+  /// tool's control-point centre: of those on the material and of every
+  /// crossing, or, where the tool touches neither, of the touches off the
+  /// material (held up over a hole by the trimmed-away surface); zero
+  /// without any.
   Eigen::Vector3d outward_normal = Eigen::Vector3d::Zero();
 };
 

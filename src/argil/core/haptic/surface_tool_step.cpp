@@ -1,7 +1,8 @@
 // The B-spline tool's part of HapticWorld::step: the tool proxy advances
 // conservatively, sticks or slips, and its contacts with every body. The
-// advance tests crossings against the whole surfaces; contacts outside a
-// body's trims are dropped (material only), for friction and load alike.
+// advance tests crossings against the whole surfaces; its contacts are the
+// bodies' material only (its queries set the rest apart), for friction and
+// load alike.
 #include <algorithm>
 #include <optional>
 
@@ -55,7 +56,6 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
     const bool one_query = at.has_value();
     if (!at) at = surface_tool_->contacts_unless_crossing(surfs, stick);
     if (!at->status.ok()) return {std::move(at->status), {}, {}, {0, 0, 0}};
-    drop_contacts_outside_trims(at->per_surface);
     const bool touches = std::any_of(at->per_surface.begin(), at->per_surface.end(),
                                      [](const std::vector<Contact>& c) { return !c.empty(); });
     if (fr.normal_force > 0.0 && !at->crosses && touches) {
@@ -65,13 +65,11 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
       } else {
         // The stick point crosses nothing (just tested): no push-out query.
         moved = surface_tool_->move(surfs, stick, slid, SurfaceToolProxy::Start::clear, &*at);
-        if (moved->status.ok()) drop_contacts_outside_trims(moved->contacts.per_surface);
       }
     } else if (one_query && !fr.stick && !at->crosses) {
       // The slip ends clear, off the material (the body's step drew it away):
       // the move towards the device starts there, known clear.
       moved = surface_tool_->move(surfs, slid, device.X_WD, SurfaceToolProxy::Start::clear, &*at);
-      if (moved->status.ok()) drop_contacts_outside_trims(moved->contacts.per_surface);
     } else if (!at->crosses) {
       // Here `at` is the stick point's (a swept slip clear of everything was
       // taken above).
@@ -87,7 +85,6 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
         surfs, previous.X_WT, device.X_WD,
         start_clear ? SurfaceToolProxy::Start::clear : SurfaceToolProxy::Start::unknown,
         start_clear ? &*at_stick : nullptr);
-    if (moved->status.ok()) drop_contacts_outside_trims(moved->contacts.per_surface);
   }
   if (!moved->status.ok()) return {std::move(moved->status), {}, {}, {0, 0, 0}};
   // The proxy's pose is where the move stopped, rotation too: a turn blocked
