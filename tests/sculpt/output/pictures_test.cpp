@@ -3,9 +3,12 @@
 // force plot carries its curves. PNGs are decoded back with cairo.
 #include <cairo.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 
 #include "argil/io/mesh/tessellate.hpp"
 #include "argil/sculpt/output/pictures.hpp"
@@ -236,6 +239,86 @@ TEST_CASE("the tool is drawn where given, and a zoom inset shows the region agai
     for (int x = x0 + 2; x < x0 + w - 2; ++x) surface += zoomed.at(x, y) != 0xffffffu;
   // The zoomed box lies inside the sheet: the inset is nearly all surface.
   CHECK(surface > (w - 4) * (h - 22) * 9 / 10);
+}
+
+}  // namespace argil::sculpt
+
+namespace argil::sculpt {
+namespace {
+
+/// before.png of a run over the flat sheet whose device pressed hardest at
+/// (60, 50, 2) turned by `turn` about z, holding `tools`.
+Image pictured_press(const std::vector<PictureTool>& tools, const Eigen::Quaterniond& turn) {
+  SessionPicturesRequest request;
+  request.before = sheet(0.0);
+  request.after = sheet(0.0);
+  request.path.positions = {Eigen::Vector3d(20, 20, 20), Eigen::Vector3d(60, 50, 2),
+                            Eigen::Vector3d(70, 50, 2)};
+  request.path.engaged = {false, true, true};
+  request.times = {0.0, 0.001, 0.002};
+  request.forces = {Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, 3), Eigen::Vector3d(0, 0, 1)};
+  request.rotations = {Eigen::Quaterniond::Identity(), turn, Eigen::Quaterniond::Identity()};
+  request.title = "pad";
+  request.tolerance_mm = 0.01;
+  request.tools = tools;
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                       ("argil-pictures-test-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  REQUIRE(write_session_pictures(request, folder).ok());
+  std::ifstream in(folder / kBeforePicture, std::ios::binary);
+  const std::string png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove_all(folder);
+  return decode(png);
+}
+
+}  // namespace
+
+TEST_CASE("a B-spline tool is drawn posed by the device where it pressed hardest", "[pictures]") {
+  // A flat 20 x 8 mm pad in its tool frame, centred on the frame's origin.
+  BSplineSurface pad;
+  pad.degree = {1, 1};
+  Eigen::VectorXd knots(4);
+  knots << 0, 0, 1, 1;
+  pad.knots = {knots, knots};
+  pad.control_points.resize(4, 3);
+  pad.control_points << -10, -4, 0, -10, 4, 0, 10, -4, 0, 10, 4, 0;
+  const Eigen::Quaterniond quarter_turn(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  const Image plain = pictured_press({}, quarter_turn);
+  // write_session_pictures' camera: fitted to the sheet and the engaged path,
+  // looking from the sheet's normal tilted towards a three-quarter view.
+  const Eigen::Vector3d eye = (Eigen::Vector3d::UnitZ() + 0.8 * view_direction(-60.0, 35.0));
+  const Camera camera = fit_camera(Box3{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(100, 100, 2)},
+                                   960, 720, eye.normalized());
+  for (const bool turned : {false, true}) {
+    CAPTURE(turned);
+    const Image drawn = pictured_press({PictureTool{0.0, pad}},
+                                       turned ? quarter_turn : Eigen::Quaterniond::Identity());
+    // The pad posed: 20 mm along x (8 along y), or along y when turned.
+    const Eigen::Vector2d half = turned ? Eigen::Vector2d(4, 10) : Eigen::Vector2d(10, 4);
+    std::vector<Eigen::Vector2d> corners;
+    for (const double sx : {-1.0, 1.0})
+      for (const double sy : {-1.0, 1.0})
+        corners.push_back(
+            camera.project(Eigen::Vector3d(60 + sx * half.x(), 50 + sy * half.y(), 2)));
+    Eigen::Vector2d lo = corners[0], hi = corners[0];
+    for (const Eigen::Vector2d& c : corners) {
+      lo = lo.cwiseMin(c);
+      hi = hi.cwiseMax(c);
+    }
+    int changed = 0, outside = 0;
+    std::array<int, 4> near_corner{};
+    for (int y = 0; y < plain.height; ++y)
+      for (int x = 0; x < plain.width; ++x) {
+        if (plain.at(x, y) == drawn.at(x, y)) continue;
+        ++changed;
+        const Eigen::Vector2d at(x, y);
+        outside += (at.array() < lo.array() - 3).any() || (at.array() > hi.array() + 3).any();
+        for (std::size_t c = 0; c < 4; ++c) near_corner[c] += (at - corners[c]).norm() < 3;
+      }
+    CHECK(changed > 200);
+    CHECK(outside == 0);
+    for (const int n : near_corner) CHECK(n > 0);
+  }
 }
 
 }  // namespace argil::sculpt

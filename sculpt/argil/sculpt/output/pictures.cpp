@@ -258,9 +258,58 @@ void draw_tool_path(cairo_t* cr, const ToolPath& path, const Camera& camera) {
   }
 }
 
+/// A B-spline tool's posed mesh: one faint fill (drawn as a group so that
+/// overlapping triangles do not darken) and its border, the edges whose ends
+/// lie on the same side of the (u, v) domain.
+void draw_tool_mesh(cairo_t* cr, const Camera& camera, const io::TriangleMesh& mesh) {
+  const auto corner = [&](int vertex) {
+    return camera.project(mesh.positions.row(vertex).transpose());
+  };
+  cairo_push_group(cr);
+  cairo_set_source_rgb(cr, 0.3, 0.3, 0.35);
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+    const Eigen::Vector2d a = corner(mesh.triangles(t, 0)), b = corner(mesh.triangles(t, 1)),
+                          c = corner(mesh.triangles(t, 2));
+    cairo_move_to(cr, a.x(), a.y());
+    cairo_line_to(cr, b.x(), b.y());
+    cairo_line_to(cr, c.x(), c.y());
+    cairo_close_path(cr);
+  }
+  cairo_fill(cr);
+  cairo_pop_group_to_source(cr);
+  cairo_paint_with_alpha(cr, 0.15);  // faint: the change under it shows
+  const Eigen::Vector2d lo = mesh.uv.colwise().minCoeff().transpose();
+  const Eigen::Vector2d hi = mesh.uv.colwise().maxCoeff().transpose();
+  const auto on_side = [&](int a, int b) {
+    for (int d = 0; d < 2; ++d) {
+      for (const double side : {lo[d], hi[d]}) {
+        if (mesh.uv(a, d) == side && mesh.uv(b, d) == side) return true;
+      }
+    }
+    return false;
+  };
+  cairo_set_source_rgba(cr, 0.15, 0.15, 0.2, 0.9);
+  cairo_set_line_width(cr, 1.5);
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = mesh.triangles(t, e), b = mesh.triangles(t, (e + 1) % 3);
+      if (!on_side(a, b)) continue;
+      const Eigen::Vector2d pa = corner(a), pb = corner(b);
+      cairo_move_to(cr, pa.x(), pa.y());
+      cairo_line_to(cr, pb.x(), pb.y());
+    }
+  }
+  cairo_stroke(cr);
+}
+
 /// The tool where it pressed hardest: a translucent disc with its outline for
-/// a sphere (its silhouette in an orthographic view), a cross for a point.
+/// a sphere (its silhouette in an orthographic view), a cross for a point,
+/// the posed surface for a B-spline tool.
 void draw_tool(cairo_t* cr, const Camera& camera, const SurfacePictureOptions& options) {
+  if (options.tool_mesh.triangles.rows() > 0) {
+    draw_tool_mesh(cr, camera, options.tool_mesh);
+    return;
+  }
   if (!options.tool_position) return;
   const Eigen::Vector2d at = camera.project(*options.tool_position);
   const double r = options.tool_radius_mm * camera.pixels_per_mm;

@@ -61,6 +61,9 @@ struct SurfacePictureOptions {
   /// or a point's cross (radius 0); none when unset.
   std::optional<Eigen::Vector3d> tool_position;
   double tool_radius_mm = 0.0;
+  /// A B-spline tool's surface posed there [mm], drawn in place of the sphere:
+  /// a faint fill with its border (the mesh's open edges) outlined.
+  io::TriangleMesh tool_mesh;
   /// A region drawn again, zoomed, in an inset at the top right (its frame
   /// marked on the whole view); none when unset.
   std::optional<Box3> zoom;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "argil/core/geometry/evaluate.hpp"
@@ -61,6 +62,29 @@ std::optional<std::size_t> hardest_press(const SessionPicturesRequest& request) 
     }
   }
   return at;
+}
+
+/// The tool held at tick k (none when the request names no tools).
+const PictureTool* tool_at(const SessionPicturesRequest& request, std::size_t k) {
+  if (request.tools.empty()) return nullptr;
+  const int index = k < request.tool_index.size() ? request.tool_index[k] : 0;
+  if (index < 0 || index >= static_cast<int>(request.tools.size())) return nullptr;
+  return &request.tools[static_cast<std::size_t>(index)];
+}
+
+/// A B-spline tool's surface posed by the device at tick k, tessellated.
+Result<io::TriangleMesh> posed_tool_mesh(const SessionPicturesRequest& request, std::size_t k,
+                                         const BSplineSurface& tool,
+                                         const io::TessellationOptions& options) {
+  const Eigen::Quaterniond R =
+      k < request.rotations.size() ? request.rotations[k] : Eigen::Quaterniond::Identity();
+  io::Model posed;
+  posed.faces.emplace_back().surface = tool;
+  ControlNet& poles = posed.faces.front().surface.control_points;
+  for (Eigen::Index i = 0; i < poles.rows(); ++i) {
+    poles.row(i) = (R * poles.row(i).transpose() + request.path.positions[k]).transpose();
+  }
+  return io::tessellate(posed, options);
 }
 
 /// How far each vertex of `after_mesh` moved from the same (face, u, v) of
@@ -183,17 +207,24 @@ Status write_session_pictures(const SessionPicturesRequest& request,
       fit_camera(with_engaged_path(models, path), 960, 720, eye_direction_for(before_mesh.value()));
   SurfacePictureOptions before_options;
   before_options.title = title + ": before";
-  before_options.tool_radius_mm = request.tool_radius_mm;
-  if (const std::optional<std::size_t> press = hardest_press(request)) {
+  const std::optional<std::size_t> press = hardest_press(request);
+  if (const PictureTool* tool = press ? tool_at(request, *press) : nullptr) {
     before_options.tool_position = path.positions[*press];
-    if (*press < request.tool_radii.size())
-      before_options.tool_radius_mm = request.tool_radii[*press];
+    before_options.tool_radius_mm = tool->radius_mm;
+    if (tool->surface) {
+      Result<io::TriangleMesh> posed = posed_tool_mesh(request, *press, *tool->surface, options);
+      if (!posed.ok()) return posed.status();
+      before_options.tool_mesh = std::move(posed).value();
+      // The zoom on the change is at least the tool's size.
+      before_options.tool_radius_mm = 0.5 * control_point_box(*tool->surface).diagonal();
+    }
   }
   const std::vector<Eigen::Vector3d> moved = vertex_movements(before, after_mesh.value());
   SurfacePictureOptions after_options =
       signed_colouring(before, after_mesh.value(), moved, request.tolerance_mm, title);
   after_options.tool_position = before_options.tool_position;
   after_options.tool_radius_mm = before_options.tool_radius_mm;
+  after_options.tool_mesh = before_options.tool_mesh;
   const std::vector<Eigen::Index> visible = visibly_moved(moved, request.tolerance_mm);
   after_options.zoom =
       moved_region(after_mesh.value(), visible, after_options.tool_radius_mm, models);

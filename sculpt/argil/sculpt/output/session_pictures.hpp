@@ -3,7 +3,9 @@
 // tool path (after: coloured by how far each point moved along the normal, in
 // or out), and the force plot.
 
+#include <Eigen/Geometry>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,13 @@ inline constexpr const char* kBeforePicture = "before.png";
 inline constexpr const char* kAfterPicture = "after.png";
 inline constexpr const char* kForcePicture = "force.png";
 
+/// A tool as the pictures draw it: a sphere of `radius_mm` (0: a point's
+/// cross), or a B-spline tool's surface in its tool frame [mm].
+struct PictureTool {
+  double radius_mm = 0.0;
+  std::optional<BSplineSurface> surface;
+};
+
 /// What the pictures of one run show.
 struct SessionPicturesRequest {
   io::Model before;
@@ -28,10 +37,13 @@ struct SessionPicturesRequest {
   std::string title;                    // prefix of every picture's title
   /// Displacements up to this are no change [mm] (the scene's eps).
   double tolerance_mm = 0.0;
-  /// The tool's radius [mm] (a sphere; 0 draws a point's cross), or per tick
-  /// when the run switched tools (`tool_radii`, one per tick, in its place).
-  double tool_radius_mm = 0.0;
-  std::vector<double> tool_radii;
+  /// The scene's tools, and the one held at each tick (`tool_index`, one per
+  /// tick; empty: tools[0] throughout). No tools: none is drawn.
+  std::vector<PictureTool> tools;
+  std::vector<int> tool_index;
+  /// The device's orientation R_WD per tick, which poses a B-spline tool
+  /// (empty: identity).
+  std::vector<Eigen::Quaterniond> rotations;
 };
 
 /// The "after" picture's colouring: how far each vertex of `after_mesh` moved
@@ -45,7 +57,8 @@ SurfacePictureOptions after_picture_options(const io::Model& before,
 
 /// Writes before.png, after.png (same camera, fitted to both surfaces and the
 /// path) and force.png into `folder`, each atomically. Both surface pictures
-/// draw the tool where the force on the device peaked while engaged; when the
+/// draw the tool where the force on the device peaked while engaged (a
+/// B-spline tool posed by the device's pose there, translucent); when the
 /// visible change (points that moved more than a tenth of the largest
 /// movement, and eps) spans less than a third of the model, after.png adds an
 /// inset zoomed on it.

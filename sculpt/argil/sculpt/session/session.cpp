@@ -23,7 +23,7 @@ void hash_bytes(std::uint64_t& h, const void* data, std::size_t size) {
 
 /// The tool's shape; a B-spline tool is read from its file. `field` names the
 /// scene's tool in errors ("tools[1]").
-Result<ToolShape> tool_shape(const ToolOptions& tool, const std::string& field) {
+Result<ToolShape> read_tool_shape(const ToolOptions& tool, const std::string& field) {
   switch (tool.type) {
     case ToolType::sphere:
       return ToolShape{SphereToolShape{tool.radius}};
@@ -130,11 +130,17 @@ Result<Session> Session::create(const Scene& scene, const std::string& tool_name
   return s;
 }
 
+const ToolShape* Session::tool_shape(int index) const {
+  if (index < 0 || index >= static_cast<int>(shapes_.size())) return nullptr;
+  const std::optional<ToolShape>& shape = shapes_[static_cast<std::size_t>(index)];
+  return shape ? &*shape : nullptr;
+}
+
 Result<ToolShape> Session::shape_of(int index) {
   std::optional<ToolShape>& shape = shapes_[static_cast<std::size_t>(index)];
   if (!shape) {
-    Result<ToolShape> read = tool_shape(scene_.tools[static_cast<std::size_t>(index)],
-                                        "tools[" + std::to_string(index) + "]");
+    Result<ToolShape> read = read_tool_shape(scene_.tools[static_cast<std::size_t>(index)],
+                                             "tools[" + std::to_string(index) + "]");
     if (!read.ok()) return read.status();
     shape = std::move(read).value();
   }

@@ -118,6 +118,9 @@ class Session {
   /// other faces as read, bit for bit; metadata as in `initial`. The run's
   /// STEP, IGES and JSON exports.
   io::Model current_file_model(int index) const;
+  /// The shape of scene tool `index` once read (every tool create() was
+  /// given: the one held and those the script switches to); null otherwise.
+  const ToolShape* tool_shape(int index) const;
   /// The tool the device holds.
   const ToolOptions& tool() const { return scene_.tools[static_cast<std::size_t>(tool_index_)]; }
   /// FNV-1a hash of every body's control points and the proxy state: equal

@@ -2,6 +2,7 @@
 
 #include <string>
 #include <utility>
+#include <variant>
 
 #include "argil/io/base/atomic_write.hpp"
 #include "argil/io/files/model_files.hpp"
@@ -69,11 +70,16 @@ void write_pictures(const RunInputs& in, const Session& session,
   pictures.forces = state.log.forces();
   pictures.title = in.scene_name;
   pictures.tolerance_mm = in.scene.tolerance;
-  pictures.tool_radius_mm = session.tool().type == ToolType::sphere ? session.tool().radius : 0.0;
-  for (const int tool : state.log.tools()) {
-    const ToolOptions& held = session.scene().tools[static_cast<std::size_t>(tool)];
-    pictures.tool_radii.push_back(held.type == ToolType::sphere ? held.radius : 0.0);
+  for (int t = 0; t < static_cast<int>(session.scene().tools.size()); ++t) {
+    PictureTool& drawn = pictures.tools.emplace_back();
+    const ToolShape* shape = session.tool_shape(t);  // null: never held, never drawn
+    if (const auto* sphere = shape ? std::get_if<SphereToolShape>(shape) : nullptr) {
+      drawn.radius_mm = sphere->radius;
+    } else if (const auto* surface = shape ? std::get_if<SurfaceToolShape>(shape) : nullptr) {
+      drawn.surface = surface->surface;
+    }
   }
+  pictures.tool_index = state.log.tools();
   for (std::size_t m = 0; m < before.size(); ++m) {
     for (const io::FaceRecord& f : before[m].faces) pictures.before.faces.push_back(f);
     for (const io::FaceRecord& f : session.current_faces(static_cast<int>(m)).faces)
@@ -82,6 +88,7 @@ void write_pictures(const RunInputs& in, const Session& session,
   for (const DeviceSample& s : state.received) {
     pictures.path.positions.push_back(s.X_WD.p);
     pictures.path.engaged.push_back(s.engaged);
+    pictures.rotations.push_back(s.X_WD.R);
   }
   const Status drawn = write_session_pictures(pictures, in.out);
   if (!drawn.ok()) {
