@@ -112,4 +112,68 @@ TEST_CASE("contact regions are the components of touching leaf rectangles, small
   }
 }
 
+namespace {
+
+/// A leaf on [u0, u0 + 1] x [v0, v0 + 1] whose contact lies at `point`,
+/// `depth` deep, at (u, v) (rounded on the leaf's own path: `wobble` in the
+/// last bits).
+LeafContact leaf_contact(double u0, double v0, const Eigen::Vector3d& point, double depth,
+                         double wobble = 0.0) {
+  LeafContact l;
+  l.rect = ParamRect{u0, u0 + 1.0, v0, v0 + 1.0};
+  l.contact.point = point;
+  l.contact.depth = depth;
+  l.contact.uv_a = Eigen::Vector2d(point.x(), point.y()) * (1.0 + wobble);
+  l.contact.uv_b = l.contact.uv_a;
+  return l;
+}
+
+}  // namespace
+
+TEST_CASE("a contact found by the leaves around a shared corner is kept once") {
+  // Four leaves meet at (1, 1): each finds the deepest contact there, the
+  // parameters rounded differently; two more leaves find shallower ones.
+  std::vector<LeafContact> leaves;
+  const Eigen::Vector3d corner(1.0, 1.0, 0.0);
+  for (int k = 0; k < 4; ++k) leaves.push_back(leaf_contact(k % 2, k / 2, corner, 0.5, k * 1e-16));
+  leaves.push_back(leaf_contact(2.0, 0.0, Eigen::Vector3d(2.5, 0.5, 0.0), 0.25));
+  leaves.push_back(leaf_contact(2.0, 1.0, Eigen::Vector3d(2.5, 1.5, 0.0), 0.125));
+  for (const int max_contacts : {1, 2, 3, 10}) {
+    CAPTURE(max_contacts);
+    std::vector<LeafContact> copy = leaves;
+    const ContactRegions got = group_regions(copy, max_contacts);
+    REQUIRE(got.region_count == 1);
+    const std::vector<double> depths = {0.5, 0.25, 0.125};
+    REQUIRE(got.contacts.size() == std::min<std::size_t>(3, std::size_t(max_contacts)));
+    for (std::size_t i = 0; i < got.contacts.size(); ++i) CHECK(got.contacts[i].depth == depths[i]);
+    // The same through rank_regions, on contacts that already carry regions.
+    std::vector<Contact> contacts;
+    for (const LeafContact& l : leaves) contacts.push_back(l.contact);
+    for (Contact& c : contacts) c.region = 0;
+    rank_regions(contacts, 1, max_contacts);
+    REQUIRE(contacts.size() == got.contacts.size());
+    for (std::size_t i = 0; i < contacts.size(); ++i) CHECK(contacts[i].depth == depths[i]);
+  }
+}
+
+TEST_CASE("contacts of equal depth are kept by where they lie, not by their parameters") {
+  // Nine contacts of one depth on a 3 x 3 grid of leaves; max_contacts keeps
+  // four. With u and v swapped (the same surface, its net transposed) the
+  // same four points are kept.
+  std::vector<LeafContact> leaves, swapped;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Vector3d p(i + 0.5, j + 0.5, 0.25 * i - 0.125 * j);
+      leaves.push_back(leaf_contact(i, j, p, 1.0));
+      LeafContact t = leaf_contact(j, i, p, 1.0);
+      t.contact.uv_a = Eigen::Vector2d(p.y(), p.x());
+      swapped.push_back(t);
+    }
+  const ContactRegions a = group_regions(leaves, 4);
+  const ContactRegions b = group_regions(swapped, 4);
+  REQUIRE(a.contacts.size() == 4);
+  REQUIRE(b.contacts.size() == 4);
+  for (std::size_t k = 0; k < 4; ++k) CHECK(a.contacts[k].point == b.contacts[k].point);
+}
+
 }  // namespace argil

@@ -21,9 +21,29 @@ int find(std::vector<int>& parent, int i) {
   return i;
 }
 
+/// Depths and points closer than this [mm] are the same contact found twice:
+/// far above their rounding (1e-13 of a metre-sized model), far below any eps.
+constexpr double kEqualDepth = 1e-9;
+
+/// Orders contacts of equal depth by where they lie in the world, then by
+/// their parameters: the same on a surface whose u and v are swapped, and
+/// equal contacts (found twice) end up side by side.
+bool same_depth_order(const Contact& a, const Contact& b) {
+  return std::tie(a.point[0], a.point[1], a.point[2], a.uv_a[0], a.uv_a[1], a.uv_b[0], a.uv_b[1]) <
+         std::tie(b.point[0], b.point[1], b.point[2], b.uv_a[0], b.uv_a[1], b.uv_b[0], b.uv_b[1]);
+}
+
+/// The same contact: leaves that share an edge or corner find the closest
+/// pair on it from each side, at the same point and depth up to rounding
+/// (each side refines it on its own path).
+bool same_contact(const Contact& a, const Contact& b) {
+  return a.region == b.region && std::abs(a.depth - b.depth) <= kEqualDepth &&
+         (a.point - b.point).norm() <= kEqualDepth;
+}
+
 /// Renumbers regions by their deepest contact (deepest first; ties keep the
-/// lower id) and sorts by region, then depth (deepest first), then uv_a, so
-/// the order is deterministic. `contact_of` gives an item's contact.
+/// lower id) and sorts by region, then depth (deepest first), then
+/// same_depth_order, so the order is deterministic. `contact_of` gives an item's contact.
 template <class Item, class ContactOf>
 void rank_and_sort(std::vector<Item>& items, int regions, ContactOf contact_of) {
   std::vector<double> deepest(static_cast<std::size_t>(regions),
@@ -54,7 +74,7 @@ void rank_and_sort(std::vector<Item>& items, int regions, ContactOf contact_of) 
     const Contact& b = contact_of(items[y]);
     if (a.region != b.region) return a.region < b.region;
     if (a.depth != b.depth) return a.depth > b.depth;
-    return std::tie(a.uv_a[0], a.uv_a[1]) < std::tie(b.uv_a[0], b.uv_a[1]);
+    return same_depth_order(a, b);
   });
   // Position i takes items[order_of_items[i]]: each cycle of the
   // permutation is followed once, marked done by pointing at itself.
@@ -71,8 +91,8 @@ void rank_and_sort(std::vector<Item>& items, int regions, ContactOf contact_of) 
 }
 
 /// Which of `contacts` (sorted by region) to keep: every region's deepest
-/// (first) contact, then the rest in order up to max_contacts. The kept
-/// positions come out in order, so they stay grouped by region.
+/// (first) contact, then the rest in order up to max_contacts, each contact
+/// once. The kept positions come out in order, so they stay grouped by region.
 template <class Item, class ContactOf>
 std::vector<std::size_t> kept_positions(const std::vector<Item>& items, int max_contacts,
                                         ContactOf contact_of) {
@@ -86,8 +106,9 @@ std::vector<std::size_t> kept_positions(const std::vector<Item>& items, int max_
       ++kept;
     }
   }
-  for (std::size_t i = 0; i < n && kept < limit; ++i) {
-    if (!keep[i]) {
+  // The rest in order, each contact once.
+  for (std::size_t i = 1; i < n && kept < limit; ++i) {
+    if (!keep[i] && !same_contact(contact_of(items[i]), contact_of(items[i - 1]))) {
       keep[i] = true;
       ++kept;
     }

@@ -32,8 +32,11 @@ struct ContactRegions {
 /// Groups leaf contacts whose rectangles touch (closed rectangles: sharing an
 /// edge or a corner counts) into regions, numbers regions by their deepest
 /// contact (deepest first; ties keep first appearance), orders each region
-/// deepest first (ties by uv_a), and keeps at most max_contacts of them: every
-/// region's deepest contact first, then the rest in order. Reorders `leaves`
+/// deepest first (ties by world point, then parameters: the same order on a
+/// surface whose u and v are swapped), and keeps at most max_contacts of
+/// them: every region's deepest contact first, then the rest in order, each
+/// contact once (the same point and depth, up to rounding, found by two
+/// leaves that share an edge or a corner, is one contact). Reorders `leaves`
 /// (callers refine region heads from the reordered leaves afterwards).
 ContactRegions group_regions(std::vector<LeafContact>& leaves, int max_contacts);
 
