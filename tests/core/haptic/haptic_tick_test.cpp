@@ -281,7 +281,12 @@ TEST_CASE("a B-spline tool sticks below mu N and slips to mu N within eps and be
     REQUIRE(w.step(at(45, 45, 10), 1e-3).status.ok());
     REQUIRE(w.step(at(45, 45, -press), 1e-3).status.ok());  // lands on the floor
     REQUIRE(w.proxy().in_contact);
+    const double landed = w.proxy().X_WT.p.z(), gap = -w.proxy().max_depth;
+    // Held pressed, it settles straight down to eps / 4 off the floor, and stays.
+    REQUIRE(w.step(at(45, 45, landed - press), 1e-3).status.ok());
     const double rest = w.proxy().X_WT.p.z();
+    CHECK(rest == Approx(landed - std::max(gap - 0.25 * eps, 0.0)).margin(1e-12));
+    CHECK(w.proxy().max_depth == Approx(-std::min(gap, 0.25 * eps)).margin(1e-12));
     for (int t = 0; t < 3; ++t) REQUIRE(w.step(at(45, 45, rest - press), 1e-3).status.ok());
     REQUIRE(w.proxy().X_WT.p.z() == rest);
     REQUIRE(w.proxy().outward_normal.z() == Approx(1.0).epsilon(1e-9));
@@ -456,4 +461,54 @@ TEST_CASE("set_tool changes the tool between strokes only; the new one rides on 
   const argil::TickResult r = w.step(at(40, 40, -1), 1e-3);
   REQUIRE(r.status.ok());
   CHECK(r.proxy.X_WT.p.z() == Approx(4.0).margin(0.02));
+}
+
+TEST_CASE("a B-spline tool follows a panel that gives way under it: the force never drops out",
+          "[haptic]") {
+  // A soft panel yields under the cap while the hand holds it 1 mm below
+  // where it landed, then drags it along x at 20 um a tick (a slip shorter
+  // than eps each tick). The panel flows away from the tool tick after tick;
+  // the tool must come down with it, not hang where it was until the gap
+  // passes eps, lose the contact and drop the force to zero.
+  const double eps = 0.05;
+  argil::HapticWorld w = world(argil::SurfaceToolShape{bowl_cap()}, eps, 20.0);
+  argil::Material m;
+  m.density = 1e4;
+  m.thickness = 1.0;
+  m.youngs_modulus = 0.1;
+  m.foundation_stiffness = 0.02;
+  m.damping = 0.01;
+  m.yield = 0.05;
+  argil::BoundaryConditions bc;
+  bc.fixed_u0 = bc.fixed_u1 = true;
+  REQUIRE(w.add_deformable(wavy_sheet(10, 10.0, 0.0), m, bc, 0.3).ok());
+  REQUIRE(w.step(at(45, 45, 10), 1e-3).status.ok());
+  // The cap's lowest point is 1.2 mm above its frame's origin.
+  for (int t = 0; t < 5 && !w.proxy().in_contact; ++t)  // lands on the panel
+    REQUIRE(w.step(at(45, 45, -3.0), 1e-3).status.ok());
+  REQUIRE(w.proxy().in_contact);
+  const double landed = w.proxy().X_WT.p.z();
+  std::vector<double> force;
+  double sunk = 0.0;
+  for (int t = 0; t < 400; ++t) {
+    const double x = 45.0 + 0.02 * std::max(t - 100, 0);
+    const argil::TickResult r = w.step(at(x, 45, landed - 1.0), 1e-3);
+    REQUIRE(r.status.ok());
+    CAPTURE(t);
+    CHECK(r.proxy.in_contact);
+    CHECK(r.max_depth <= eps);
+    // It stands no more than 3/4 eps off the panel: it settles to eps / 4,
+    // and the panel flows up to 20 um a tick (a tool left hanging stands
+    // off it by up to eps).
+    if (t > 0) CHECK(r.max_depth >= -0.75 * eps);
+    force.push_back(r.force.norm());
+    sunk = std::max(sunk, landed - r.proxy.X_WT.p.z());
+  }
+  CHECK(sunk > 0.2);  // the panel gave way, and the tool went down with it
+  // The force eases off as the panel yields, without a step: no tick changes
+  // it by 5% (a tool hanging until the gap passes eps drops it by a fifth).
+  for (std::size_t t = 2; t < force.size(); ++t) {
+    CAPTURE(t);
+    CHECK(std::abs(force[t] - force[t - 1]) < 0.05 * force[t - 1]);
+  }
 }

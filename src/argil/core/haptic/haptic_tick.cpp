@@ -238,6 +238,7 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
   const ContactSummary summary = summarize(move.body_contacts, options_.tolerance);
   next.in_contact = summary.contacts > 0;
   next.outward_normal = move.outward_normal;
+  next.max_depth = summary.max_depth;
   for (int b = 0; b < body_count() && next.friction < 0.0; ++b)
     if (!move.body_contacts[static_cast<std::size_t>(b)].empty()) next.friction = friction(b);
   const CouplingOptions& coupling = options_.coupling;

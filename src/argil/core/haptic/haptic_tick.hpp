@@ -50,6 +50,10 @@ struct ProxyState {
   /// with them (explicit friction), so it needs no query at its stick point.
   Eigen::Vector3d outward_normal = Eigen::Vector3d::Zero();
   double friction = -1.0;
+  /// The deepest of those contacts [mm] (0 without): a B-spline tool stands
+  /// -max_depth off the surfaces it touches, and its next tick settles from
+  /// there (move_surface_tool).
+  double max_depth = 0.0;
 };
 
 struct [[nodiscard]] TickResult {

@@ -31,30 +31,55 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
   std::optional<ToolMove> moved;
   // The contacts at the stick point when it was tested and crosses nothing.
   std::optional<ToolContacts> at_stick;
+  std::optional<Pose> stick_point;
   if (previous.in_contact && previous.friction >= 0.0) {
     // Friction, explicit: stick or slip is decided with the normal and the
     // body of the contacts the last tick ended with. The stick point keeps
-    // the last position with the new rotation.
-    const Pose stick{device.X_WD.R, previous.X_WT.p};
-    const FrictionOutcome fr = coulomb_friction(k * (device.X_WD.p - stick.p),
-                                                previous.outward_normal, previous.friction, k);
-    Pose slid = stick;
-    slid.p += fr.slide;
-    // One query for the tick: at the stick point, or swept from it along a
-    // slip of at most eps (a translation: both poses have the device's
-    // rotation). Pulled off, or on a longer slip, the tool tests its stick
-    // point first, and moves from there. The stick point's contacts are used
-    // only when it crosses nothing, so its query stops at a crossing (a turn
-    // the proxy could not follow crosses there tick after tick).
+    // the last position with the new rotation, settled towards the surface.
+    const Pose held{device.X_WD.R, previous.X_WT.p};
+    const Eigen::Vector3d& n = previous.outward_normal;
+    // Settling: a tool left more than eps / 4 off the surfaces it touches
+    // (the body dented away under it, or it slid along a plane off a curved
+    // face) comes down along the normal to eps / 4 of them, but not past the
+    // device. Without it the gap grows tick by tick under a pressing hand
+    // until the contact is lost, and the force drops to zero and jumps back.
+    const double below = std::max(-n.dot(device.X_WD.p - held.p), 0.0);
+    const double settle = std::clamp(-previous.max_depth - 0.25 * options_.tolerance, 0.0, below);
+    Pose stick = held;
+    Pose slid = held;
+    FrictionOutcome fr;
     std::optional<ToolContacts> at;
-    if (fr.normal_force > 0.0)
-      at = fr.stick
-               ? std::optional<ToolContacts>(surface_tool_->contacts_unless_crossing(surfs, stick))
-               : surface_tool_->slip(surfs, stick, slid);
-    // A slip whose way crosses (a crease, a bump ahead) is taken as below.
-    if (at && !fr.stick && at->status.ok() && at->crosses) at.reset();
-    const bool one_query = at.has_value();
-    if (!at) at = surface_tool_->contacts_unless_crossing(surfs, stick);
+    bool one_query = false;
+    // Settled first; where the settled stick point crosses (the surface
+    // sprang back towards the tool), as the last tick left it.
+    for (const double by : {settle, 0.0}) {
+      stick.p = held.p - by * n;
+      fr = coulomb_friction(k * (device.X_WD.p - stick.p), n, previous.friction, k);
+      slid = stick;
+      slid.p += fr.slide;
+      // One query for the tick: at the stick point, or swept along a slip of
+      // at most eps (a translation: both poses have the device's rotation)
+      // from where the tool was. Pulled off, or on a longer slip, the tool
+      // tests its stick point first, and moves from there. The stick point's
+      // contacts are used only when it crosses nothing, so its query stops at
+      // a crossing (a turn the proxy could not follow crosses there tick
+      // after tick).
+      at.reset();
+      if (fr.normal_force > 0.0) {
+        at = fr.stick && by == 0.0 ? surface_tool_->contacts_unless_crossing(surfs, stick)
+                                   : surface_tool_->slip(surfs, held, fr.stick ? stick : slid);
+      }
+      // A slip whose way crosses (a crease, a bump ahead) is taken as below.
+      if (at && !fr.stick && at->status.ok() && at->crosses) at.reset();
+      one_query = at.has_value();
+      // A settled stick point is at most 3/4 eps from where the tool was:
+      // always one swept slip away.
+      if (!at) {
+        at = by == 0.0 ? surface_tool_->contacts_unless_crossing(surfs, stick)
+                       : surface_tool_->slip(surfs, held, stick);
+      }
+      if (by == 0.0 || !at->status.ok() || !at->crosses) break;
+    }
     if (!at->status.ok()) return {std::move(at->status), {}, {}, {0, 0, 0}};
     const bool touches = std::any_of(at->per_surface.begin(), at->per_surface.end(),
                                      [](const std::vector<Contact>& c) { return !c.empty(); });
@@ -74,15 +99,19 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
       // Here `at` is the stick point's (a swept slip clear of everything was
       // taken above).
       at_stick = std::move(at);
+      stick_point = stick;
     }
   }
   if (!moved) {
     // An unturned tool's stick point is where the move starts: when it was
     // found clear there, the move's own test of its start is not repeated,
     // and a move blocked where it starts keeps its contacts.
-    const bool start_clear = at_stick && device.X_WD.R.coeffs() == previous.X_WT.R.coeffs();
+    // A settled stick point was reached clear: the move starts there.
+    const bool settled = at_stick && stick_point->p != previous.X_WT.p;
+    const bool start_clear =
+        at_stick && (settled || device.X_WD.R.coeffs() == previous.X_WT.R.coeffs());
     moved = surface_tool_->move(
-        surfs, previous.X_WT, device.X_WD,
+        surfs, settled ? *stick_point : previous.X_WT, device.X_WD,
         start_clear ? SurfaceToolProxy::Start::clear : SurfaceToolProxy::Start::unknown,
         start_clear ? &*at_stick : nullptr);
   }
