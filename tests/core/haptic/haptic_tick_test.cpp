@@ -282,11 +282,12 @@ TEST_CASE("a B-spline tool sticks below mu N and slips to mu N within eps and be
     REQUIRE(w.step(at(45, 45, -press), 1e-3).status.ok());  // lands on the floor
     REQUIRE(w.proxy().in_contact);
     const double landed = w.proxy().X_WT.p.z(), gap = -w.proxy().max_depth;
-    // Held pressed, it settles straight down to eps / 4 off the floor, and stays.
+    // Held pressed on a floor that does not move, it settles straight down to
+    // 3/4 eps off it when it landed farther, and stays.
     REQUIRE(w.step(at(45, 45, landed - press), 1e-3).status.ok());
     const double rest = w.proxy().X_WT.p.z();
-    CHECK(rest == Approx(landed - std::max(gap - 0.25 * eps, 0.0)).margin(1e-12));
-    CHECK(w.proxy().max_depth == Approx(-std::min(gap, 0.25 * eps)).margin(1e-12));
+    CHECK(rest == Approx(landed - std::max(gap - 0.75 * eps, 0.0)).margin(1e-12));
+    CHECK(w.proxy().max_depth == Approx(-std::min(gap, 0.75 * eps)).margin(1e-12));
     for (int t = 0; t < 3; ++t) REQUIRE(w.step(at(45, 45, rest - press), 1e-3).status.ok());
     REQUIRE(w.proxy().X_WT.p.z() == rest);
     REQUIRE(w.proxy().outward_normal.z() == Approx(1.0).epsilon(1e-9));
@@ -497,10 +498,11 @@ TEST_CASE("a B-spline tool follows a panel that gives way under it: the force ne
     CAPTURE(t);
     CHECK(r.proxy.in_contact);
     CHECK(r.max_depth <= eps);
-    // It stands no more than 3/4 eps off the panel: it settles to eps / 4,
-    // and the panel flows up to 20 um a tick (a tool left hanging stands
-    // off it by up to eps).
-    if (t > 0) CHECK(r.max_depth >= -0.75 * eps);
+    // It keeps off the edge of the contact: it aims at 3/4 eps after the
+    // panel's step, allowing for half of how far the panel flowed in the tick
+    // before (up to 20 um; 0.92 eps at worst, in the first ticks). A tool
+    // left hanging stands off it by up to eps, then loses it.
+    if (t > 0) CHECK(r.max_depth >= -0.95 * eps);
     force.push_back(r.force.norm());
     sunk = std::max(sunk, landed - r.proxy.X_WT.p.z());
   }

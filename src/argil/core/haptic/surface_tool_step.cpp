@@ -38,13 +38,22 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
     // the last position with the new rotation, settled towards the surface.
     const Pose held{device.X_WD.R, previous.X_WT.p};
     const Eigen::Vector3d& n = previous.outward_normal;
-    // Settling: a tool left more than eps / 4 off the surfaces it touches
-    // (the body dented away under it, or it slid along a plane off a curved
-    // face) comes down along the normal to eps / 4 of them, but not past the
-    // device. Without it the gap grows tick by tick under a pressing hand
-    // until the contact is lost, and the force drops to zero and jumps back.
+    // Settling: a tool left far off the surfaces it touches (the body dented
+    // away under it, or a slip along the contacts' tangent plane rose off a
+    // curved face) comes down along the normal, never past the device.
+    // Without it the gap grows tick by tick under a pressing hand until the
+    // contact is lost, and the force drops to zero and jumps back. It aims
+    // at 3/4 eps (close enough to keep the contact, far enough that few leaf
+    // pairs lie within eps, so the queries cost what they did), less half of
+    // how far the surfaces drew away since the last tick settled it (all of
+    // it overshoots: the gap then swings from tick to tick), down to eps / 4.
+    const double eps = options_.tolerance;
+    const double gap = -previous.max_depth;
+    const double receding =
+        previous.settled_gap >= 0.0 ? std::max(gap - previous.settled_gap, 0.0) : 0.0;
+    const double aim = std::clamp(0.75 * eps - 0.5 * receding, 0.25 * eps, 0.75 * eps);
     const double below = std::max(-n.dot(device.X_WD.p - held.p), 0.0);
-    const double settle = std::clamp(-previous.max_depth - 0.25 * options_.tolerance, 0.0, below);
+    const double settle = std::clamp(gap - aim, 0.0, below);
     Pose stick = held;
     Pose slid = held;
     FrictionOutcome fr;
@@ -78,6 +87,7 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
         at = by == 0.0 ? surface_tool_->contacts_unless_crossing(surfs, stick)
                        : surface_tool_->slip(surfs, held, stick);
       }
+      out.next.settled_gap = gap - by;
       if (by == 0.0 || !at->status.ok() || !at->crosses) break;
     }
     if (!at->status.ok()) return {std::move(at->status), {}, {}, {0, 0, 0}};
