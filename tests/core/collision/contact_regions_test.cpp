@@ -156,6 +156,22 @@ TEST_CASE("a contact found by the leaves around a shared corner is kept once") {
   }
 }
 
+TEST_CASE("copies of a contact rounded apart are kept once, with another between them") {
+  // The corner contact found twice, its depth and point rounded apart in the
+  // last bits, and a distinct contact whose depth lies between the copies'.
+  const Eigen::Vector3d corner(1.0, 1.0, 0.0);
+  std::vector<LeafContact> leaves = {
+      leaf_contact(0.0, 0.0, corner, 0.5),
+      leaf_contact(1.0, 1.0, corner + Eigen::Vector3d(1e-15, 0.0, -1e-15), 0.5 - 2e-16, 1e-16),
+      leaf_contact(1.0, 0.0, Eigen::Vector3d(1.5, 0.5, 0.0), 0.5 - 1e-16),
+      leaf_contact(0.0, 1.0, Eigen::Vector3d(0.5, 1.5, 0.0), 0.25)};
+  const ContactRegions got = group_regions(leaves, 10);
+  REQUIRE(got.contacts.size() == 3);
+  int at_corner = 0;
+  for (const Contact& c : got.contacts) at_corner += (c.point - corner).norm() < 1e-12;
+  CHECK(at_corner == 1);
+}
+
 TEST_CASE("contacts of equal depth are kept by where they lie, not by their parameters") {
   // Nine contacts of one depth on a 3 x 3 grid of leaves; max_contacts keeps
   // four. With u and v swapped (the same surface, its net transposed) the

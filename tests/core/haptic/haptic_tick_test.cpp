@@ -497,7 +497,7 @@ TEST_CASE("a B-spline tool follows a panel that gives way under it: the force ne
     REQUIRE(r.status.ok());
     CAPTURE(t);
     CHECK(r.proxy.in_contact);
-    CHECK(r.max_depth <= eps);
+    CHECK(r.max_depth >= -eps);  // within eps: a contact
     // It keeps off the edge of the contact: it aims at 3/4 eps after the
     // panel's step, allowing for half of how far the panel flowed in the tick
     // before (up to 20 um; 0.92 eps at worst, in the first ticks). A tool

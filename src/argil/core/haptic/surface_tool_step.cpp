@@ -53,12 +53,14 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
         previous.settled_gap >= 0.0 ? std::max(gap - previous.settled_gap, 0.0) : 0.0;
     const double aim = std::clamp(0.75 * eps - 0.5 * receding, 0.25 * eps, 0.75 * eps);
     const double below = std::max(-n.dot(device.X_WD.p - held.p), 0.0);
-    const double settle = std::clamp(gap - aim, 0.0, below);
+    // At most 3/4 eps: one swept slip away (SurfaceToolProxy::slip).
+    const double settle = std::clamp(gap - aim, 0.0, std::min(below, 0.75 * eps));
     Pose stick = held;
     Pose slid = held;
     FrictionOutcome fr;
     std::optional<ToolContacts> at;
     bool one_query = false;
+    double settled = 0.0;
     // Settled first; where the settled stick point crosses (the surface
     // sprang back towards the tool), as the last tick left it.
     for (const double by : {settle, 0.0}) {
@@ -81,13 +83,11 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
       // A slip whose way crosses (a crease, a bump ahead) is taken as below.
       if (at && !fr.stick && at->status.ok() && at->crosses) at.reset();
       one_query = at.has_value();
-      // A settled stick point is at most 3/4 eps from where the tool was:
-      // always one swept slip away.
       if (!at) {
         at = by == 0.0 ? surface_tool_->contacts_unless_crossing(surfs, stick)
                        : surface_tool_->slip(surfs, held, stick);
       }
-      out.next.settled_gap = gap - by;
+      settled = by;
       if (by == 0.0 || !at->status.ok() || !at->crosses) break;
     }
     if (!at->status.ok()) return {std::move(at->status), {}, {}, {0, 0, 0}};
@@ -95,6 +95,7 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
                                      [](const std::vector<Contact>& c) { return !c.empty(); });
     if (fr.normal_force > 0.0 && !at->crosses && touches) {
       out.next.stuck = fr.stick;
+      out.next.settled_gap = gap - settled;
       if (one_query) {
         moved = ToolMove{Status::success(), fr.stick ? stick : slid, std::move(*at)};
       } else {
@@ -113,15 +114,13 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
     }
   }
   if (!moved) {
-    // An unturned tool's stick point is where the move starts: when it was
-    // found clear there, the move's own test of its start is not repeated,
-    // and a move blocked where it starts keeps its contacts.
-    // A settled stick point was reached clear: the move starts there.
-    const bool settled = at_stick && stick_point->p != previous.X_WT.p;
-    const bool start_clear =
-        at_stick && (settled || device.X_WD.R.coeffs() == previous.X_WT.R.coeffs());
+    // An unturned tool's stick point (settled or not) is where the move
+    // starts: when it was found clear there, the move's own test of its start
+    // is not repeated, and a move blocked where it starts keeps its contacts.
+    // A turned tool moves from where it was, its turn tested on the way.
+    const bool start_clear = at_stick && device.X_WD.R.coeffs() == previous.X_WT.R.coeffs();
     moved = surface_tool_->move(
-        surfs, settled ? *stick_point : previous.X_WT, device.X_WD,
+        surfs, start_clear ? *stick_point : previous.X_WT, device.X_WD,
         start_clear ? SurfaceToolProxy::Start::clear : SurfaceToolProxy::Start::unknown,
         start_clear ? &*at_stick : nullptr);
   }

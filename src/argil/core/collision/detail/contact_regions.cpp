@@ -106,9 +106,19 @@ std::vector<std::size_t> kept_positions(const std::vector<Item>& items, int max_
       ++kept;
     }
   }
-  // The rest in order, each contact once.
+  // The rest in order, each contact once: its copies lie among the contacts
+  // of its region within kEqualDepth of its depth, just before it.
+  const auto found_before = [&](std::size_t i) {
+    const Contact& c = contact_of(items[i]);
+    for (std::size_t j = i; j-- > 0;) {
+      const Contact& before = contact_of(items[j]);
+      if (before.region != c.region || before.depth - c.depth > kEqualDepth) return false;
+      if (same_contact(before, c)) return true;
+    }
+    return false;
+  };
   for (std::size_t i = 1; i < n && kept < limit; ++i) {
-    if (!keep[i] && !same_contact(contact_of(items[i]), contact_of(items[i - 1]))) {
+    if (!keep[i] && !found_before(i)) {
       keep[i] = true;
       ++kept;
     }
