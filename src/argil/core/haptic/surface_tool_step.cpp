@@ -114,11 +114,14 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
     }
   }
   if (!moved) {
-    // An unturned tool's stick point (settled or not) is where the move
-    // starts: when it was found clear there, the move's own test of its start
-    // is not repeated, and a move blocked where it starts keeps its contacts.
-    // A turned tool moves from where it was, its turn tested on the way.
-    const bool start_clear = at_stick && device.X_WD.R.coeffs() == previous.X_WT.R.coeffs();
+    // An unturned tool's stick point is where the move starts, and a settled
+    // one's (reached by a swept slip, its turn tested as a pose like any
+    // stick point's): when it was found clear there, the move's own test of
+    // its start is not repeated, and a move blocked where it starts keeps its
+    // contacts.
+    const bool settled = at_stick && stick_point->p != previous.X_WT.p;
+    const bool start_clear =
+        at_stick && (settled || device.X_WD.R.coeffs() == previous.X_WT.R.coeffs());
     moved = surface_tool_->move(
         surfs, start_clear ? *stick_point : previous.X_WT, device.X_WD,
         start_clear ? SurfaceToolProxy::Start::clear : SurfaceToolProxy::Start::unknown,
