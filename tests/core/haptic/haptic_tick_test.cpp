@@ -42,6 +42,21 @@ argil::DeviceSample at(double x, double y, double z) {
   return {.tick = 0, .t = 0.0, .X_WD = argil::Pose::at({x, y, z}), .engaged = true};
 }
 
+/// Adds `s` as a panel of 1 mm of a dense soft layer yielding at `yield`
+/// [mm], held along its u edges (friction 0.3).
+void add_soft_panel(argil::HapticWorld& w, const argil::BSplineSurface& s, double yield) {
+  argil::Material m;
+  m.density = 1e4;
+  m.thickness = 1.0;
+  m.youngs_modulus = 0.1;
+  m.foundation_stiffness = 0.02;
+  m.damping = 0.01;
+  m.yield = yield;
+  argil::BoundaryConditions bc;
+  bc.fixed_u0 = bc.fixed_u1 = true;
+  REQUIRE(w.add_deformable(s, m, bc, 0.3).ok());
+}
+
 /// A copy of body b's hierarchy to query (queries refine its lazy bounds;
 /// the world hands out const access only).
 argil::SurfaceHierarchy queryable(const argil::HapticWorld& w, int b) { return w.hierarchy(b); }
@@ -136,16 +151,7 @@ TEST_CASE("a tool dents an elastic panel, which returns to rest after it leaves"
   for (const double yield : {std::numeric_limits<double>::infinity(), 0.3}) {
     CAPTURE(yield);
     argil::HapticWorld w = world(argil::SphereToolShape{6.0}, 0.01, 20.0);
-    argil::Material m;
-    m.density = 1e4;  // 1 mm of a dense soft layer
-    m.thickness = 1.0;
-    m.youngs_modulus = 0.1;
-    m.foundation_stiffness = 0.02;
-    m.damping = 0.01;
-    m.yield = yield;
-    argil::BoundaryConditions bc;
-    bc.fixed_u0 = bc.fixed_u1 = true;
-    REQUIRE(w.add_deformable(s, m, bc, 0.3).ok());
+    add_soft_panel(w, s, yield);
     const ControlNet original = w.deformable(0)->control_points();
     REQUIRE(w.step(at(45, 45, 20), 1e-3).status.ok());
     double deepest = 0.0;
@@ -473,16 +479,7 @@ TEST_CASE("a B-spline tool follows a panel that gives way under it: the force ne
   // passes eps, lose the contact and drop the force to zero.
   const double eps = 0.05;
   argil::HapticWorld w = world(argil::SurfaceToolShape{bowl_cap()}, eps, 20.0);
-  argil::Material m;
-  m.density = 1e4;
-  m.thickness = 1.0;
-  m.youngs_modulus = 0.1;
-  m.foundation_stiffness = 0.02;
-  m.damping = 0.01;
-  m.yield = 0.05;
-  argil::BoundaryConditions bc;
-  bc.fixed_u0 = bc.fixed_u1 = true;
-  REQUIRE(w.add_deformable(wavy_sheet(10, 10.0, 0.0), m, bc, 0.3).ok());
+  add_soft_panel(w, wavy_sheet(10, 10.0, 0.0), 0.05);
   REQUIRE(w.step(at(45, 45, 10), 1e-3).status.ok());
   // The cap's lowest point is 1.2 mm above its frame's origin.
   for (int t = 0; t < 5 && !w.proxy().in_contact; ++t)  // lands on the panel

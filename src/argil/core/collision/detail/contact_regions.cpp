@@ -26,8 +26,7 @@ int find(std::vector<int>& parent, int i) {
 constexpr double kEqualDepth = 1e-9;
 
 /// Orders contacts of equal depth by where they lie in the world, then by
-/// their parameters: the same on a surface whose u and v are swapped, and
-/// equal contacts (found twice) end up side by side.
+/// their parameters: the same on a surface whose u and v are swapped.
 bool same_depth_order(const Contact& a, const Contact& b) {
   return std::tie(a.point[0], a.point[1], a.point[2], a.uv_a[0], a.uv_a[1], a.uv_b[0], a.uv_b[1]) <
          std::tie(b.point[0], b.point[1], b.point[2], b.uv_a[0], b.uv_a[1], b.uv_b[0], b.uv_b[1]);
