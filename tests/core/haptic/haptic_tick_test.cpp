@@ -371,6 +371,83 @@ TEST_CASE("a B-spline tool whose short slip would cross a wall stops before it w
   CHECK(r.force.x() < 0.0);                // the hand is held back
 }
 
+TEST_CASE("a B-spline tool whose slip longer than eps runs into a wall stops before it",
+          "[haptic]") {
+  // A slip longer than eps is not one swept query: the stick point is tested
+  // (yes/no) and the tool moves from there to the slip's end, which here
+  // lies past a wall 0.3 mm ahead of the cap's rim.
+  const double mu = 0.5, press = 2.0, eps = 0.05, gap = 0.3;
+  const argil::BSplineSurface tool = bowl_cap();
+  argil::BSplineSurface wall = wavy_sheet(4, 10.0, 0.0);
+  for (Eigen::Index k = 0; k < wall.control_points.rows(); ++k) {  // the plane x = 46 + gap
+    const Eigen::RowVector3d p = wall.control_points.row(k);
+    wall.control_points.row(k) << 46.0 + gap, 30.0 + p.x(), -5.0 + p.y() / 2.0;
+  }
+  argil::HapticWorld w = world(argil::SurfaceToolShape{tool}, eps);
+  REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), mu).ok());
+  REQUIRE(w.add_rigid(wall, mu).ok());
+  REQUIRE(w.step(at(40, 45, 10), 1e-3).status.ok());
+  REQUIRE(w.step(at(40, 45, -press), 1e-3).status.ok());  // lands on the floor
+  const double rest = w.proxy().X_WT.p.z();
+  for (int t = 0; t < 3; ++t) REQUIRE(w.step(at(40, 45, rest - press), 1e-3).status.ok());
+  REQUIRE(w.proxy().in_contact);
+  REQUIRE(w.proxy().X_WT.p.x() == 40.0);
+
+  // Pulled 1 mm past mu N towards the wall: the slip would put the rim
+  // 0.7 mm into it.
+  const argil::TickResult r = w.step(at(40 + mu * press + 1.0, 45, rest - press), 1e-3);
+  REQUIRE(r.status.ok());
+  const argil::SurfaceHierarchy floor_h = w.hierarchy(0), wall_h = w.hierarchy(1);
+  argil::OperatorCache cache;
+  argil::SurfaceToolProxy check =
+      argil::SurfaceToolProxy::create(tool, eps, cache, argil::WorldOptions{}.max_contacts).value();
+  CHECK_FALSE(check.crossing({&floor_h, &wall_h}, r.proxy.X_WT).crosses);
+  CHECK(r.proxy.in_contact);
+  CHECK_FALSE(r.proxy.stuck);
+  // Stopped within eps of the wall (the rim at x + 6), touching it, and
+  // within eps of the floor (the slide along the mean of the two normals
+  // lifts it a little).
+  CHECK(r.proxy.X_WT.p.x() > 40.0 + gap - eps);
+  CHECK(r.proxy.X_WT.p.x() < 40.0 + gap);
+  CHECK_FALSE(r.body_contacts[1].empty());
+  CHECK(std::abs(r.proxy.X_WT.p.z() - rest) < eps);
+  CHECK(r.force.x() < 0.0);  // the hand is held back
+}
+
+TEST_CASE("a B-spline tool whose long slip leaves the floor's edge moves on towards the hand",
+          "[haptic]") {
+  // The slip's end touches nothing (the floor ends under it): there is no
+  // contact to hold the tool back by friction, so it goes on towards the
+  // hand in the same tick, over the floor's edge.
+  const double mu = 0.5, press = 2.0, eps = 0.05;
+  argil::HapticWorld w = world(argil::SurfaceToolShape{bowl_cap()}, eps);
+  REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), mu).ok());  // the floor ends at x = 90
+  REQUIRE(w.step(at(88, 45, 10), 1e-3).status.ok());
+  REQUIRE(w.step(at(88, 45, -press), 1e-3).status.ok());
+  const double rest = w.proxy().X_WT.p.z();
+  for (int t = 0; t < 3; ++t) REQUIRE(w.step(at(88, 45, rest - press), 1e-3).status.ok());
+  REQUIRE(w.proxy().in_contact);
+  REQUIRE(w.proxy().X_WT.p.x() == 88.0);
+
+  // A slip of 4 mm puts the cap's lowest point 2 mm past the edge, where the
+  // cap is 0.2 mm (4 eps) above the floor's edge.
+  const double slip = 4.0;
+  const argil::DeviceSample hand = at(88 + mu * press + slip, 45, rest - press);
+  const argil::TickResult r = w.step(hand, 1e-3);
+  REQUIRE(r.status.ok());
+  const argil::SurfaceHierarchy floor_h = w.hierarchy(0);
+  argil::OperatorCache cache;
+  argil::SurfaceToolProxy check =
+      argil::SurfaceToolProxy::create(bowl_cap(), eps, cache, argil::WorldOptions{}.max_contacts)
+          .value();
+  CHECK_FALSE(check.crossing({&floor_h}, r.proxy.X_WT).crosses);
+  CHECK_FALSE(r.proxy.stuck);
+  // Not left at the slip's end: lower, and nearer the hand.
+  const Eigen::Vector3d slid(88 + slip, 45, rest);
+  CHECK(r.proxy.X_WT.p.z() < rest - eps);
+  CHECK((hand.X_WD.p - r.proxy.X_WT.p).norm() < (hand.X_WD.p - slid).norm() - eps);
+}
+
 TEST_CASE("friction outside [0, kMaxFriction] is refused for deformable and rigid bodies",
           "[haptic]") {
   argil::HapticWorld w = world(argil::SphereToolShape{5.0});

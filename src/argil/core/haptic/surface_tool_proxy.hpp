@@ -92,6 +92,10 @@ class SurfaceToolProxy {
   };
   /// The yes/no test at X_WT: the descent stops at the first crossing leaf pair.
   Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
+  /// The same, swept from `swept_from` when given (collide_swept): a
+  /// crossing anywhere on the way counts.
+  Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
+                    const std::optional<Pose>& swept_from);
   /// The tool posed at X_WT, collided with every surface.
   ToolContacts contacts(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT);
   /// The same, for callers that use the contacts only when nothing crosses:
@@ -165,8 +169,6 @@ class SurfaceToolProxy {
   /// incomplete), for callers that use them only when nothing crosses.
   ToolContacts contacts(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
                         const std::optional<Pose>& swept_from, bool partial_when_crossing);
-  Crossing crossing(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT,
-                    const std::optional<Pose>& swept_from);
 
   SurfaceHierarchy hierarchy_;  // in T
   Eigen::Vector3d centre_T_;    // mean of the control points, in T

@@ -11,6 +11,15 @@
 
 namespace argil {
 
+namespace {
+
+bool touches(const ToolContacts& at) {
+  return std::any_of(at.per_surface.begin(), at.per_surface.end(),
+                     [](const std::vector<Contact>& c) { return !c.empty(); });
+}
+
+}  // namespace
+
 HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous,
                                                       const DeviceSample& device,
                                                       const std::vector<char>& reach) {
@@ -60,6 +69,8 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
     FrictionOutcome fr;
     std::optional<ToolContacts> at;
     bool one_query = false;
+    // A slip longer than eps from a stick point found clear: moved below.
+    bool long_slip = false;
     double settled = 0.0;
     // Settled first; where the settled stick point crosses (the surface
     // sprang back towards the tool), as the last tick left it.
@@ -68,6 +79,21 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
       fr = coulomb_friction(k * (device.X_WD.p - stick.p), n, previous.friction, k);
       slid = stick;
       slid.p += fr.slide;
+      settled = by;
+      at.reset();
+      if (fr.normal_force > 0.0 && !fr.stick && (slid.p - held.p).norm() > eps) {
+        // A slip longer than eps (a fast drag) moves from the stick point,
+        // whose contacts it does not need: the yes/no test there (swept from
+        // where the tool was when settled) costs a fraction of a contact
+        // query (no leaf pair's distance is measured), and the move's last
+        // query gives the contacts where the slip ends.
+        SurfaceToolProxy::Crossing c = surface_tool_->crossing(
+            surfs, stick, by == 0.0 ? std::nullopt : std::optional<Pose>(held));
+        if (!c.status.ok()) return {std::move(c.status), {}, {}, {0, 0, 0}};
+        long_slip = !c.crosses;
+        if (long_slip || by == 0.0) break;
+        continue;
+      }
       // One query for the tick: at the stick point, or swept along a slip of
       // at most eps (a translation: both poses have the device's rotation)
       // from where the tool was. Pulled off, or on a longer slip, the tool
@@ -75,7 +101,6 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
       // contacts are used only when it crosses nothing, so its query stops at
       // a crossing (a turn the proxy could not follow crosses there tick
       // after tick).
-      at.reset();
       if (fr.normal_force > 0.0) {
         at = fr.stick && by == 0.0 ? surface_tool_->contacts_unless_crossing(surfs, stick)
                                    : surface_tool_->slip(surfs, held, fr.stick ? stick : slid);
@@ -87,13 +112,24 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
         at = by == 0.0 ? surface_tool_->contacts_unless_crossing(surfs, stick)
                        : surface_tool_->slip(surfs, held, stick);
       }
-      settled = by;
       if (by == 0.0 || !at->status.ok() || !at->crosses) break;
     }
-    if (!at->status.ok()) return {std::move(at->status), {}, {}, {0, 0, 0}};
-    const bool touches = std::any_of(at->per_surface.begin(), at->per_surface.end(),
-                                     [](const std::vector<Contact>& c) { return !c.empty(); });
-    if (fr.normal_force > 0.0 && !at->crosses && touches) {
+    if (long_slip) {
+      moved = surface_tool_->move(surfs, stick, slid, SurfaceToolProxy::Start::clear);
+      if (moved->status.ok() && touches(moved->contacts)) {
+        out.next.settled_gap = gap - settled;
+      } else if (moved->status.ok()) {
+        // Slid off what it touched: on towards the device from there, clear.
+        const ToolMove off = std::move(*moved);
+        moved = surface_tool_->move(surfs, off.X_WT, device.X_WD, SurfaceToolProxy::Start::clear,
+                                    &off.contacts);
+      }
+    } else if (at && !at->status.ok()) {
+      return {std::move(at->status), {}, {}, {0, 0, 0}};
+    } else if (!at) {
+      // A slip longer than eps whose stick point crosses: moved from where
+      // the tool was, below.
+    } else if (fr.normal_force > 0.0 && !at->crosses && touches(*at)) {
       out.next.stuck = fr.stick;
       out.next.settled_gap = gap - settled;
       if (one_query) {
