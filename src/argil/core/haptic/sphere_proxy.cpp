@@ -78,14 +78,26 @@ int& SphereProxy::side(std::size_t index) {
 }
 
 SphereProxy::Push SphereProxy::push_out(const TrimmedSurface& surface, std::size_t index,
-                                        const Eigen::Vector3d& c) {
+                                        const Eigen::Vector3d& c, double travel) {
   ClosestPoint cp = closest_point(surface, c, {.tolerance = 0.25 * eps_});
   if (!cp.status.ok()) return {std::move(cp.status), c, false};
   const bool boundary = on_boundary(surface.hierarchy->surface(), cp);
   int& s = side(index);
   const double tiny = 1e-3 * eps_;  // below it the sign of a distance is noise
   if (s == 0) s = cp.signed_distance < 0.0 ? -1 : 1;
-  const bool crossed = s * cp.signed_distance < -tiny && !boundary;
+  bool crossed = s * cp.signed_distance < -tiny && !boundary;
+  // A crossing leaves the centre behind the surface by at most what it
+  // travelled since it was found clear, less the radius it then stood in
+  // front (within eps/4), plus eps for the surface's own motion since.
+  // Farther behind, the side read is that of a face turning over within
+  // reach (round a pinched tip, a fold) or of an edge the centre slid round
+  // while touching it: read afresh. Taken as a crossing, the centre was
+  // thrown through, two radii and more, tick after tick, and the faces it
+  // landed in crumpled.
+  if (crossed && cp.distance > std::max(0.0, travel - radius_ + 0.25 * eps_) + eps_) {
+    s = -s;
+    crossed = false;
+  }
   if (!crossed && cp.distance >= radius_) {
     if (cp.distance > radius_ + tiny && std::abs(cp.signed_distance) > tiny && boundary)
       s = cp.signed_distance < 0.0 ? -1 : 1;  // went round the edge
@@ -100,7 +112,7 @@ SphereProxy::Push SphereProxy::push_out(const TrimmedSurface& surface, std::size
 }
 
 SphereMove SphereProxy::project(const std::vector<TrimmedSurface>& surfaces,
-                                const Eigen::Vector3d& start) {
+                                const Eigen::Vector3d& start, double travel) {
   // Every surface's push is taken from the same centre and the pushes are
   // combined by the smallest move that satisfies them all (push_apart). Pushing
   // out of one surface after another instead zigzags in a groove or at a seam
@@ -111,14 +123,16 @@ SphereMove SphereProxy::project(const std::vector<TrimmedSurface>& surfaces,
     pushes.clear();
     for (std::size_t b = 0; b < surfaces.size(); ++b) {
       if (!surfaces[b].hierarchy) continue;
-      Push push = push_out(surfaces[b], b, centre);
+      Push push = push_out(surfaces[b], b, centre, travel);
       if (!push.status.ok()) return {std::move(push.status), centre};
       const Eigen::Vector3d move = push.centre - centre;
       const double length = move.norm();
       if (push.moved && length > 0.0) pushes.push_back({move / length, length});
     }
     if (pushes.empty()) break;
-    centre += push_apart(pushes);
+    const Eigen::Vector3d pushed = push_apart(pushes);
+    centre += pushed;
+    travel = pushed.norm();  // a push may carry the centre through another surface
   }
   return {Status::success(), centre};
 }
@@ -130,7 +144,8 @@ SphereMove SphereProxy::move(const std::vector<TrimmedSurface>& surfaces,
       std::clamp(static_cast<int>(std::ceil((to - from).norm() / step)), 1, kMaxSubsteps);
   const Eigen::Vector3d increment = (to - from) / count;
   SphereMove at = project(surfaces, from);
-  for (int k = 0; k < count && at.status.ok(); ++k) at = project(surfaces, at.p_WT + increment);
+  for (int k = 0; k < count && at.status.ok(); ++k)
+    at = project(surfaces, at.p_WT + increment, increment.norm());
   return at;
 }
 

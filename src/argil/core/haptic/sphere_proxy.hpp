@@ -66,8 +66,11 @@ class SphereProxy {
   /// The centre pushed out of every surface: each round takes every surface's
   /// push from the same centre and moves by push_apart() of them (at most
   /// kMaxProjectionRounds rounds; the surfaces are curved, so one round is not
-  /// always enough).
-  SphereMove project(const std::vector<TrimmedSurface>& surfaces, const Eigen::Vector3d& centre);
+  /// always enough). `travel`: how far the centre moved since it was last
+  /// found clear [mm] (0 for where a tick starts): a crossing cannot leave it
+  /// farther behind a surface than that allows (push_out).
+  SphereMove project(const std::vector<TrimmedSurface>& surfaces, const Eigen::Vector3d& centre,
+                     double travel = 0.0);
   /// The nearest surface to `centre` (and updates the side record far from surfaces).
   ProxyContact nearest(const std::vector<TrimmedSurface>& surfaces, const Eigen::Vector3d& centre);
   /// Forgets which side of surface `index` the centre is on: the next query
@@ -87,7 +90,9 @@ class SphereProxy {
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     bool moved = false;
   };
-  Push push_out(const TrimmedSurface& surface, std::size_t index, const Eigen::Vector3d& centre);
+  /// `travel`: how far the centre moved since it was last found clear [mm].
+  Push push_out(const TrimmedSurface& surface, std::size_t index, const Eigen::Vector3d& centre,
+                double travel);
   int& side(std::size_t index);
 
   double radius_;
