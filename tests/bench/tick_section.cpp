@@ -1,5 +1,6 @@
 // Per-tick time of the press-and-drag stroke (docs/benchmarks.md, "Full haptic tick").
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "bench_timing.hpp"
@@ -12,9 +13,40 @@ namespace {
 struct CaseSummary {
   std::string name;
   Percentiles wall, cpu;
+  Percentiles floor;  // identical work of the same median length (fixed_work)
   double contacts_per_tick = 0.0, mean_force = 0.0, max_depth = 0.0;
   int failed = 0;
 };
+
+/// One unit of fixed work: a chain of square roots over a small array (in
+/// cache), `rounds` passes. The same instructions every call.
+double fixed_work(int rounds) {
+  static std::vector<double> data(2048, 1.0);
+  double s = 0.0;
+  for (int r = 0; r < rounds; ++r)
+    for (const double x : data) s += std::sqrt(x + 1e-9 * s);
+  return s;
+}
+
+/// The tail this machine adds to identical work: `count` calls of
+/// fixed_work sized to take about `target_us` each (thread CPU time). A
+/// tick's p99.9 over its p50 can hardly beat this ratio.
+Percentiles fixed_work_floor(int count, double target_us) {
+  double sink = 0.0;
+  const double t0 = thread_cpu_us();
+  sink += fixed_work(16);
+  const double per_round = std::max((thread_cpu_us() - t0) / 16.0, 1e-3);
+  const int rounds = std::max(1, static_cast<int>(target_us / per_round));
+  std::vector<double> us;
+  us.reserve(static_cast<std::size_t>(count));
+  for (int k = 0; k < count; ++k) {
+    const double start = thread_cpu_us();
+    sink += fixed_work(rounds);
+    us.push_back(thread_cpu_us() - start);
+  }
+  if (sink == 42.0) std::printf(" ");  // keeps the work from being optimised away
+  return percentiles(us);
+}
 
 }  // namespace
 
@@ -75,19 +107,25 @@ void tick_section(const std::vector<TickCase>& cases, int ticks, int repeats) {
     if (cpu.empty()) continue;
     s.wall = median_of(wall);
     s.cpu = median_of(cpu);
+    s.floor = fixed_work_floor(ticks, s.cpu.p50);
+    std::printf(
+        "%-36s identical work of its CPU p50, %d times: p50 %7.1f p99.9 %7.1f max %8.1f us\n",
+        c.name.c_str(), ticks, s.floor.p50, s.floor.p999, s.floor.max);
     summaries.push_back(s);
   }
 
   std::printf("\nPer-tick time, median of %d runs of %d ticks (clay):\n\n", repeats, ticks);
   std::printf(
       "| Case | CPU p50 | CPU p99 | CPU p99.9 | CPU max | wall p50 | wall p99.9 | "
-      "contacts/tick | mean F |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+      "contacts/tick | mean F | identical work p99.9 / p50 |\n"
+      "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const CaseSummary& s : summaries) {
-    std::printf("| %s | %s | %s | %s | %s | %s | %s | %.1f | %.3g N |%s\n", s.name.c_str(),
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %.1f | %.3g N | %.2f |%s\n", s.name.c_str(),
                 time_text(s.cpu.p50).c_str(), time_text(s.cpu.p99).c_str(),
                 time_text(s.cpu.p999).c_str(), time_text(s.cpu.max).c_str(),
                 time_text(s.wall.p50).c_str(), time_text(s.wall.p999).c_str(), s.contacts_per_tick,
-                s.mean_force, s.failed > 0 ? " (failed ticks)" : "");
+                s.mean_force, s.floor.p50 > 0.0 ? s.floor.p999 / s.floor.p50 : 0.0,
+                s.failed > 0 ? " (failed ticks)" : "");
   }
   std::fflush(stdout);
 }
