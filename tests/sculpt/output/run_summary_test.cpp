@@ -206,6 +206,18 @@ TEST_CASE("peak force, contact ticks and ticks over budget are counted from the 
   CHECK(s.budget == Approx(1e-3));
   CHECK(s.over_budget_wall == summarize_timing(wall, 1000.0).over_budget);
   CHECK(s.warnings.empty());
+  // The contact ticks' CPU time: ticks 11 and 12 only (0.9 and 1.1 ms).
+  CHECK(s.contact_cpu.ticks == 2);
+  CHECK(s.contact_cpu.p50 == 0.9e-3);
+  CHECK(s.contact_cpu.max == 1.1e-3);
+  CHECK(s.contact_cpu.over_budget == 1);
+  // Resumed: the first ticks were replayed, not timed; the timed ones are
+  // the log's last (ticks 12 to 14, of which 12 touched).
+  const std::vector<double> late_wall = {1.5e-3, 2e-3, 0.9e-3}, late_cpu = {1.2e-3, 0.8e-3, 0.7e-3};
+  const RunSummary resumed = summarize_run({moved_plate(-0.3)}, log, late_wall, late_cpu,
+                                           {.tolerance = 0.05, .haptic_rate = 1000.0});
+  CHECK(resumed.contact_cpu.ticks == 1);
+  CHECK(resumed.contact_cpu.max == 1.2e-3);
 
   // The pure function warns on what it is given: contact that changed nothing.
   const RunSummary still =

@@ -219,6 +219,13 @@ RunSummary summarize_run(const std::vector<SculptedFace>& faces, const TickLog& 
   s.ticks_timed = static_cast<long long>(wall_s.size());
   s.over_budget_wall = count_over_budget(wall_s, s.budget);
   s.over_budget_cpu = count_over_budget(cpu_s, s.budget);
+  // The live ticks are the log's last ones (a resumed run replays the first).
+  std::vector<double> touching;
+  const std::vector<int>& counts = log.contact_counts();
+  const std::size_t first_live = counts.size() - std::min(counts.size(), cpu_s.size());
+  for (std::size_t k = 0; k < cpu_s.size() && first_live + k < counts.size(); ++k)
+    if (counts[first_live + k] > 0) touching.push_back(cpu_s[k]);
+  s.contact_cpu = summarize_timing(std::move(touching), options.haptic_rate);
   if (s.contact_ticks == 0)
     s.warnings.push_back("the tool never touched anything: no tick had a contact");
   if (s.displacement.max_abs() <= options.tolerance) {
@@ -244,6 +251,13 @@ std::vector<std::string> summary_lines(const RunSummary& s) {
                   " us budget: " + std::to_string(s.over_budget_wall) + " by wall time, " +
                   std::to_string(s.over_budget_cpu) + " by thread CPU time (of " +
                   std::to_string(s.ticks_timed) + " timed)");
+  const TimingSummary& c = s.contact_cpu;
+  if (c.ticks > 0) {
+    lines.push_back("ticks with contact, thread CPU time: p50 " + g4(c.p50 * 1e6) + " us, p99 " +
+                    g4(c.p99 * 1e6) + " us, p99.9 " + g4(c.p999 * 1e6) + " us, max " +
+                    g4(c.max * 1e6) + " us (" + std::to_string(c.ticks) + " timed, " +
+                    std::to_string(c.over_budget) + " over budget)");
+  }
   return lines;
 }
 
@@ -270,6 +284,10 @@ std::string summary_json(const RunSummary& s, const std::string& scene_name) {
   j["budget_us"] = s.budget * 1e6;
   j["ticks_timed"] = s.ticks_timed;
   j["over_budget"] = {{"wall", s.over_budget_wall}, {"thread_cpu", s.over_budget_cpu}};
+  const TimingSummary& c = s.contact_cpu;
+  j["contact_ticks_thread_cpu"] = {{"ticks_timed", c.ticks}, {"p50_us", c.p50 * 1e6},
+                                   {"p99_us", c.p99 * 1e6},  {"p99_9_us", c.p999 * 1e6},
+                                   {"max_us", c.max * 1e6},  {"over_budget", c.over_budget}};
   j["faces_refined"] = s.refinements;
   j["warnings"] = s.warnings;
   return j.dump(2) + "\n";
