@@ -174,6 +174,23 @@ TEST_CASE("the page's frames are the surfaces at the mesh's (u, v); it moved in 
   CHECK(data["tools"][0]["type"] == "point");
 }
 
+TEST_CASE("a run started with a relative scene path replays from another directory", "[view]") {
+  // summary.json names the scene as given (relative to where the run
+  // started) and by its absolute path, which `argil view` falls back on.
+  const fs::path folder = kWork / "relative";
+  const fs::path script = write_script("relative");
+  const fs::path start = fs::current_path();
+  fs::current_path(kScene.parent_path());
+  test::run_ok(test::json_run(kScene.filename(), script, folder));
+  fs::current_path(kWork);  // from here the name as given reaches nothing
+  const bool unreachable = !fs::exists(kScene.filename());
+  const Result<SessionReplay> replay = replay_session({.folder = folder});
+  fs::current_path(start);
+  REQUIRE(unreachable);
+  INFO(replay.status().message);
+  CHECK(replay.ok());
+}
+
 TEST_CASE("a replay refuses what is not the run: a folder, another scene, a changed recording",
           "[view]") {
   const fs::path run = finished_run("refusals");

@@ -261,12 +261,14 @@ std::vector<std::string> summary_lines(const RunSummary& s) {
   return lines;
 }
 
-std::string summary_json(const RunSummary& s, const std::string& scene_name) {
+std::string summary_json(const RunSummary& s, const std::string& scene_name,
+                         const std::string& scene_absolute) {
   const DisplacementSummary& d = s.displacement;
   nlohmann::ordered_json j;
   j["format"] = "argil.summary";
   j["version"] = 1;
   j["scene"] = scene_name;
+  if (!scene_absolute.empty()) j["scene_absolute"] = scene_absolute;
   j["tolerance_mm"] = s.tolerance;
   j["displacement"] = {
       {"sign",

@@ -134,7 +134,10 @@ RunSummary summarize_run(const std::vector<SculptedFace>& faces, const TickLog& 
 /// "largest inward displacement: -10.2 mm (hood face 0 at (u, v) = (0.5, 0.5))", ...
 std::vector<std::string> summary_lines(const RunSummary& summary);
 
-/// summary.json (format "argil.summary", version 1; docs/formats.md).
-std::string summary_json(const RunSummary& summary, const std::string& scene_name);
+/// summary.json (format "argil.summary", version 1; docs/formats.md):
+/// `scene_name` as given, and `scene_absolute` (when given) the same file's
+/// absolute path, which reaches it from any working directory.
+std::string summary_json(const RunSummary& summary, const std::string& scene_name,
+                         const std::string& scene_absolute = "");
 
 }  // namespace argil::sculpt

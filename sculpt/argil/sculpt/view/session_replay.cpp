@@ -1,6 +1,8 @@
 #include "argil/sculpt/view/session_replay.hpp"
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <system_error>
 #include <utility>
 
 #include "argil/core/base/number_text.hpp"
@@ -41,8 +43,16 @@ Result<RunRecord> read_run_record(const ReplayOptions& options) {
       !summary["tolerance_mm"].is_number()) {
     return folder_error(summary_path, "not an argil.summary with \"scene\" and \"tolerance_mm\"");
   }
-  run.scene = options.scene.empty() ? std::filesystem::path(summary["scene"].get<std::string>())
-                                    : options.scene;
+  run.scene = options.scene;
+  if (run.scene.empty()) {
+    // As given when the run started, relative to where it started; else its
+    // absolute path (a view from another directory).
+    run.scene = summary["scene"].get<std::string>();
+    std::error_code ignored;
+    if (!std::filesystem::exists(run.scene, ignored) && summary.contains("scene_absolute") &&
+        summary["scene_absolute"].is_string())
+      run.scene = summary["scene_absolute"].get<std::string>();
+  }
   run.tolerance = summary["tolerance_mm"].get<double>();
   Result<Script> recorded = read_script(options.folder / "recorded.csv");
   if (!recorded.ok()) return recorded.status();

@@ -1,6 +1,8 @@
 #include "argil/sculpt/run/detail/run_outputs.hpp"
 
+#include <filesystem>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <variant>
 
@@ -110,7 +112,14 @@ RunOutputs write_run_outputs(const RunInputs& in, Session& session,
   RunOutputs outputs;
   write_models(in, session, outputs);
   write_logs(in, session, state, wall, cpu, outputs);
-  write_file(in.out / "summary.json", summary_json(summary, in.scene_path.string()), outputs);
+  // The path as given is relative to where the run started; the absolute one
+  // lets `argil view` find the scene from anywhere.
+  std::error_code failed;
+  const std::filesystem::path absolute = std::filesystem::absolute(in.scene_path, failed);
+  write_file(in.out / "summary.json",
+             summary_json(summary, in.scene_path.string(),
+                          failed ? std::string() : absolute.lexically_normal().string()),
+             outputs);
   if (in.outputs.pictures) write_pictures(in, session, before, state, outputs);
   return outputs;
 }
