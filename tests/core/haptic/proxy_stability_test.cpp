@@ -104,6 +104,39 @@ TEST_CASE("push_apart is the smallest move that satisfies every push", "[haptic]
   }
 }
 
+TEST_CASE("a surface that moved past a point or a small sphere pushes it back to its side",
+          "[haptic][proxy]") {
+  // The side of a surface changes only where the centre could not have
+  // crossed it: the surface's own motion since the last queries counts. A
+  // sheet that springs 3 eps past a point resting on it (foam released
+  // under a point tool) pushes the point back out, on the side it was.
+  const double eps = 0.01, spring = 3.0 * eps;
+  for (const double radius : {0.0, 0.5 * eps}) {
+    CAPTURE(radius);
+    const BSplineSurface flat = flat_asymmetric(0.0, 10.0, 10.0, 0.0);
+    argil::OperatorCache cache;
+    argil::SurfaceHierarchy h = argil::SurfaceHierarchy::build(flat, cache).value();
+    argil::SphereProxy proxy(radius, eps);
+    const std::vector<argil::TrimmedSurface> sheet{{&h, nullptr}};
+    const argil::SphereMove rest = proxy.project(sheet, Vector3d(5.0, 5.0, radius + 0.1 * eps));
+    REQUIRE(rest.status.ok());
+    argil::ControlNet up = flat.control_points;
+    up.col(2).array() += radius + 0.1 * eps + spring;  // the sheet now 3 eps above the centre
+    h.set_control_points(up);
+    proxy.set_surface_motion({radius + 0.1 * eps + spring});
+    const argil::SphereMove back = proxy.project(sheet, rest.p_WT);
+    REQUIRE(back.status.ok());
+    CHECK(back.p_WT.z() >= up(0, 2) + radius - 0.25 * eps);  // on top, as it was
+    // Not told that the sheet moved, the centre is farther behind it than
+    // it could have crossed by its own travel: the sheet's side is read afresh.
+    argil::SphereProxy unaware(radius, eps);
+    h.set_control_points(flat.control_points);
+    REQUIRE(unaware.project(sheet, rest.p_WT).status.ok());
+    h.set_control_points(up);
+    CHECK(unaware.project(sheet, rest.p_WT).p_WT.z() < up(0, 2));
+  }
+}
+
 TEST_CASE("a sphere in a groove between two faces stays put, whichever face is nearest",
           "[haptic][proxy][slow]") {
   for (const double slope : {0.0, 0.2, -0.2}) {

@@ -176,19 +176,30 @@ TEST_CASE("the page's frames are the surfaces at the mesh's (u, v); it moved in 
 
 TEST_CASE("a run started with a relative scene path replays from another directory", "[view]") {
   // summary.json names the scene as given (relative to where the run
-  // started) and by its absolute path, which `argil view` falls back on.
+  // started) and by its absolute path, which `argil view` reads first.
+  struct WorkingDirectory {  // restored however the case ends
+    fs::path saved = fs::current_path();
+    ~WorkingDirectory() { fs::current_path(saved); }
+  } restore;
   const fs::path folder = kWork / "relative";
   const fs::path script = write_script("relative");
-  const fs::path start = fs::current_path();
   fs::current_path(kScene.parent_path());
   test::run_ok(test::json_run(kScene.filename(), script, folder));
-  fs::current_path(kWork);  // from here the name as given reaches nothing
-  const bool unreachable = !fs::exists(kScene.filename());
-  const Result<SessionReplay> replay = replay_session({.folder = folder});
-  fs::current_path(start);
-  REQUIRE(unreachable);
-  INFO(replay.status().message);
-  CHECK(replay.ok());
+  // From here the name as given reaches nothing; then another scene of the
+  // same name, which the replay must not take for the run's.
+  for (const bool decoy : {false, true}) {
+    CAPTURE(decoy);
+    const fs::path elsewhere = kWork / (decoy ? "decoy" : "nothing");
+    fs::create_directories(elsewhere);
+    if (decoy)
+      fs::copy_file(kScene.parent_path() / "summary_press.json", elsewhere / kScene.filename(),
+                    fs::copy_options::overwrite_existing);
+    fs::current_path(elsewhere);
+    CHECK(fs::exists(kScene.filename()) == decoy);
+    const Result<SessionReplay> replay = replay_session({.folder = folder});
+    INFO(replay.status().message);
+    CHECK(replay.ok());
+  }
 }
 
 TEST_CASE("a replay refuses what is not the run: a folder, another scene, a changed recording",

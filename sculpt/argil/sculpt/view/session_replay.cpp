@@ -45,13 +45,16 @@ Result<RunRecord> read_run_record(const ReplayOptions& options) {
   }
   run.scene = options.scene;
   if (run.scene.empty()) {
-    // As given when the run started, relative to where it started; else its
-    // absolute path (a view from another directory).
+    // The absolute path first: the path as given is relative to where the
+    // run started, and from elsewhere it may name another run's scene (every
+    // example's is scene.json). As given when the absolute one is gone (the
+    // run's folder and scene moved together).
     run.scene = summary["scene"].get<std::string>();
     std::error_code ignored;
-    if (!std::filesystem::exists(run.scene, ignored) && summary.contains("scene_absolute") &&
-        summary["scene_absolute"].is_string())
-      run.scene = summary["scene_absolute"].get<std::string>();
+    if (summary.contains("scene_absolute") && summary["scene_absolute"].is_string()) {
+      const std::filesystem::path absolute = summary["scene_absolute"].get<std::string>();
+      if (std::filesystem::exists(absolute, ignored)) run.scene = absolute;
+    }
   }
   run.tolerance = summary["tolerance_mm"].get<double>();
   Result<Script> recorded = read_script(options.folder / "recorded.csv");

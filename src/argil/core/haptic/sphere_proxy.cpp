@@ -86,15 +86,16 @@ SphereProxy::Push SphereProxy::push_out(const TrimmedSurface& surface, std::size
   const double tiny = 1e-3 * eps_;  // below it the sign of a distance is noise
   if (s == 0) s = cp.signed_distance < 0.0 ? -1 : 1;
   bool crossed = s * cp.signed_distance < -tiny && !boundary;
-  // A crossing leaves the centre behind the surface by at most what it
-  // travelled since it was found clear, less the radius it then stood in
-  // front (within eps/4), plus eps for the surface's own motion since.
-  // Farther behind, the side read is that of a face turning over within
-  // reach (round a pinched tip, a fold) or of an edge the centre slid round
-  // while touching it: read afresh. Taken as a crossing, the centre was
-  // thrown through, two radii and more, tick after tick, and the faces it
-  // landed in crumpled.
-  if (crossed && cp.distance > std::max(0.0, travel - radius_ + 0.25 * eps_) + eps_) {
+  // A crossing leaves the centre behind the surface by at most what the two
+  // travelled towards each other since the centre was found clear (its own
+  // travel and the surface's motion, set_surface_motion) less the radius it
+  // then stood in front (within eps/4), plus eps. Farther behind, the side
+  // read is that of a face turning over within reach (round a pinched tip, a
+  // fold) or of an edge the centre slid round while touching it: read
+  // afresh. Taken as a crossing, the centre was thrown through, two radii
+  // and more, tick after tick, and the faces it landed in crumpled.
+  const double moved = index < motion_.size() ? motion_[index] : 0.0;
+  if (crossed && cp.distance > std::max(0.0, travel + moved - radius_ + 0.25 * eps_) + eps_) {
     s = -s;
     crossed = false;
   }
@@ -132,7 +133,7 @@ SphereMove SphereProxy::project(const std::vector<TrimmedSurface>& surfaces,
     if (pushes.empty()) break;
     const Eigen::Vector3d pushed = push_apart(pushes);
     centre += pushed;
-    travel = pushed.norm();  // a push may carry the centre through another surface
+    travel += pushed.norm();  // a push may carry the centre through another surface
   }
   return {Status::success(), centre};
 }

@@ -73,6 +73,11 @@ class SphereProxy {
                      double travel = 0.0);
   /// The nearest surface to `centre` (and updates the side record far from surfaces).
   ProxyContact nearest(const std::vector<TrimmedSurface>& surfaces, const Eigen::Vector3d& centre);
+  /// How far any point of each surface moved since the proxy's last queries
+  /// [mm] (its body's last step; 0 for a rigid or sleeping body, and for a
+  /// surface not listed): a surface that moved into the centre may have
+  /// crossed it by that much (push_out). Kept until set again.
+  void set_surface_motion(std::vector<double> motion) { motion_ = std::move(motion); }
   /// Forgets which side of surface `index` the centre is on: the next query
   /// records it from the sign of the signed distance (for a surface the
   /// proxy did not query for a while, from far away).
@@ -97,7 +102,8 @@ class SphereProxy {
 
   double radius_;
   double eps_;
-  std::vector<int> sides_;  // +1 / -1 along / against each surface's normal, 0 unknown
+  std::vector<int> sides_;      // +1 / -1 along / against each surface's normal, 0 unknown
+  std::vector<double> motion_;  // see set_surface_motion
 };
 
 }  // namespace argil

@@ -96,8 +96,9 @@ HapticWorld::ProxyMove HapticWorld::move_surface_tool(const ProxyState& previous
       }
       // One query for the tick: at the stick point, or swept along a slip of
       // at most eps (a translation: both poses have the device's rotation)
-      // from where the tool was. Pulled off, or on a longer slip, the tool
-      // tests its stick point first, and moves from there. The stick point's
+      // from where the tool was. Pulled off, or where that slip's way
+      // crosses, the tool queries its stick point's contacts first, and
+      // moves from there. The stick point's
       // contacts are used only when it crosses nothing, so its query stops at
       // a crossing (a turn the proxy could not follow crosses there tick
       // after tick).
