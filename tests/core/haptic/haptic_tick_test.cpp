@@ -57,6 +57,27 @@ void add_soft_panel(argil::HapticWorld& w, const argil::BSplineSurface& s, doubl
   REQUIRE(w.add_deformable(s, m, bc, 0.3).ok());
 }
 
+/// A flat wall in the plane x = `x`, across y in [30, 60] and z in [-5, 10].
+argil::BSplineSurface wall_at(double x) {
+  argil::BSplineSurface wall = wavy_sheet(4, 10.0, 0.0);
+  for (Eigen::Index k = 0; k < wall.control_points.rows(); ++k) {
+    const Eigen::RowVector3d p = wall.control_points.row(k);
+    wall.control_points.row(k) << x, 30.0 + p.x(), -5.0 + p.y() / 2.0;
+  }
+  return wall;
+}
+
+/// Brings the tool down at (x, y) from 10 mm up with the hand `press` under
+/// where it lands, and holds it there three ticks; returns the height it
+/// rests at.
+double land(argil::HapticWorld& w, double x, double y, double press) {
+  REQUIRE(w.step(at(x, y, 10), 1e-3).status.ok());
+  REQUIRE(w.step(at(x, y, -press), 1e-3).status.ok());  // lands
+  const double rest = w.proxy().X_WT.p.z();
+  for (int t = 0; t < 3; ++t) REQUIRE(w.step(at(x, y, rest - press), 1e-3).status.ok());
+  return rest;
+}
+
 /// A copy of body b's hierarchy to query (queries refine its lazy bounds;
 /// the world hands out const access only).
 argil::SurfaceHierarchy queryable(const argil::HapticWorld& w, int b) { return w.hierarchy(b); }
@@ -323,18 +344,11 @@ TEST_CASE("a B-spline tool whose short slip would cross a wall stops before it w
   // the slip's end, and stops before the wall.
   const double mu = 0.5, press = 2.0, eps = 0.05, gap = 0.01;
   const argil::BSplineSurface tool = bowl_cap();
-  argil::BSplineSurface wall = wavy_sheet(4, 10.0, 0.0);
-  for (Eigen::Index k = 0; k < wall.control_points.rows(); ++k) {  // the plane x = 46 + gap
-    const Eigen::RowVector3d p = wall.control_points.row(k);
-    wall.control_points.row(k) << 46.0 + gap, 30.0 + p.x(), -5.0 + p.y() / 2.0;
-  }
+  const argil::BSplineSurface wall = wall_at(46.0 + gap);
   argil::HapticWorld w = world(argil::SurfaceToolShape{tool}, eps);
   REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), mu).ok());
   REQUIRE(w.add_rigid(wall, mu).ok());
-  REQUIRE(w.step(at(40, 45, 10), 1e-3).status.ok());
-  REQUIRE(w.step(at(40, 45, -press), 1e-3).status.ok());  // lands on the floor
-  const double rest = w.proxy().X_WT.p.z();
-  for (int t = 0; t < 3; ++t) REQUIRE(w.step(at(40, 45, rest - press), 1e-3).status.ok());
+  land(w, 40, 45, press);
   REQUIRE(w.proxy().in_contact);
   const double x0 = w.proxy().X_WT.p.x();  // the rim at x0 + 6, within eps of the wall
   REQUIRE(46.0 + gap - (x0 + 6.0) < 0.04);
@@ -378,18 +392,11 @@ TEST_CASE("a B-spline tool whose slip longer than eps runs into a wall stops bef
   // lies past a wall 0.3 mm ahead of the cap's rim.
   const double mu = 0.5, press = 2.0, eps = 0.05, gap = 0.3;
   const argil::BSplineSurface tool = bowl_cap();
-  argil::BSplineSurface wall = wavy_sheet(4, 10.0, 0.0);
-  for (Eigen::Index k = 0; k < wall.control_points.rows(); ++k) {  // the plane x = 46 + gap
-    const Eigen::RowVector3d p = wall.control_points.row(k);
-    wall.control_points.row(k) << 46.0 + gap, 30.0 + p.x(), -5.0 + p.y() / 2.0;
-  }
+  const argil::BSplineSurface wall = wall_at(46.0 + gap);
   argil::HapticWorld w = world(argil::SurfaceToolShape{tool}, eps);
   REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), mu).ok());
   REQUIRE(w.add_rigid(wall, mu).ok());
-  REQUIRE(w.step(at(40, 45, 10), 1e-3).status.ok());
-  REQUIRE(w.step(at(40, 45, -press), 1e-3).status.ok());  // lands on the floor
-  const double rest = w.proxy().X_WT.p.z();
-  for (int t = 0; t < 3; ++t) REQUIRE(w.step(at(40, 45, rest - press), 1e-3).status.ok());
+  const double rest = land(w, 40, 45, press);
   REQUIRE(w.proxy().in_contact);
   REQUIRE(w.proxy().X_WT.p.x() == 40.0);
 
@@ -422,10 +429,7 @@ TEST_CASE("a B-spline tool whose long slip leaves the floor's edge moves on towa
   const double mu = 0.5, press = 2.0, eps = 0.05;
   argil::HapticWorld w = world(argil::SurfaceToolShape{bowl_cap()}, eps);
   REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), mu).ok());  // the floor ends at x = 90
-  REQUIRE(w.step(at(88, 45, 10), 1e-3).status.ok());
-  REQUIRE(w.step(at(88, 45, -press), 1e-3).status.ok());
-  const double rest = w.proxy().X_WT.p.z();
-  for (int t = 0; t < 3; ++t) REQUIRE(w.step(at(88, 45, rest - press), 1e-3).status.ok());
+  const double rest = land(w, 88, 45, press);
   REQUIRE(w.proxy().in_contact);
   REQUIRE(w.proxy().X_WT.p.x() == 88.0);
 
