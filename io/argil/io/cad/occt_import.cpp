@@ -63,6 +63,7 @@
 #include "argil/core/geometry/param_rect.hpp"
 #include "argil/io/cad/cad_exchange.hpp"
 #include "argil/io/cad/detail/isolated_read.hpp"
+#include "argil/io/cad/detail/occt_face_domain.hpp"
 #include "argil/io/cad/detail/occt_pcurve.hpp"
 #include "argil/io/cad/detail/occt_session.hpp"
 #include "argil/io/cad/detail/occt_topology_reader.hpp"
@@ -594,6 +595,7 @@ Result<FaceRecord> face_record(const TopoDS_Face& oriented_face, const WrittenNe
                                                         " gave no B-spline surface");
     }
   }
+  bspline = detail::seated_on_face(bspline, face);
   record.surface = to_argil(clamped_copy(bspline));
   restore_seam(record.surface, written, seam_at_full_knot(bspline, true),
                seam_at_full_knot(bspline, false));
