@@ -202,7 +202,7 @@ int run_script(const std::vector<std::string>& args) {
   const std::vector<sculpt::Keyframe>& k = script.value().keyframes;
   std::printf("wrote %s: a %s on model \"%s\" face %zu with tool \"%s\", %zu keyframes, %s s\n",
               out_path.c_str(), points->size() == 1 ? "press" : "drag", model->name.c_str(), face,
-              tool.name.c_str(), k.size(), number_text(k.back().t).c_str());
+              tool.name.c_str(), k.size(), approx_text(k.back().t).c_str());
   return kExitOk;
 }
 
