@@ -298,18 +298,24 @@ RowMajorMatrix EdgeJoint::unit_forces(int side) const {
 Eigen::MatrixXd EdgeJoint::motion_of(const StepResponse& r, const Eigen::VectorXd& lambda) const {
   // Sample k's G0 multipliers move coordinate c by its scalar response; its
   // turn multiplier pushes along each face's normal.
+  // The loads per coordinate, one row each, matching the response's columns:
+  // [G0 | turn along n_a | turn along n_b].
   const Eigen::Index n = static_cast<Eigen::Index>(scalar_.size());
-  Eigen::MatrixXd g0(n, 3), turn_a = Eigen::MatrixXd::Zero(n, 3),
-                            turn_b = Eigen::MatrixXd::Zero(n, 3);
+  RowMajorMatrix loads = RowMajorMatrix::Zero(3, 3 * n);
   for (Eigen::Index k = 0; k < n; ++k) {
     const SampleRows& s = scalar_[static_cast<std::size_t>(k)];
-    g0.row(k) = lambda.segment<3>(s.g0_row).transpose();
+    loads.col(k) = lambda.segment<3>(s.g0_row);
     if (s.turn_row < 0) continue;
-    turn_a.row(k) = lambda[s.turn_row] * s.normal[0].transpose();
-    turn_b.row(k) = lambda[s.turn_row] * s.normal[1].transpose();
+    loads.col(n + k) = lambda[s.turn_row] * s.normal[0];
+    loads.col(2 * n + k) = lambda[s.turn_row] * s.normal[1];
   }
-  return r.motion.leftCols(n) * g0 + r.motion.middleCols(n, n) * turn_a +
-         r.motion.rightCols(n) * turn_b;
+  // Row by row, three dot products: one pass over the response. A matrix
+  // product with three columns would first copy (pack) the whole response.
+  Eigen::MatrixXd out(r.motion.rows(), 3);
+  for (Eigen::Index p = 0; p < r.motion.rows(); ++p) {
+    for (Eigen::Index c = 0; c < 3; ++c) out(p, c) = r.motion.row(p).dot(loads.row(c));
+  }
+  return out;
 }
 
 void EdgeJoint::set_response(const StepResponse& a, const StepResponse& b, double dt) {
