@@ -64,8 +64,11 @@ PoleWeights footprint_pole_weights(const BSplineSurface& s, const std::vector<Co
   if (!(radius > 0.0)) return contact_pole_weights(s, contacts, shares);
   const ParamRect domain{s.domain_start(Direction::u), s.domain_end(Direction::u),
                          s.domain_start(Direction::v), s.domain_end(Direction::v)};
-  std::vector<Contact> points;
+  // The points that carry the load, and their shares of it.
+  std::vector<Eigen::Vector2d> points;
   std::vector<double> weights;
+  points.reserve(contacts.size() * disc_samples().size());
+  weights.reserve(points.capacity());
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
     Eigen::Matrix<double, 3, 2> jacobian;
@@ -74,7 +77,7 @@ PoleWeights footprint_pole_weights(const BSplineSurface& s, const std::vector<Co
     const double det = metric.determinant();
     // A degenerate point (a collapsed edge) has no tangent plane to spread over.
     if (!(det > 1e-12 * metric.squaredNorm())) {
-      points.push_back(c);
+      points.push_back(c.uv_a);
       weights.push_back(shares[k]);
       continue;
     }
@@ -93,20 +96,18 @@ PoleWeights footprint_pole_weights(const BSplineSurface& s, const std::vector<Co
       const Eigen::Vector3d t = radius * (d.offset.x() * e1 + d.offset.y() * e2);
       const Eigen::Vector2d uv = c.uv_a + to_uv * t;
       if (!domain.contains(uv) || (!trim.empty() && !trim.contains(uv))) continue;
-      Contact sample = c;
-      sample.uv_a = uv;
-      points.push_back(sample);
+      points.push_back(uv);
       weights.push_back(d.weight);
       carried += d.weight;
     }
     if (carried == 0.0) {  // the whole disc off the material: the contact point itself
-      points.push_back(c);
+      points.push_back(c.uv_a);
       weights.push_back(shares[k]);
       continue;
     }
     for (std::size_t i = first; i < points.size(); ++i) weights[i] *= shares[k] / carried;
   }
-  return contact_pole_weights(s, points, weights);
+  return pole_weights_at(s, points, weights);
 }
 
 }  // namespace argil

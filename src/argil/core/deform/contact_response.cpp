@@ -1,6 +1,8 @@
 #include "argil/core/deform/contact_response.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cassert>
 #include <limits>
 
 #include "argil/core/geometry/basis.hpp"
@@ -41,40 +43,57 @@ std::vector<std::pair<int, double>> basis_at(const BSplineSurface& s, const Eige
   return out;
 }
 
-PoleWeights contact_pole_weights(const BSplineSurface& s, const std::vector<Contact>& contacts,
-                                 const std::vector<double>& shares) {
-  assert(contacts.size() == shares.size());
-  const int nv = s.count(Direction::v);
-  std::vector<std::pair<int, double>> terms;
+PoleWeights pole_weights_at(const BSplineSurface& s, const std::vector<Eigen::Vector2d>& uvs,
+                            const std::vector<double>& shares) {
+  assert(uvs.size() == shares.size());
+  if (uvs.empty()) return {};
+  const int nu = s.count(Direction::u), nv = s.count(Direction::v);
+  const int p = s.degree[0], q = s.degree[1];
+  // Each point clamped to the domain, and its knot spans: the block of poles
+  // the terms reach (not the whole net; a sort of the terms by pole cost a
+  // sphere's 36-point discs more than the rest of the load).
+  std::vector<Eigen::Vector2d> at(uvs.size());
+  std::vector<std::array<int, 2>> spans(uvs.size());
   int i0 = std::numeric_limits<int>::max(), i1 = -1;
   int j0 = std::numeric_limits<int>::max(), j1 = -1;
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const Eigen::Vector2d uv(
-        std::clamp(contacts[k].uv_a.x(), s.domain_start(Direction::u), s.domain_end(Direction::u)),
-        std::clamp(contacts[k].uv_a.y(), s.domain_start(Direction::v), s.domain_end(Direction::v)));
-    for (const auto& [pole, w] : basis_at(s, uv)) {
-      terms.emplace_back(pole, shares[k] * w);
-      i0 = std::min(i0, pole / nv);
-      i1 = std::max(i1, pole / nv);
-      j0 = std::min(j0, pole % nv);
-      j1 = std::max(j1, pole % nv);
-    }
+  for (std::size_t k = 0; k < uvs.size(); ++k) {
+    at[k] = {std::clamp(uvs[k].x(), s.domain_start(Direction::u), s.domain_end(Direction::u)),
+             std::clamp(uvs[k].y(), s.domain_start(Direction::v), s.domain_end(Direction::v))};
+    spans[k] = {find_span(p, s.knots[0], nu, at[k].x()), find_span(q, s.knots[1], nv, at[k].y())};
+    i0 = std::min(i0, spans[k][0] - p);
+    i1 = std::max(i1, spans[k][0]);
+    j0 = std::min(j0, spans[k][1] - q);
+    j1 = std::max(j1, spans[k][1]);
   }
-  if (terms.empty()) return {};
-  // Each pole's terms summed in contact order from 0, as a dense pattern
-  // would, over the block of poles the terms reach (not the whole net; a
-  // sort of the terms by pole cost a sphere's 36-point discs more than the
-  // rest of the load).
   const int width = j1 - j0 + 1;
-  const auto cell = [&](int pole) {
-    return static_cast<std::size_t>((pole / nv - i0) * width + (pole % nv - j0));
-  };
   const std::size_t cells = static_cast<std::size_t>(i1 - i0 + 1) * static_cast<std::size_t>(width);
   std::vector<double> sum(cells, 0.0);
   std::vector<char> touched(cells, 0);
-  for (const auto& [pole, w] : terms) {
-    sum[cell(pole)] += w;
-    touched[cell(pole)] = 1;
+  Eigen::MatrixXd bu(1, p + 1), bv(1, q + 1);
+  std::vector<double> w(static_cast<std::size_t>((p + 1) * (q + 1)));
+  // Each pole's terms summed in point order from 0, as a dense pattern would
+  // (basis_at's values, each share times its normalised basis value).
+  for (std::size_t k = 0; k < uvs.size(); ++k) {
+    const auto [su, sv] = spans[k];
+    basis_derivatives(p, s.knots[0], su, at[k].x(), 0, bu);
+    basis_derivatives(q, s.knots[1], sv, at[k].y(), 0, bv);
+    double total = 0.0;
+    for (int a = 0; a <= p; ++a)
+      for (int b = 0; b <= q; ++b) {
+        const Eigen::Index pole = s.pole_index(su - p + a, sv - q + b);
+        double& value = w[static_cast<std::size_t>(a * (q + 1) + b)];
+        value = bu(0, a) * bv(0, b) * (s.is_rational() ? s.weights[pole] : 1.0);
+        if (value != 0.0) total += value;
+      }
+    for (int a = 0; a <= p; ++a)
+      for (int b = 0; b <= q; ++b) {
+        const double value = w[static_cast<std::size_t>(a * (q + 1) + b)];
+        if (value == 0.0) continue;
+        const std::size_t c =
+            static_cast<std::size_t>((su - p + a - i0) * width + (sv - q + b - j0));
+        sum[c] += shares[k] * (value / total);
+        touched[c] = 1;
+      }
   }
   PoleWeights out;
   for (std::size_t c = 0; c < cells; ++c) {
@@ -83,6 +102,15 @@ PoleWeights contact_pole_weights(const BSplineSurface& s, const std::vector<Cont
     out.emplace_back(static_cast<Eigen::Index>(i) * nv + j, sum[c]);
   }
   return out;
+}
+
+PoleWeights contact_pole_weights(const BSplineSurface& s, const std::vector<Contact>& contacts,
+                                 const std::vector<double>& shares) {
+  assert(contacts.size() == shares.size());
+  std::vector<Eigen::Vector2d> uvs;
+  uvs.reserve(contacts.size());
+  for (const Contact& c : contacts) uvs.push_back(c.uv_a);
+  return pole_weights_at(s, uvs, shares);
 }
 
 Eigen::VectorXd dense_pattern(const PoleWeights& weights, Eigen::Index count) {

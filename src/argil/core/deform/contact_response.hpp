@@ -33,6 +33,11 @@ PoleWeights contact_pole_weights(const BSplineSurface& surface,
                                  const std::vector<Contact>& contacts,
                                  const std::vector<double>& shares);
 
+/// The same for unit forces at points of the domain (each clamped to it)
+/// with the given shares: contact_pole_weights reads only the contacts' uv_a.
+PoleWeights pole_weights_at(const BSplineSurface& surface, const std::vector<Eigen::Vector2d>& uvs,
+                            const std::vector<double>& shares);
+
 /// `weights` scattered into a dense pattern of `count` entries.
 Eigen::VectorXd dense_pattern(const PoleWeights& weights, Eigen::Index count);
 
