@@ -12,6 +12,7 @@
 #include "support/occt_surface.hpp"
 #include "support/polyline_distance.hpp"
 #include "support/random_surface.hpp"
+#include "support/tool_shapes.hpp"
 
 namespace {
 
@@ -201,4 +202,27 @@ TEST_CASE("the region near a path holds every point of the face within reach", "
   const argil::Box3 box = argil::control_point_box(s);
   const Eigen::Vector3d far = box.max + Eigen::Vector3d::Constant(box.diagonal());
   CHECK_FALSE(argil::region_near_path(s, {far}, 0.1 * box.diagonal()).has_value());
+}
+
+TEST_CASE("the region near a path on a long face follows the path, not a coarse sampling",
+          "[refinement]") {
+  // A flat strip 1000 mm long and 10 mm wide, one span each way: sampled 16
+  // cells along, each 62.5 mm long. A 5 mm ball's reach around a point in its
+  // middle holds 2 x 15 mm of it; the region may exceed that by the cells it
+  // splits to (a quarter of the reach) on each side, not by the coarse cells
+  // (the region was 250 mm long before).
+  BSplineSurface s;
+  s.degree = {1, 1};
+  s.knots = {argil::test::uniform_knots(1, 2), argil::test::uniform_knots(1, 2)};
+  s.control_points.resize(4, 3);
+  s.control_points << 0, 0, 0, 0, 10, 0, 1000, 0, 0, 1000, 10, 0;
+  const double reach = 15.0;
+  const std::optional<argil::ParamRect> region =
+      argil::region_near_path(s, {Eigen::Vector3d(500.0, 5.0, 3.0)}, reach);
+  REQUIRE(region.has_value());
+  const double length = 1000.0 * (region->u1 - region->u0);
+  CHECK(length >= 2.0 * std::sqrt(reach * reach - 9.0));  // every point within reach
+  CHECK(length <= 2.0 * 1.5 * reach);
+  CHECK(region->v0 == 0.0);
+  CHECK(region->v1 == 1.0);
 }
