@@ -95,31 +95,61 @@ std::optional<ParamRect> region_near_path(const BSplineSurface& s,
                       {point(a, b), point(a + 1, b), point(a, b + 1), point(a + 1, b + 1)},
                       0});
   // A surface point of a cell lies within the cell's chord (its longer
-  // diagonal) of each corner, so a cell with a point within reach has a corner
-  // within reach + chord. Such cells are split until their chord is under a
-  // quarter of the reach: the region follows the path to that slack, not to
-  // the coarse grid's (a 1.1 m rod sampled every 72 mm was "near" a 5 mm ball
-  // along 150 mm of its length, and 211 of 11752.stp's faces were refined).
+  // diagonal) of one of its corners (for a cell as flat as the grid makes
+  // it), so a cell with a point within reach has a corner within reach +
+  // chord. Such cells are halved along each direction whose side is longer
+  // than a quarter of the reach, until no side is, so the region follows the
+  // path to that slack, not to the coarse grid's (a 1.1 m rod sampled every
+  // 72 mm was "near" a 5 mm ball along 150 mm of its length, and 211 of
+  // 11752.stp's faces were refined). A cell wholly within reach is kept
+  // whole; past kMaxCells cells looked at, kept cells are no longer split.
   constexpr int kMaxSplits = 12;
+  constexpr std::size_t kMaxCells = std::size_t{1} << 16;
+  const double fine = 0.25 * reach;
+  std::size_t looked = 0;
   std::optional<ParamRect> out;
   while (!todo.empty()) {
     const Cell c = todo.back();
     todo.pop_back();
-    const double chord =
-        std::max((c.corner[3] - c.corner[0]).norm(), (c.corner[2] - c.corner[1]).norm());
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& x : c.corner)
-      nearest = std::min(nearest, distance_to_path(x, path));
+    ++looked;
+    const auto& k = c.corner;
+    const double chord = std::max((k[3] - k[0]).norm(), (k[2] - k[1]).norm());
+    double nearest = std::numeric_limits<double>::infinity(), farthest = 0.0;
+    for (const Eigen::Vector3d& x : k) {
+      const double d = distance_to_path(x, path);
+      nearest = std::min(nearest, d);
+      farthest = std::max(farthest, d);
+    }
     if (!(nearest <= reach + chord)) continue;
-    if (chord > 0.25 * reach && c.depth < kMaxSplits) {
-      const double um = 0.5 * (c.u0 + c.u1), vm = 0.5 * (c.v0 + c.v1);
-      const Eigen::Vector3d bottom = at(um, c.v0), top = at(um, c.v1), left = at(c.u0, vm),
-                            right = at(c.u1, vm), middle = at(um, vm);
-      const int depth = c.depth + 1;
-      todo.push_back({c.u0, um, c.v0, vm, {c.corner[0], bottom, left, middle}, depth});
-      todo.push_back({um, c.u1, c.v0, vm, {bottom, c.corner[1], middle, right}, depth});
-      todo.push_back({c.u0, um, vm, c.v1, {left, middle, c.corner[2], top}, depth});
-      todo.push_back({um, c.u1, vm, c.v1, {middle, right, top, c.corner[3]}, depth});
+    const bool split_u = std::max((k[1] - k[0]).norm(), (k[3] - k[2]).norm()) > fine;
+    const bool split_v = std::max((k[2] - k[0]).norm(), (k[3] - k[1]).norm()) > fine;
+    const bool whole = farthest + chord <= reach;
+    if (!whole && (split_u || split_v) && c.depth < kMaxSplits && looked < kMaxCells) {
+      const int su = split_u ? 2 : 1, sv = split_v ? 2 : 1;
+      const std::array<double, 3> us{c.u0, split_u ? 0.5 * (c.u0 + c.u1) : c.u1, c.u1};
+      const std::array<double, 3> vs{c.v0, split_v ? 0.5 * (c.v0 + c.v1) : c.v1, c.v1};
+      const auto u_at = [&](int i) { return i == su ? c.u1 : us[static_cast<std::size_t>(i)]; };
+      const auto v_at = [&](int j) { return j == sv ? c.v1 : vs[static_cast<std::size_t>(j)]; };
+      std::array<std::array<Eigen::Vector3d, 3>, 3> g;  // the children's corners
+      for (int i = 0; i <= su; ++i) {
+        for (int j = 0; j <= sv; ++j) {
+          const bool corner = (i == 0 || i == su) && (j == 0 || j == sv);
+          g[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] =
+              corner ? k[static_cast<std::size_t>((i == su ? 1 : 0) + (j == sv ? 2 : 0))]
+                     : at(u_at(i), v_at(j));
+        }
+      }
+      for (int i = 0; i < su; ++i) {
+        for (int j = 0; j < sv; ++j) {
+          const auto a = static_cast<std::size_t>(i), b = static_cast<std::size_t>(j);
+          todo.push_back({u_at(i),
+                          u_at(i + 1),
+                          v_at(j),
+                          v_at(j + 1),
+                          {g[a][b], g[a + 1][b], g[a][b + 1], g[a + 1][b + 1]},
+                          c.depth + 1});
+        }
+      }
       continue;
     }
     const ParamRect cell{c.u0, c.u1, c.v0, c.v1};

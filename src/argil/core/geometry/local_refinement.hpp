@@ -45,10 +45,10 @@ struct Refinement {
 
 /// The box of (u, v) whose surface points lie within `reach` [mm] of the
 /// polyline `path` (a single point is a path too): the cells of a sampling
-/// grid of the face that may hold such a point, split where they do until
-/// their chord is under a quarter of the reach; nullopt when no cell may. A
-/// cell's points lie within its chord (its longer diagonal) of its corners,
-/// and that chord is added to the reach, so a face the path passes within
+/// grid of the face that may hold such a point, halved where they do until
+/// no side is longer than a quarter of the reach; nullopt when no cell may. A
+/// cell's points lie within its chord (its longer diagonal) of a corner, and
+/// that chord is added to the reach, so a face the path passes within
 /// `reach` of is not missed.
 std::optional<ParamRect> region_near_path(const BSplineSurface& surface,
                                           const std::vector<Eigen::Vector3d>& path, double reach);

@@ -3,7 +3,6 @@
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom2d_Curve.hxx>
-#include <Precision.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
@@ -46,9 +45,10 @@ std::optional<double> seam_of(const TopoDS_Face& face, bool u, double period) {
 }
 
 // `s` with its domain along u (else v) moved to [origin, origin + period]: made
-// periodic, a knot of multiplicity degree inserted at the origin (which only
-// repeats poles), the origin made the first knot, and the knots shifted by the
-// whole periods between where OpenCASCADE puts them and the face's parameters.
+// periodic, a knot of multiplicity degree inserted at the origin (the same
+// surface, to rounding; an existing knot within kInside of a period is raised
+// instead), the origin made the first knot, and the knots shifted to the face's
+// parameters (by whole periods, and by at most that tolerance).
 Handle(Geom_BSplineSurface)
     with_origin(const Handle(Geom_BSplineSurface) & s, bool u, double origin) {
   Handle(Geom_BSplineSurface) out = Handle(Geom_BSplineSurface)::DownCast(s->Copy());
@@ -59,7 +59,7 @@ Handle(Geom_BSplineSurface)
   const double first = u ? u0 : v0, period = u ? u1 - u0 : v1 - v0;
   double at = first + std::fmod(origin - first, period);  // inside the knot table
   if (at < first) at += period;
-  const double tolerance = Precision::PConfusion();
+  const double tolerance = kInside * period;
   if (u) {
     out->InsertUKnot(at, out->UDegree(), tolerance, false);
   } else {
@@ -111,8 +111,10 @@ Handle(Geom_BSplineSurface)
     if (seam) {
       if (std::abs(*seam - d0) <= inside) continue;
       seated = with_origin(seated, u, *seam);
-    } else if ((f0 < d0 - inside || f1 > d1 + inside) && f1 - f0 < period - inside) {
-      seated = with_origin(seated, u, 0.5 * (f1 + f0 + period));  // the middle of the gap
+    } else if ((f0 < d0 - inside || f1 > d1 + inside) && f1 - f0 <= period + inside) {
+      // The domain ends in the middle of the band the face leaves out (at the
+      // face's start for a whole turn without a seam edge).
+      seated = with_origin(seated, u, 0.5 * (f0 + f1 - period));
     }
   }
   return seated;

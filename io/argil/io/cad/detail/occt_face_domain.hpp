@@ -16,7 +16,7 @@ namespace argil::io::detail {
 /// at a parameter that is not the seam's angle, and its face then runs past
 /// the domain's end, kept only by extrapolation (11752.stp: 13 faces, by up to
 /// 0.6% of the circle). A closed surface is the same surface periodically, so
-/// moving its origin changes neither the points nor the pcurves.
+/// moving its origin keeps the surface (to rounding) and the pcurves.
 Handle(Geom_BSplineSurface)
     seated_on_face(const Handle(Geom_BSplineSurface) & surface, const TopoDS_Face& face);
 
