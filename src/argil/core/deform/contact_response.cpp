@@ -22,27 +22,6 @@ std::vector<double> contact_shares(const std::vector<Contact>& contacts, double 
   return shares;
 }
 
-std::vector<std::pair<int, double>> basis_at(const BSplineSurface& s, const Eigen::Vector2d& uv) {
-  const int nu = s.count(Direction::u), nv = s.count(Direction::v);
-  const int p = s.degree[0], q = s.degree[1];
-  const int su = find_span(p, s.knots[0], nu, uv.x()), sv = find_span(q, s.knots[1], nv, uv.y());
-  Eigen::MatrixXd bu(1, p + 1), bv(1, q + 1);
-  basis_derivatives(p, s.knots[0], su, uv.x(), 0, bu);
-  basis_derivatives(q, s.knots[1], sv, uv.y(), 0, bv);
-  std::vector<std::pair<int, double>> out;
-  double sum = 0.0;
-  for (int a = 0; a <= p; ++a)
-    for (int b = 0; b <= q; ++b) {
-      const int pole = static_cast<int>(s.pole_index(su - p + a, sv - q + b));
-      const double w = bu(0, a) * bv(0, b) * (s.is_rational() ? s.weights[pole] : 1.0);
-      if (w == 0.0) continue;
-      out.emplace_back(pole, w);
-      sum += w;
-    }
-  for (auto& entry : out) entry.second /= sum;
-  return out;
-}
-
 PoleWeights pole_weights_at(const BSplineSurface& s, const std::vector<Eigen::Vector2d>& uvs,
                             const std::vector<double>& shares) {
   assert(uvs.size() == shares.size());
@@ -72,7 +51,8 @@ PoleWeights pole_weights_at(const BSplineSurface& s, const std::vector<Eigen::Ve
   Eigen::MatrixXd bu(1, p + 1), bv(1, q + 1);
   std::vector<double> w(static_cast<std::size_t>((p + 1) * (q + 1)));
   // Each pole's terms summed in point order from 0, as a dense pattern would
-  // (basis_at's values, each share times its normalised basis value).
+  // (each share times the rational basis R_ij: the products, zeros skipped,
+  // over their sum).
   for (std::size_t k = 0; k < uvs.size(); ++k) {
     const auto [su, sv] = spans[k];
     basis_derivatives(p, s.knots[0], su, at[k].x(), 0, bu);

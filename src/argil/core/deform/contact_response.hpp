@@ -17,11 +17,6 @@ namespace argil {
 /// some). Empty for no contacts.
 std::vector<double> contact_shares(const std::vector<Contact>& contacts, double eps);
 
-/// The rational basis R_i(u, v) at a point of the domain: the poles whose
-/// basis is non-zero there, with their values (non-negative, summing to 1).
-std::vector<std::pair<int, double>> basis_at(const BSplineSurface& surface,
-                                             const Eigen::Vector2d& uv);
-
 /// The non-zero entries of a load pattern: (pole index i * n_v + j, weight),
 /// each pole once, in increasing pole order. A contact's pattern touches the
 /// (p + 1) x (q + 1) poles around it, whatever the net's size.

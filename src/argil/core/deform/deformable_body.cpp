@@ -149,8 +149,8 @@ void DeformableBody::plastic_flow(const ControlNet& points, const PoleWindow& mo
 }
 
 Eigen::RowVector3d DeformableBody::sample_stretch(int su, int sv) const {
-  // The rational basis at the sample as basis_at computes it (the products,
-  // zeros skipped, over their sum), applied to the stretch.
+  // The rational basis at the sample as pole_weights_at computes it (the
+  // products, zeros skipped, over their sum), applied to the stretch.
   const YieldBasis& bu = yield_basis_[0];
   const YieldBasis& bv = yield_basis_[1];
   const int p = bu.degree, q = bv.degree, nv = stiffness_.count_v();
