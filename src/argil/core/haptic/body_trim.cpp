@@ -31,6 +31,8 @@ Status HapticWorld::set_trim(int body, TrimRegion region) {
   }
   if (trims_.size() < bodies_.size()) trims_.resize(bodies_.size());
   trims_[static_cast<std::size_t>(body)] = std::move(region);
+  // The proxy's side and last closest point were of the old material.
+  if (sphere_) sphere_->forget_side(static_cast<std::size_t>(body));
   return Status::success();
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace argil {
 
@@ -77,13 +78,98 @@ int& SphereProxy::side(std::size_t index) {
   return sides_[index];
 }
 
+SphereProxy::Seen& SphereProxy::seen(std::size_t index) {
+  if (seen_.size() <= index) seen_.resize(index + 1);
+  return seen_[index];
+}
+
+void SphereProxy::set_surface_motion(std::vector<double> motion) {
+  ++epoch_;
+  if (surface_path_.size() < motion.size()) surface_path_.resize(motion.size(), 0.0);
+  for (std::size_t b = 0; b < motion.size(); ++b) surface_path_[b] += 2.0 * motion[b];
+  motion_ = std::move(motion);
+}
+
+void SphereProxy::forget_side(std::size_t index) {
+  if (index < sides_.size()) sides_[index] = 0;
+  if (index < seen_.size()) seen_[index] = {};
+}
+
+void SphereProxy::walk_to(const Eigen::Vector3d& centre) {
+  if (walked_) path_ += (centre - last_centre_).norm();
+  walked_ = true;
+  last_centre_ = centre;
+}
+
+double SphereProxy::surface_moved(const TrimmedSurface& surface, const Seen& s,
+                                  std::size_t index) const {
+  if (surface.hierarchy->version() == s.version) return 0.0;
+  if (s.epoch == epoch_) return std::numeric_limits<double>::infinity();
+  const double now = index < surface_path_.size() ? surface_path_[index] : 0.0;
+  return now - s.surface_path;
+}
+
+double SphereProxy::distance_at_least(const TrimmedSurface& surface, std::size_t index) {
+  const Seen& s = seen(index);
+  if (s.hierarchy != surface.hierarchy || s.trim != surface.trim)
+    return -std::numeric_limits<double>::infinity();
+  // The distance found is within eps/4 of the true one; since, the centre
+  // went no farther than its path and the surface no farther than it moved.
+  return s.found.distance - 0.25 * eps_ - (path_ - s.path) - surface_moved(surface, s, index);
+}
+
+double SphereProxy::distance_at_most(const TrimmedSurface& surface, std::size_t index) {
+  const Seen& s = seen(index);
+  if (s.hierarchy != surface.hierarchy || s.trim != surface.trim)
+    return std::numeric_limits<double>::infinity();
+  return s.found.distance + (path_ - s.path) + surface_moved(surface, s, index);
+}
+
+ClosestPoint SphereProxy::closest(const TrimmedSurface& surface, std::size_t index,
+                                  const Eigen::Vector3d& centre, bool record) {
+  Seen& s = seen(index);
+  if (s.hierarchy == surface.hierarchy && s.trim == surface.trim &&
+      s.version == surface.hierarchy->version() && s.centre == centre)
+    return s.found;
+  ClosestPoint cp = closest_point(surface, centre, {.tolerance = 0.25 * eps_});
+  ++queries_;
+  if (record && cp.status.ok()) {
+    const double moved = index < surface_path_.size() ? surface_path_[index] : 0.0;
+    s = {.hierarchy = surface.hierarchy,
+         .trim = surface.trim,
+         .version = surface.hierarchy->version(),
+         .epoch = epoch_,
+         .path = path_,
+         .surface_path = moved,
+         .clear = false,
+         .passed = s.passed,
+         .centre = centre,
+         .found = cp};
+  }
+  return cp;
+}
+
 SphereProxy::Push SphereProxy::push_out(const TrimmedSurface& surface, std::size_t index,
                                         const Eigen::Vector3d& c, double travel) {
-  ClosestPoint cp = closest_point(surface, c, {.tolerance = 0.25 * eps_});
+  const double tiny = 1e-3 * eps_;  // below it the sign of a distance is noise
+  walk_to(c);
+  // No point of the surface can have come within reach since it was seen:
+  // no push, and the centre cannot have crossed it.
+  const double clear = distance_at_least(surface, index);
+  if (seen(index).clear && clear > radius_ + tiny) {
+    seen(index).passed = true;
+    return {Status::success(), c, false};
+  }
+  ClosestPoint cp = closest(surface, index, c, true);
   if (!cp.status.ok()) return {std::move(cp.status), c, false};
+  seen(index).clear = false;  // until found clear below
   const bool boundary = on_boundary(surface.hierarchy->surface(), cp);
   int& s = side(index);
-  const double tiny = 1e-3 * eps_;  // below it the sign of a distance is noise
+  // Passed by, the side was not followed round an edge (below); if the
+  // surface still cannot have met the centre since, the side is the sign.
+  if (std::exchange(seen(index).passed, false) && clear > 0.0 &&
+      std::abs(cp.signed_distance) > tiny)
+    s = cp.signed_distance < 0.0 ? -1 : 1;
   if (s == 0) s = cp.signed_distance < 0.0 ? -1 : 1;
   bool crossed = s * cp.signed_distance < -tiny && !boundary;
   // A crossing leaves the centre behind the surface by at most what the two
@@ -102,6 +188,7 @@ SphereProxy::Push SphereProxy::push_out(const TrimmedSurface& surface, std::size
   if (!crossed && cp.distance >= radius_) {
     if (cp.distance > radius_ + tiny && std::abs(cp.signed_distance) > tiny && boundary)
       s = cp.signed_distance < 0.0 ? -1 : 1;  // went round the edge
+    seen(index).clear = true;
     return {Status::success(), c, false};
   }
   Eigen::Vector3d direction = s * cp.normal;
@@ -156,12 +243,23 @@ ProxyContact SphereProxy::nearest(const std::vector<TrimmedSurface>& surfaces,
   std::vector<double> clearances(surfaces.size());
   std::vector<Eigen::Vector3d> normals(surfaces.size());
   std::vector<char> skipped(surfaces.size(), 0);
+  walk_to(centre);
+  // A surface certainly farther than eps beyond the nearest's distance as
+  // found (within eps/4 of some surface's bound) is neither the nearest nor
+  // in the blend below: the answer is the same without querying it.
+  double nearest_at_most = std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < surfaces.size(); ++b)
+    if (surfaces[b].hierarchy)
+      nearest_at_most = std::min(nearest_at_most, distance_at_most(surfaces[b], b));
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
-    if (!surfaces[b].hierarchy) {
+    if (!surfaces[b].hierarchy ||
+        distance_at_least(surfaces[b], b) > nearest_at_most + 1.25 * eps_) {
       skipped[b] = 1;
       continue;
     }
-    ClosestPoint cp = closest_point(surfaces[b], centre, {.tolerance = 0.25 * eps_});
+    // Not recorded: a record vouches for the path since, and nearest() does
+    // not follow the sides along it.
+    ClosestPoint cp = closest(surfaces[b], b, centre, false);
     if (!cp.status.ok()) return {std::move(cp.status)};
     const double clearance = cp.distance - radius_;
     const int s = side(b) == 0 ? (cp.signed_distance < 0.0 ? -1 : 1) : side(b);

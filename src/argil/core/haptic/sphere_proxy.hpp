@@ -4,6 +4,7 @@
 // through one, however fast the device moves.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 #include "argil/core/collision/trimmed_contact.hpp"
@@ -55,6 +56,14 @@ Eigen::Vector3d push_apart(const std::vector<PushConstraint>& pushes);
 
 /// A surface whose hierarchy is null is out of the proxy's reach this tick:
 /// every query skips it and its side record is kept.
+///
+/// Each surface's last closest point is kept with the path the centre has
+/// travelled and the surface has moved since (set_surface_motion): while that
+/// is shorter than the distance then, less the radius, the surface cannot
+/// reach the sphere and is not queried. On a part of many faces, most within
+/// a face's bounding box of the tool are still centimetres from it. So the
+/// surfaces must move only as set_surface_motion tells; a surface whose
+/// control points changed untold (its hierarchy's version) is queried afresh.
 class SphereProxy {
  public:
   SphereProxy(double radius, double eps) : radius_(radius), eps_(eps) {}
@@ -77,13 +86,15 @@ class SphereProxy {
   /// [mm] (its body's last step; 0 for a rigid or sleeping body, and for a
   /// surface not listed): a surface that moved into the centre may have
   /// crossed it by that much (push_out). Kept until set again.
-  void set_surface_motion(std::vector<double> motion) { motion_ = std::move(motion); }
-  /// Forgets which side of surface `index` the centre is on: the next query
-  /// records it from the sign of the signed distance (for a surface the
-  /// proxy did not query for a while, from far away).
-  void forget_side(std::size_t index) {
-    if (index < sides_.size()) sides_[index] = 0;
-  }
+  void set_surface_motion(std::vector<double> motion);
+  /// Forgets which side of surface `index` the centre is on, and what the
+  /// last query on it found: the next query records the side from the sign
+  /// of the signed distance (for a surface the proxy did not query for a
+  /// while, from far away, or whose material changed).
+  void forget_side(std::size_t index);
+  /// Closest-point queries made so far (a surface passed by, or whose last
+  /// closest point still stands, costs none).
+  long closest_point_queries() const { return queries_; }
   /// Largest number of substeps in one move (a longer move stops early).
   static constexpr int kMaxSubsteps = 256;
   static constexpr int kMaxProjectionRounds = 8;
@@ -100,10 +111,54 @@ class SphereProxy {
                 double travel);
   int& side(std::size_t index);
 
+  /// The last closest point found on one surface, and where the centre and
+  /// the surface stood then.
+  struct Seen {
+    const SurfaceHierarchy* hierarchy = nullptr;  // null: nothing seen
+    const TrimRegion* trim = nullptr;
+    std::uint64_t version = 0;  // the hierarchy's control-point version
+    std::uint64_t epoch = 0;    // set_surface_motion calls before
+    double path = 0.0;          // path_ then
+    double surface_path = 0.0;  // surface_path_ of the surface then
+    /// push_out found the centre clear of it, on its side: until the
+    /// surface can have reached the sphere since, it cannot push.
+    bool clear = false;
+    /// A push_out passed the surface by since its side was last read, so
+    /// the side was not followed round an edge meanwhile.
+    bool passed = false;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    ClosestPoint found;
+  };
+  Seen& seen(std::size_t index);
+  /// Adds the move from the last queried centre to `centre` to path_.
+  void walk_to(const Eigen::Vector3d& centre);
+  /// How far the surface may have moved since it was seen [mm]; infinite
+  /// when its control points changed with no set_surface_motion since.
+  double surface_moved(const TrimmedSurface& surface, const Seen& s, std::size_t index) const;
+  /// Lower and upper bounds on the distance of the surface's material from
+  /// the centre now (after walk_to) [mm]; -inf / +inf when not seen.
+  double distance_at_least(const TrimmedSurface& surface, std::size_t index);
+  double distance_at_most(const TrimmedSurface& surface, std::size_t index);
+  /// The closest point to `centre`: the one seen when the centre and the
+  /// surface are where they were then, else a query (recorded when `record`).
+  ClosestPoint closest(const TrimmedSurface& surface, std::size_t index,
+                       const Eigen::Vector3d& centre, bool record);
+
   double radius_;
   double eps_;
   std::vector<int> sides_;      // +1 / -1 along / against each surface's normal, 0 unknown
   std::vector<double> motion_;  // see set_surface_motion
+  std::vector<Seen> seen_;
+  /// Length of the polyline through every centre queried so far [mm].
+  double path_ = 0.0;
+  bool walked_ = false;  // last_centre_ is set
+  Eigen::Vector3d last_centre_ = Eigen::Vector3d::Zero();
+  /// Per surface, the sum of twice the motions set_surface_motion was told
+  /// [mm]: a step's motion and its joints' correction (last_step_motion
+  /// reports the larger of the two), which a seam weld stays within.
+  std::vector<double> surface_path_;
+  std::uint64_t epoch_ = 0;
+  long queries_ = 0;
 };
 
 }  // namespace argil
