@@ -239,8 +239,101 @@ TEST_CASE("the tool is drawn where given, and a zoom inset shows the region agai
   int surface = 0;
   for (int y = y0 + 2; y < y0 + h - 20; ++y)
     for (int x = x0 + 2; x < x0 + w - 2; ++x) surface += zoomed.at(x, y) != 0xffffffu;
-  // The zoomed box lies inside the sheet: the inset is nearly all surface.
-  CHECK(surface > (w - 4) * (h - 22) * 9 / 10);
+  // The inset shows the part of the sheet inside the box, cut away from the
+  // rest: a 20 x 20 mm square seen from 35 degrees up, drawn to fit the box
+  // (7 mm tall) in the inset. It covers a fair part of the inset, not all of it.
+  CHECK(surface > (w - 4) * (h - 22) / 4);
+  CHECK(surface < (w - 4) * (h - 22) * 9 / 10);
+}
+
+namespace {
+
+/// Meshes appended: vertices and triangles of `b` after those of `a`.
+io::TriangleMesh joined(const io::TriangleMesh& a, const io::TriangleMesh& b) {
+  io::TriangleMesh m;
+  const Eigen::Index na = a.positions.rows(), nb = b.positions.rows();
+  m.positions.resize(na + nb, 3);
+  m.positions << a.positions, b.positions;
+  m.normals.resize(na + nb, 3);
+  m.normals << a.normals, b.normals;
+  m.uv.resize(na + nb, 2);
+  m.uv << a.uv, b.uv;
+  m.triangles.resize(a.triangles.rows() + b.triangles.rows(), 3);
+  m.triangles << a.triangles, (b.triangles.array() + static_cast<int>(na)).matrix();
+  return m;
+}
+
+/// One triangle per row of `corners` (three rows each), with the given normal.
+io::TriangleMesh triangles(const Eigen::MatrixX3d& corners, const Eigen::Vector3d& normal) {
+  io::TriangleMesh m;
+  m.positions = corners;
+  m.normals = normal.transpose().replicate(corners.rows(), 1);
+  m.uv = Eigen::MatrixX2d::Zero(corners.rows(), 2);
+  m.triangles.resize(corners.rows() / 3, 3);
+  for (Eigen::Index t = 0; t < m.triangles.rows(); ++t)
+    m.triangles.row(t) << static_cast<int>(3 * t), static_cast<int>(3 * t + 1),
+        static_cast<int>(3 * t + 2);
+  return m;
+}
+
+bool blue(std::uint32_t rgb) {
+  const int r = static_cast<int>(rgb >> 16 & 0xff), b = static_cast<int>(rgb & 0xff);
+  return b > r + 60;
+}
+
+}  // namespace
+
+TEST_CASE("each pixel shows the nearest surface, whatever the triangles' sizes", "[pictures]") {
+  // Seen from straight above. A long thin triangle rises from z = 0 at x = 0
+  // to z = 20 at x = 100; a small one lies at z = 15 under its high end (at x
+  // 80..90 the long one is at z = 16..18). Sorted by their mean depth (6.7
+  // and 15) back to front, the small one was painted over the long one.
+  Eigen::MatrixX3d corners(6, 3);
+  corners << 0, -5, 0, 0, 5, 0, 100, 0, 20,  // long, rising
+      80, -2, 15, 90, -2, 15, 85, 2, 15;     // small, under it
+  const io::TriangleMesh mesh = triangles(corners, Eigen::Vector3d::UnitZ());
+  const Camera camera = fit_camera(Box3{Eigen::Vector3d(0, -5, 0), Eigen::Vector3d(100, 5, 20)},
+                                   400, 300, Eigen::Vector3d::UnitZ());
+  SurfacePictureOptions options;
+  options.vertex_displacement = {0, 0, 0, -1, -1, -1};  // the small one blue
+  options.displacement_scale = 1.0;
+  const Image image = decode(render_surface_png(mesh, {}, camera, options).value());
+  const Eigen::Vector2d under = camera.project(Eigen::Vector3d(85, -0.5, 15));
+  CHECK(image.at(static_cast<int>(under.x()), static_cast<int>(under.y())) != 0xffffffu);
+  CHECK_FALSE(blue(image.at(static_cast<int>(under.x()), static_cast<int>(under.y()))));
+  // Where the long one is narrower than the small one, the small one shows.
+  int small_shows = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) small_shows += blue(image.at(x, y));
+  CHECK(small_shows > 20);
+}
+
+TEST_CASE("the zoom inset shows its region when another surface is in front of it", "[pictures]") {
+  // The sheet dented (blue) at z = -5 and a plain sheet 20 mm above it: from
+  // 35 degrees up the plain one hides the dent in the whole view, and the
+  // inset, which draws only what lies inside its box, shows it.
+  const io::TriangleMesh dented = mesh_of(sheet(-5.0));
+  io::TriangleMesh above = mesh_of(sheet(0.0));
+  above.positions.col(2).array() += 20.0;
+  const io::TriangleMesh mesh = joined(dented, above);
+  SurfacePictureOptions options;
+  options.vertex_displacement.assign(static_cast<std::size_t>(mesh.positions.rows()), 0.0);
+  for (Eigen::Index v = 0; v < dented.positions.rows(); ++v)
+    options.vertex_displacement[static_cast<std::size_t>(v)] = -1.0;
+  options.displacement_scale = 1.0;
+  options.zoom = Box3{Eigen::Vector3d(30, 40, -6), Eigen::Vector3d(50, 60, 1)};
+  const Box3 box{Eigen::Vector3d(0, 0, -6), Eigen::Vector3d(100, 100, 21)};
+  const Camera camera = fit_camera(box, 400, 300, view_direction(-60.0, 35.0));
+  options.zoom_eye = Eigen::Vector3d::UnitZ();  // straight down: the upper sheet in front
+  const Image image = decode(render_surface_png(mesh, {}, camera, options).value());
+  const int w = 400 * 3 / 8, h = 300 * 3 / 8, x0 = 400 - w - 10, y0 = 10;
+  int inset_blue = 0, inset = 0;
+  for (int y = y0 + 2; y < y0 + h - 20; ++y)
+    for (int x = x0 + 2; x < x0 + w - 2; ++x) {
+      ++inset;
+      inset_blue += blue(image.at(x, y));
+    }
+  CHECK(inset_blue > inset / 2);
 }
 
 }  // namespace argil::sculpt

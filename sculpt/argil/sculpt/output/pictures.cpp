@@ -7,9 +7,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
-#include <numeric>
+#include <optional>
+
+#include "argil/sculpt/output/detail/depth_raster.hpp"
 
 namespace argil::sculpt {
 namespace {
@@ -123,24 +126,6 @@ Camera fit_camera(const Box3& box, int width, int height, const Eigen::Vector3d&
 
 namespace {
 
-/// Triangle indices far to near along the view (the painter's algorithm).
-std::vector<Eigen::Index> far_to_near(const io::TriangleMesh& mesh, const Camera& camera) {
-  const Eigen::Index count = mesh.triangles.rows();
-  std::vector<double> depth(static_cast<std::size_t>(count));
-  for (Eigen::Index t = 0; t < count; ++t) {
-    double d = 0.0;
-    for (int k = 0; k < 3; ++k)
-      d += camera.depth(mesh.positions.row(mesh.triangles(t, k)).transpose());
-    depth[static_cast<std::size_t>(t)] = d;
-  }
-  std::vector<Eigen::Index> order(static_cast<std::size_t>(count));
-  std::iota(order.begin(), order.end(), Eigen::Index{0});
-  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
-    return depth[static_cast<std::size_t>(a)] < depth[static_cast<std::size_t>(b)];
-  });
-  return order;
-}
-
 /// Neutral (0) to blue (-1, pushed in) or red (+1, pushed out).
 Eigen::Vector3d diverging(double t) {
   t = std::clamp(t, -1.0, 1.0);
@@ -148,18 +133,18 @@ Eigen::Vector3d diverging(double t) {
   return t < 0.0 ? ((1.0 + t) * neutral - t * in).eval() : ((1.0 - t) * neutral + t * out).eval();
 }
 
-// Supersampling of the shaded triangles in each direction: cairo draws mesh
-// patterns without antialiasing, so they are drawn this much larger and
-// scaled down (silhouettes and trims come out smooth).
+// Supersampling of the shaded triangles in each direction: the depth buffer
+// samples one point per pixel, so the triangles are drawn this much larger
+// and scaled down (silhouettes and trims come out smooth).
 constexpr int kSupersampling = 2;
 
-/// Triangles shaded by a head light and a raking key light from over the
-/// viewer's left shoulder (diffuse and a little specular, so a dent on a
-/// nearly flat panel shows by its shading), clay or coloured by the signed displacement, both per
-/// vertex and interpolated per pixel (Gouraud) by one cairo mesh pattern whose patches paint in
-/// order.
-void draw_triangles_sharp(cairo_t* cr, const io::TriangleMesh& mesh, const Camera& camera,
-                          const SurfacePictureOptions& options) {
+/// The mesh into the depth buffer, shaded by a head light and a raking key
+/// light from over the viewer's left shoulder (diffuse and a little specular,
+/// so a dent on a nearly flat panel shows by its shading), clay or coloured by
+/// the signed displacement, both per vertex and interpolated per pixel
+/// (Gouraud). With `clip`, only the surface inside the box.
+void shade(DepthRaster& raster, const io::TriangleMesh& mesh, const Camera& camera,
+           const SurfacePictureOptions& options, const std::optional<Box3>& clip) {
   const bool coloured = !options.vertex_displacement.empty();
   const Eigen::Vector3d light =
       (0.45 * camera.eye_direction + 0.75 * camera.up - 0.5 * camera.right).normalized();
@@ -182,62 +167,56 @@ void draw_triangles_sharp(cairo_t* cr, const io::TriangleMesh& mesh, const Camer
         base * (0.25 + 0.55 * head + 0.35 * key) + Eigen::Vector3d::Constant(0.15 * specular);
     return Eigen::Vector3d(lit.cwiseMin(1.0));
   };
-  cairo_pattern_t* pattern = cairo_pattern_create_mesh();
-  for (const Eigen::Index t : far_to_near(mesh, camera)) {
+  for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
     const int v[3] = {mesh.triangles(t, 0), mesh.triangles(t, 1), mesh.triangles(t, 2)};
-    const Eigen::Vector3d a = mesh.positions.row(v[0]).transpose();
-    const Eigen::Vector3d b = mesh.positions.row(v[1]).transpose();
-    const Eigen::Vector3d c = mesh.positions.row(v[2]).transpose();
-    Eigen::Vector3d n = (b - a).cross(c - a);
+    RasterTriangle r;
+    for (int k = 0; k < 3; ++k) r.point[k] = mesh.positions.row(v[k]).transpose();
+    Eigen::Vector3d n = (r.point[1] - r.point[0]).cross(r.point[2] - r.point[0]);
     if (n.norm() == 0.0) continue;
     n.normalize();
-    cairo_mesh_pattern_begin_patch(pattern);
     for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d p = camera.project(mesh.positions.row(v[k]).transpose());
-      if (k == 0)
-        cairo_mesh_pattern_move_to(pattern, p.x(), p.y());
-      else
-        cairo_mesh_pattern_line_to(pattern, p.x(), p.y());
+      r.pixel[k] = camera.project(r.point[k]);
+      r.depth[k] = camera.depth(r.point[k]);
+      r.colour[k] = vertex_colour(v[k], n);
     }
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d colour = vertex_colour(v[k], n);
-      cairo_mesh_pattern_set_corner_color_rgb(pattern, static_cast<unsigned>(k), colour.x(),
-                                              colour.y(), colour.z());
-    }
-    cairo_mesh_pattern_end_patch(pattern);
+    raster.draw(r, clip);
   }
-  cairo_set_source(cr, pattern);
-  cairo_paint(cr);
-  cairo_pattern_destroy(pattern);
 }
 
-/// draw_triangles_sharp, supersampled: drawn kSupersampling times larger on a
-/// transparent layer, then scaled down onto `cr` with a box filter.
+/// The shaded mesh onto `cr`: drawn kSupersampling times larger into a depth
+/// buffer, then scaled down with a box filter. Where nothing is drawn `cr`
+/// shows through.
 void draw_triangles(cairo_t* cr, const io::TriangleMesh& mesh, const Camera& camera,
-                    const SurfacePictureOptions& options) {
+                    const SurfacePictureOptions& options, const std::optional<Box3>& clip = {}) {
   Camera large = camera;
   large.width *= kSupersampling;
   large.height *= kSupersampling;
   large.pixels_per_mm *= kSupersampling;
-  cairo_surface_t* layer =
-      cairo_image_surface_create(CAIRO_FORMAT_ARGB32, large.width, large.height);
-  cairo_t* lc = cairo_create(layer);
-  if (cairo_status(lc) != CAIRO_STATUS_SUCCESS) {
+  SurfacePtr layer(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, large.width, large.height));
+  int scale = kSupersampling;
+  if (cairo_surface_status(layer.get()) != CAIRO_STATUS_SUCCESS) {
     // Out of memory for the large layer: draw without supersampling.
-    cairo_destroy(lc);
-    cairo_surface_destroy(layer);
-    draw_triangles_sharp(cr, mesh, camera, options);
-    return;
+    large = camera;
+    scale = 1;
+    layer.reset(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, large.width, large.height));
+    if (cairo_surface_status(layer.get()) != CAIRO_STATUS_SUCCESS) return;
   }
-  draw_triangles_sharp(lc, mesh, large, options);
-  cairo_destroy(lc);
+  DepthRaster raster(large.width, large.height);
+  shade(raster, mesh, large, options, clip);
+  cairo_surface_flush(layer.get());
+  unsigned char* data = cairo_image_surface_get_data(layer.get());
+  const int stride = cairo_image_surface_get_stride(layer.get());
+  for (int y = 0; y < large.height; ++y) {
+    auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+    for (int x = 0; x < large.width; ++x) row[x] = raster.argb(x, y);
+  }
+  cairo_surface_mark_dirty(layer.get());
   cairo_save(cr);
-  cairo_scale(cr, 1.0 / kSupersampling, 1.0 / kSupersampling);
-  cairo_set_source_surface(cr, layer, 0.0, 0.0);
+  cairo_scale(cr, 1.0 / scale, 1.0 / scale);
+  cairo_set_source_surface(cr, layer.get(), 0.0, 0.0);
   cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_GOOD);
   cairo_paint(cr);
   cairo_restore(cr);
-  cairo_surface_destroy(layer);
 }
 
 /// The tool path: red where engaged, grey where moving freely.
@@ -413,7 +392,9 @@ Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolP
     cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
     cairo_paint(cr);
     cairo_translate(cr, x0, y0);
-    draw_triangles(cr, mesh, inset, options);
+    // Only the surface inside the region: faces in front of it (a tube
+    // before the one dented) would hide the change.
+    draw_triangles(cr, mesh, inset, options, options.zoom);
     draw_tool_path(cr, path, inset);
     draw_tool(cr, inset, options);
     cairo_restore(cr);

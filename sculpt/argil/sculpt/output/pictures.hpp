@@ -1,7 +1,8 @@
 #pragma once
 // Pictures of a session (PNG through cairo): shaded surfaces seen by an
 // orthographic camera with the tool path drawn over them, and a plot of the
-// device force over time. cairo rasterises; this module projects, sorts and shades.
+// device force over time. The surfaces go through a depth buffer
+// (detail/depth_raster.hpp); cairo draws the rest and writes the PNG.
 
 #include <Eigen/Core>
 #include <optional>
@@ -72,10 +73,11 @@ struct SurfacePictureOptions {
 };
 
 /// The mesh shaded smoothly (a head light and a raking key light at each
-/// vertex from its normal, two-sided, interpolated per pixel, drawn at twice
-/// the size and scaled down so edges are antialiased; painter's order back to
-/// front) with the tool path on
-/// top (engaged segments red, free moves grey), as PNG bytes.
+/// vertex from its normal, two-sided, interpolated per pixel; each pixel shows
+/// the nearest surface (a depth buffer), drawn at twice the size and scaled
+/// down so edges are antialiased) with the tool path on top (engaged segments
+/// red, free moves grey), as PNG bytes. The zoom inset shows only the surface
+/// inside its region.
 Result<std::string> render_surface_png(const io::TriangleMesh& mesh, const ToolPath& path,
                                        const Camera& camera,
                                        const SurfacePictureOptions& options = {});
