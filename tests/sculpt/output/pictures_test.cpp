@@ -417,3 +417,51 @@ TEST_CASE("a B-spline tool is drawn posed by the device where it pressed hardest
 }
 
 }  // namespace argil::sculpt
+
+namespace argil::sculpt {
+
+TEST_CASE("a large change the whole view would see edge-on is looked at", "[pictures]") {
+  // A floor (the sheet, 100 x 100 mm at z = 0) and a wall standing on its
+  // edge x = 0 (the yz plane, 100 x 40 mm); the wall's middle is pushed 5 mm
+  // in along x over most of it, too large a change for the zoom inset. The
+  // view the floor decides sees the wall at a glancing angle (its normal about
+  // 80 degrees from the eye): the change must still cover a good part of
+  // after.png.
+  io::Model before = sheet(0.0);
+  io::Model wall_model = sheet(0.0);
+  BSplineSurface& wall = wall_model.faces[0].surface;
+  for (Eigen::Index k = 0; k < wall.control_points.rows(); ++k) {
+    const Eigen::Vector3d p = wall.control_points.row(k).transpose();
+    wall.control_points.row(k) << 0.0, p.x(), 0.4 * p.y();
+  }
+  before.faces.push_back(wall_model.faces[0]);
+  io::Model after = before;
+  BSplineSurface& pushed = after.faces[1].surface;
+  for (int i = 1; i < 7; ++i)
+    for (int j = 1; j < 7; ++j) pushed.control_points(i * 8 + j, 0) -= 5.0;
+  SessionPicturesRequest request;
+  request.before = before;
+  request.after = after;
+  request.path.positions = {Eigen::Vector3d(-20, 50, 20), Eigen::Vector3d(-10, 50, 20)};
+  request.path.engaged = {false, false};
+  request.times = {0.0, 0.001};
+  request.forces = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  request.title = "wall";
+  request.tolerance_mm = 0.01;
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                       ("argil-pictures-wall-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  REQUIRE(write_session_pictures(request, folder).ok());
+  std::ifstream in(folder / kAfterPicture, std::ios::binary);
+  const std::string png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove_all(folder);
+  const Image image = decode(png);
+  int changed = 0;
+  for (const std::uint32_t p : image.pixels) {
+    const int r = static_cast<int>(p >> 16 & 0xff), b = static_cast<int>(p & 0xff);
+    changed += std::abs(b - r) > 60;  // blue (in) or red (out)
+  }
+  CHECK(changed > image.width * image.height / 10);
+}
+
+}  // namespace argil::sculpt

@@ -147,6 +147,17 @@ std::vector<Eigen::Index> visibly_moved(const std::vector<Eigen::Vector3d>& move
   return out;
 }
 
+/// The box of the vertices in `visible`.
+Box3 region_box(const io::TriangleMesh& mesh, const std::vector<Eigen::Index>& visible) {
+  Box3 box{Eigen::Vector3d::Constant(1e300), Eigen::Vector3d::Constant(-1e300)};
+  for (const Eigen::Index k : visible) {
+    const Eigen::Vector3d p = mesh.positions.row(k).transpose();
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  return box;
+}
+
 /// The box of the visible change. Grown by half its size and to at least
 /// three tool radii; none when nothing moved visibly or when it spans more
 /// than a third of the model (the whole view shows it).
@@ -154,17 +165,21 @@ std::optional<Box3> moved_region(const io::TriangleMesh& after_mesh,
                                  const std::vector<Eigen::Index>& visible, double tool_radius_mm,
                                  const Box3& models) {
   if (visible.empty()) return std::nullopt;
-  Box3 box{Eigen::Vector3d::Constant(1e300), Eigen::Vector3d::Constant(-1e300)};
-  for (const Eigen::Index k : visible) {
-    const Eigen::Vector3d p = after_mesh.positions.row(k).transpose();
-    box.min = box.min.cwiseMin(p);
-    box.max = box.max.cwiseMax(p);
-  }
+  const Box3 box = region_box(after_mesh, visible);
   if (box.diagonal() > models.diagonal() / 3.0) return std::nullopt;
   const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
   const Eigen::Vector3d half =
       (0.75 * (box.max - box.min)).cwiseMax(Eigen::Vector3d::Constant(1.5 * tool_radius_mm));
   return Box3{centre - half, centre + half};
+}
+
+/// The mean unit normal of the vertices in `visible`; none when they cancel out.
+std::optional<Eigen::Vector3d> mean_normal(const io::TriangleMesh& mesh,
+                                           const std::vector<Eigen::Index>& visible) {
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  for (const Eigen::Index k : visible) normal += mesh.normals.row(k).transpose();
+  if (!(normal.norm() > 1e-9)) return std::nullopt;
+  return normal.normalized();
 }
 
 /// Where to look at the change from: the mean outward normal of the vertices
@@ -173,10 +188,9 @@ std::optional<Box3> moved_region(const io::TriangleMesh& after_mesh,
 std::optional<Eigen::Vector3d> change_eye(const io::TriangleMesh& after_mesh,
                                           const std::vector<Eigen::Index>& visible,
                                           const Eigen::Vector3d& view_eye) {
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  for (const Eigen::Index k : visible) normal += after_mesh.normals.row(k).transpose();
-  if (!(normal.norm() > 1e-9)) return std::nullopt;
-  normal.normalize();
+  const std::optional<Eigen::Vector3d> mean = mean_normal(after_mesh, visible);
+  if (!mean) return std::nullopt;
+  const Eigen::Vector3d& normal = *mean;
   const Eigen::Vector3d tangent = view_eye - view_eye.dot(normal) * normal;
   return (normal + 0.5 * tangent).normalized();
 }
@@ -203,8 +217,19 @@ Status write_session_pictures(const SessionPicturesRequest& request,
   if (!before_mesh.ok()) return before_mesh.status();
   Result<io::TriangleMesh> after_mesh = io::tessellate(after, options);
   if (!after_mesh.ok()) return after_mesh.status();
-  const Camera camera =
-      fit_camera(with_engaged_path(models, path), 960, 720, eye_direction_for(before_mesh.value()));
+  const std::vector<Eigen::Vector3d> moved = vertex_movements(before, after_mesh.value());
+  const std::vector<Eigen::Index> visible = visibly_moved(moved, request.tolerance_mm);
+  // A change too large for the zoom inset (below) that the whole view sees
+  // at a glancing angle (its mean normal more than 60 degrees from the eye) is
+  // looked at by the whole view: a groove along the side of a screw was on its
+  // silhouette.
+  Eigen::Vector3d eye = eye_direction_for(before_mesh.value());
+  const bool inset = !visible.empty() && !(region_box(after_mesh.value(), visible).diagonal() >
+                                           models.diagonal() / 3.0);
+  const std::optional<Eigen::Vector3d> change_normal = mean_normal(after_mesh.value(), visible);
+  if (!inset && change_normal && std::abs(change_normal->dot(eye)) < 0.5)
+    eye = change_eye(after_mesh.value(), visible, eye).value_or(eye);
+  const Camera camera = fit_camera(with_engaged_path(models, path), 960, 720, eye);
   SurfacePictureOptions before_options;
   before_options.title = title + ": before";
   const std::optional<std::size_t> press = hardest_press(request);
@@ -219,13 +244,11 @@ Status write_session_pictures(const SessionPicturesRequest& request,
       before_options.tool_radius_mm = 0.5 * control_point_box(*tool->surface).diagonal();
     }
   }
-  const std::vector<Eigen::Vector3d> moved = vertex_movements(before, after_mesh.value());
   SurfacePictureOptions after_options =
       signed_colouring(before, after_mesh.value(), moved, request.tolerance_mm, title);
   after_options.tool_position = before_options.tool_position;
   after_options.tool_radius_mm = before_options.tool_radius_mm;
   after_options.tool_mesh = before_options.tool_mesh;
-  const std::vector<Eigen::Index> visible = visibly_moved(moved, request.tolerance_mm);
   after_options.zoom =
       moved_region(after_mesh.value(), visible, after_options.tool_radius_mm, models);
   if (after_options.zoom) {
