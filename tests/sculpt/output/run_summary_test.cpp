@@ -62,6 +62,18 @@ TEST_CASE("a plate moved along its normal has that displacement everywhere, inwa
   CHECK(up.inward.displacement == 0.0);
 }
 
+TEST_CASE("the summary says when the largest displacement is within eps", "[summary]") {
+  // A pressed plate (0.3 mm in) beside one the tool never reached, moved by
+  // rounding (1e-25 mm out): the outward extreme is printed, and is no change.
+  RunSummary s;
+  s.tolerance = 0.01;
+  s.displacement = summarize_displacement({moved_plate(-0.3), moved_plate(1e-25)}, s.tolerance);
+  const std::vector<std::string> lines = summary_lines(s);
+  REQUIRE(lines.size() >= 2);
+  CHECK(lines[0].find("largest inward displacement: -0.3 mm (plate face 3") == 0);
+  CHECK(lines[1].find("largest outward displacement: 1e-25 mm, within eps (plate face 3") == 0);
+}
+
 TEST_CASE("only the material inside a face's trims is sampled", "[summary]") {
   SculptedFace f = moved_plate(-0.3);
   // An elliptic hole of semi-axes 0.2 x 0.15 (2 x 1.5 mm) in the plate.

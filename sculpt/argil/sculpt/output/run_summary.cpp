@@ -116,9 +116,11 @@ std::string format(const char* pattern, double x) {
 
 std::string g4(double x) { return format("%.4g", x); }
 
-std::string extreme_text(const char* way, const DisplacementExtreme& e) {
+std::string extreme_text(const char* way, const DisplacementExtreme& e, double eps) {
   std::string s = std::string("largest ") + way + " displacement: " + g4(e.displacement) + " mm";
   if (e.model.empty()) return s + " (none)";
+  // A face the tool never reached moves by rounding (1e-25 mm): say it is no change.
+  if (std::abs(e.displacement) <= eps) s += ", within eps";
   return s + " (" + e.model + " face " + std::to_string(e.face) + " at (u, v) = (" +
          format("%.6g", e.uv[0]) + ", " + format("%.6g", e.uv[1]) + "))";
 }
@@ -238,8 +240,8 @@ RunSummary summarize_run(const std::vector<SculptedFace>& faces, const TickLog& 
 std::vector<std::string> summary_lines(const RunSummary& s) {
   const DisplacementSummary& d = s.displacement;
   std::vector<std::string> lines;
-  lines.push_back(extreme_text("inward", d.inward));
-  lines.push_back(extreme_text("outward", d.outward));
+  lines.push_back(extreme_text("inward", d.inward, s.tolerance));
+  lines.push_back(extreme_text("outward", d.outward, s.tolerance));
   lines.push_back("affected area (|displacement| > eps = " + g4(s.tolerance) +
                   " mm): " + g4(d.affected_area) + " mm^2 of " + g4(d.area) + " mm^2");
   if (s.peak_force.tick >= 0) {
