@@ -161,3 +161,39 @@ TEST_CASE("the proxy follows its side round a far surface's edge", "[haptic][pro
     CHECK(proxy.closest_point_queries() < 1 + 1 + 31);
   }
 }
+
+TEST_CASE("the side is read where the proxy last passed a surface by before meeting it",
+          "[haptic][proxy]") {
+  // A point or small sphere starts above a sheet, beyond its edge, drops
+  // under the sheet's plane just beyond the edge in one move, and slides in
+  // under the sheet. The drop is one substep longer than what the sheet's
+  // bound allows, so the sheet is passed by until the centre is under it:
+  // its side is then read where it was last passed, under the plane, and the
+  // centre stays under the sheet. Read from the record (above), the centre
+  // was taken to have crossed and was put back on top.
+  const double eps = 0.01;
+  argil::OperatorCache cache;
+  const argil::SurfaceHierarchy h = argil::SurfaceHierarchy::build(sheet_at(0.0), cache).value();
+  const std::vector<argil::TrimmedSurface> surfaces{{&h, nullptr}};
+  int cases = 0;
+  for (const double radius : {0.0, 0.01, 0.02})
+    for (const double a : {0.2, 0.5, 1.0})
+      for (const double height : {0.05, 0.5, 1.0})
+        for (const double b : {0.05, 0.2})
+          for (const double depth : {0.005, 0.01, 0.03}) {
+            CAPTURE(radius, a, height, b, depth);
+            argil::SphereProxy proxy(radius, eps);
+            const Vector3d start(5.0, 10.0 + a, height);
+            REQUIRE(proxy.project(surfaces, start).p_WT == start);
+            const argil::SphereMove down =
+                proxy.move(surfaces, start, Vector3d(5.0, 10.0 + b, -depth));
+            REQUIRE(down.status.ok());
+            REQUIRE(down.p_WT.z() < 0.0);
+            const argil::SphereMove in =
+                proxy.move(surfaces, down.p_WT, Vector3d(5.0, 9.0, -depth));
+            REQUIRE(in.status.ok());
+            CHECK(in.p_WT.z() < 0.0);
+            ++cases;
+          }
+  CHECK(cases == 162);
+}

@@ -220,14 +220,14 @@ Status write_session_pictures(const SessionPicturesRequest& request,
   const std::vector<Eigen::Vector3d> moved = vertex_movements(before, after_mesh.value());
   const std::vector<Eigen::Index> visible = visibly_moved(moved, request.tolerance_mm);
   // A change too large for the zoom inset (below) that the whole view sees
-  // at a glancing angle (its mean normal more than 60 degrees from the eye) is
-  // looked at by the whole view: a groove along the side of a screw was on its
-  // silhouette.
+  // at a glancing angle or from behind (its mean normal more than 60 degrees
+  // from the eye) is looked at by the whole view: a groove along the side of
+  // a screw was on its silhouette.
   Eigen::Vector3d eye = eye_direction_for(before_mesh.value());
   const bool inset = !visible.empty() && !(region_box(after_mesh.value(), visible).diagonal() >
                                            models.diagonal() / 3.0);
   const std::optional<Eigen::Vector3d> change_normal = mean_normal(after_mesh.value(), visible);
-  if (!inset && change_normal && std::abs(change_normal->dot(eye)) < 0.5)
+  if (!inset && change_normal && change_normal->dot(eye) < 0.5)
     eye = change_eye(after_mesh.value(), visible, eye).value_or(eye);
   const Camera camera = fit_camera(with_engaged_path(models, path), 960, 720, eye);
   SurfacePictureOptions before_options;

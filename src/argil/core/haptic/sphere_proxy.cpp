@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <utility>
 
 namespace argil {
 
@@ -101,12 +100,28 @@ void SphereProxy::walk_to(const Eigen::Vector3d& centre) {
   last_centre_ = centre;
 }
 
-double SphereProxy::surface_moved(const TrimmedSurface& surface, const Seen& s,
-                                  std::size_t index) const {
-  if (surface.hierarchy->version() == s.version) return 0.0;
-  if (s.epoch == epoch_) return std::numeric_limits<double>::infinity();
+double SphereProxy::surface_moved(const TrimmedSurface& surface, std::size_t index,
+                                  std::uint64_t version, std::uint64_t epoch,
+                                  double surface_path) const {
+  if (surface.hierarchy->version() == version) return 0.0;
   const double now = index < surface_path_.size() ? surface_path_[index] : 0.0;
-  return now - s.surface_path;
+  const double told = now - surface_path;
+  // Changed, and no motion told for it since (not listed, or told 0: a
+  // sleeping body a joint nudged): unknown.
+  if (epoch == epoch_ || !(told > 0.0)) return std::numeric_limits<double>::infinity();
+  return told;
+}
+
+int SphereProxy::side_where_passed(const TrimmedSurface& surface, std::size_t index,
+                                   const Seen& s) {
+  const double tiny = 1e-3 * eps_;
+  const double moved =
+      surface_moved(surface, index, s.passed_version, s.passed_epoch, s.passed_surface_path);
+  if (!(s.passed_clear - moved > tiny)) return 0;
+  const ClosestPoint there = closest_point(surface, s.passed_at, {.tolerance = 0.25 * eps_});
+  ++queries_;
+  if (!there.status.ok() || !(std::abs(there.signed_distance) > tiny)) return 0;
+  return there.signed_distance < 0.0 ? -1 : 1;
 }
 
 double SphereProxy::distance_at_least(const TrimmedSurface& surface, std::size_t index) {
@@ -115,14 +130,16 @@ double SphereProxy::distance_at_least(const TrimmedSurface& surface, std::size_t
     return -std::numeric_limits<double>::infinity();
   // The distance found is within eps/4 of the true one; since, the centre
   // went no farther than its path and the surface no farther than it moved.
-  return s.found.distance - 0.25 * eps_ - (path_ - s.path) - surface_moved(surface, s, index);
+  return s.found.distance - 0.25 * eps_ - (path_ - s.path) -
+         surface_moved(surface, index, s.version, s.epoch, s.surface_path);
 }
 
 double SphereProxy::distance_at_most(const TrimmedSurface& surface, std::size_t index) {
   const Seen& s = seen(index);
   if (s.hierarchy != surface.hierarchy || s.trim != surface.trim)
     return std::numeric_limits<double>::infinity();
-  return s.found.distance + (path_ - s.path) + surface_moved(surface, s, index);
+  return s.found.distance + (path_ - s.path) +
+         surface_moved(surface, index, s.version, s.epoch, s.surface_path);
 }
 
 ClosestPoint SphereProxy::closest(const TrimmedSurface& surface, std::size_t index,
@@ -142,7 +159,7 @@ ClosestPoint SphereProxy::closest(const TrimmedSurface& surface, std::size_t ind
          .path = path_,
          .surface_path = moved,
          .clear = false,
-         .passed = s.passed,
+         .passed = false,
          .centre = centre,
          .found = cp};
   }
@@ -156,20 +173,34 @@ SphereProxy::Push SphereProxy::push_out(const TrimmedSurface& surface, std::size
   // No point of the surface can have come within reach since it was seen:
   // no push, and the centre cannot have crossed it.
   const double clear = distance_at_least(surface, index);
-  if (seen(index).clear && clear > radius_ + tiny) {
-    seen(index).passed = true;
+  if (Seen& pass = seen(index); pass.clear && clear > radius_ + tiny) {
+    pass.passed = true;
+    pass.passed_at = c;
+    pass.passed_clear = clear;
+    pass.passed_version = surface.hierarchy->version();
+    pass.passed_epoch = epoch_;
+    pass.passed_surface_path = index < surface_path_.size() ? surface_path_[index] : 0.0;
     return {Status::success(), c, false};
   }
+  const Seen before = seen(index);
   ClosestPoint cp = closest(surface, index, c, true);
   if (!cp.status.ok()) return {std::move(cp.status), c, false};
   seen(index).clear = false;  // until found clear below
+  seen(index).passed = false;
   const bool boundary = on_boundary(surface.hierarchy->surface(), cp);
   int& s = side(index);
-  // Passed by, the side was not followed round an edge (below); if the
-  // surface still cannot have met the centre since, the side is the sign.
-  if (std::exchange(seen(index).passed, false) && clear > 0.0 &&
-      std::abs(cp.signed_distance) > tiny)
-    s = cp.signed_distance < 0.0 ? -1 : 1;
+  // Passed by, the side was not followed round an edge (below). If the
+  // surface still cannot have met the centre since it was seen, the side is
+  // the sign here; else it is the sign where it was last passed (farther
+  // than the radius then, and nothing crossed on the way there), and the
+  // last step, from there to here, is judged below as any other.
+  if (before.passed) {
+    if (clear > 0.0) {
+      if (std::abs(cp.signed_distance) > tiny) s = cp.signed_distance < 0.0 ? -1 : 1;
+    } else if (const int there = side_where_passed(surface, index, before); there != 0) {
+      s = there;
+    }
+  }
   if (s == 0) s = cp.signed_distance < 0.0 ? -1 : 1;
   bool crossed = s * cp.signed_distance < -tiny && !boundary;
   // A crossing leaves the centre behind the surface by at most what the two

@@ -62,8 +62,9 @@ Eigen::Vector3d push_apart(const std::vector<PushConstraint>& pushes);
 /// is shorter than the distance then, less the radius, the surface cannot
 /// reach the sphere and is not queried. On a part of many faces, most within
 /// a face's bounding box of the tool are still centimetres from it. So the
-/// surfaces must move only as set_surface_motion tells; a surface whose
-/// control points changed untold (its hierarchy's version) is queried afresh.
+/// surfaces must move no farther than set_surface_motion tells; a surface
+/// whose control points changed (its hierarchy's version) with no motion told
+/// for it since (not listed, or 0) is queried afresh.
 class SphereProxy {
  public:
   SphereProxy(double radius, double eps) : radius_(radius), eps_(eps) {}
@@ -124,17 +125,30 @@ class SphereProxy {
     /// surface can have reached the sphere since, it cannot push.
     bool clear = false;
     /// A push_out passed the surface by since its side was last read, so
-    /// the side was not followed round an edge meanwhile.
+    /// the side was not followed round an edge meanwhile; the last centre
+    /// it was passed at, the lower bound on its distance there, and the
+    /// surface's version, epoch and surface_path then.
     bool passed = false;
+    Eigen::Vector3d passed_at = Eigen::Vector3d::Zero();
+    double passed_clear = 0.0;
+    std::uint64_t passed_version = 0;
+    std::uint64_t passed_epoch = 0;
+    double passed_surface_path = 0.0;
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     ClosestPoint found;
   };
   Seen& seen(std::size_t index);
   /// Adds the move from the last queried centre to `centre` to path_.
   void walk_to(const Eigen::Vector3d& centre);
-  /// How far the surface may have moved since it was seen [mm]; infinite
-  /// when its control points changed with no set_surface_motion since.
-  double surface_moved(const TrimmedSurface& surface, const Seen& s, std::size_t index) const;
+  /// How far the surface may have moved since it stood at `version` after
+  /// `epoch` set_surface_motion calls with `surface_path` [mm]; infinite when
+  /// its control points changed and no motion was told for it since.
+  double surface_moved(const TrimmedSurface& surface, std::size_t index, std::uint64_t version,
+                       std::uint64_t epoch, double surface_path) const;
+  /// The side of the surface at the centre it was last passed at (the sign
+  /// there, read now), or 0 when the surface may have reached that centre
+  /// since or the sign there is noise.
+  int side_where_passed(const TrimmedSurface& surface, std::size_t index, const Seen& s);
   /// Lower and upper bounds on the distance of the surface's material from
   /// the centre now (after walk_to) [mm]; -inf / +inf when not seen.
   double distance_at_least(const TrimmedSurface& surface, std::size_t index);

@@ -38,10 +38,14 @@ void DepthRaster::draw(const RasterTriangle& t, const std::optional<Box3>& clip)
   // Pixel centres (x + 1/2, y + 1/2) within the triangle's box, clamped to the picture.
   const double lo_x = std::min({a.x(), b.x(), c.x()}), hi_x = std::max({a.x(), b.x(), c.x()});
   const double lo_y = std::min({a.y(), b.y(), c.y()}), hi_y = std::max({a.y(), b.y(), c.y()});
-  const int x0 = std::max(0, static_cast<int>(std::ceil(lo_x - 0.5)));
-  const int x1 = std::min(width_ - 1, static_cast<int>(std::floor(hi_x - 0.5)));
-  const int y0 = std::max(0, static_cast<int>(std::ceil(lo_y - 0.5)));
-  const int y1 = std::min(height_ - 1, static_cast<int>(std::floor(hi_y - 0.5)));
+  // Clamped as doubles first: a corner far off the picture (a zoomed inset)
+  // must not overflow the conversion to int.
+  const auto column = [&](double x) { return std::clamp(x, -1.0, static_cast<double>(width_)); };
+  const auto row = [&](double y) { return std::clamp(y, -1.0, static_cast<double>(height_)); };
+  const int x0 = std::max(0, static_cast<int>(std::ceil(column(lo_x - 0.5))));
+  const int x1 = std::min(width_ - 1, static_cast<int>(std::floor(column(hi_x - 0.5))));
+  const int y0 = std::max(0, static_cast<int>(std::ceil(row(lo_y - 0.5))));
+  const int y1 = std::min(height_ - 1, static_cast<int>(std::floor(row(hi_y - 0.5))));
   if (x0 > x1 || y0 > y1) return;
   // Barycentric weights of a point p: w_k is the area of the sub-triangle
   // opposite corner k over the whole, so the three are >= 0 inside.
