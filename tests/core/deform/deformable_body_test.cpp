@@ -398,3 +398,29 @@ TEST_CASE("the stability sweep: the ends of the material range stay finite and l
   CAPTURE(accepted, refused);
   CHECK(accepted > refused);
 }
+
+TEST_CASE("last_step_travel bounds every pole's move over a step and the joint corrections after",
+          "[deformation][body]") {
+  // A loaded step moves the poles; three joint corrections then move one pole
+  // again and again (a corner where several faces meet). last_step_motion
+  // takes the largest of the step's moves and of single corrections;
+  // last_step_travel bounds every pole's whole move since the step began.
+  const BSplineSurface s = argil::test::asymmetric_surface();
+  argil::DeformableBody b = make_body(s, clay());
+  const ControlNet load = random_forces(s.control_points.rows(), 2.0, 11);
+  const ControlNet before = b.control_points();
+  REQUIRE(b.step(1e-3, load).ok());
+  const Eigen::Index corner = s.pole_index(kCountU - 1, kCountV - 1);
+  const ControlNet nudge = ControlNet::Constant(1, 3, 0.6);  // about 1 mm, like the step
+  const ControlNet still = ControlNet::Zero(1, 3);
+  for (int k = 0; k < 3; ++k) b.displace({corner}, nudge, still);
+  double farthest = 0.0;
+  for (Eigen::Index p = 0; p < before.rows(); ++p)
+    farthest = std::max(farthest, (b.control_points().row(p) - before.row(p)).norm());
+  CHECK(farthest > b.last_step_motion());
+  CHECK(b.last_step_travel() >= farthest * (1.0 - 1e-12));
+  CHECK(b.last_step_travel() >= 3.0 * nudge.row(0).norm() * (1.0 - 1e-12));
+  // The next step starts the count afresh.
+  REQUIRE(b.step(1e-3).ok());
+  CHECK(b.last_step_travel() == Approx(b.last_step_motion()));
+}

@@ -307,7 +307,7 @@ double DeformableBody::potential_energy() const {
   return 0.5 * stiffness_.quadratic_form(points_ - rest_);
 }
 
-double DeformableBody::last_step_motion() const {
+double DeformableBody::step_pole_motion() const {
   // Poles outside the window a step solved do not move (held, V = 0).
   const int nv = stiffness_.count_v();
   const PoleWindow& w = stepped_window_;
@@ -315,8 +315,14 @@ double DeformableBody::last_step_motion() const {
   for (int i = w.i0; i < w.i1; ++i)
     for (int j = w.j0; j < w.j1; ++j)
       largest = std::max(largest, velocities_.row(static_cast<Eigen::Index>(i) * nv + j).norm());
-  return std::max(step_dt_ * largest, displaced_motion_);
+  return step_dt_ * largest;
 }
+
+double DeformableBody::last_step_motion() const {
+  return std::max(step_pole_motion(), displaced_motion_);
+}
+
+double DeformableBody::last_step_travel() const { return step_pole_motion() + displaced_travel_; }
 
 void DeformableBody::displace(const std::vector<Eigen::Index>& poles, const ControlNet& dp,
                               const ControlNet& dv) {
@@ -329,6 +335,11 @@ void DeformableBody::displace(const std::vector<Eigen::Index>& poles, const Cont
     points_.row(p) += dp.row(r);
     velocities_.row(p) += dv.row(r);
     displaced_motion_ = std::max(displaced_motion_, dp.row(r).norm());
+    if (displaced_sum_.empty())
+      displaced_sum_.assign(static_cast<std::size_t>(points_.rows()), 0.0);
+    double& sum = displaced_sum_[static_cast<std::size_t>(p)];
+    sum += dp.row(r).norm();
+    displaced_travel_ = std::max(displaced_travel_, sum);
     const auto [i, j] = pole_ij(p, nv);
     moved = moved.united({i, i + 1, j, j + 1});
   }
@@ -720,8 +731,16 @@ Result<LoadPreview> DeformableBody::start_step(double dt, const ControlNet& forc
   }
   assert(forces.rows() == 0 || forces.rows() == masses_.size());
   if (Status s = plan_region(dt, forces, loads); !s.ok()) return s;
+  if (!displaced_sum_.empty()) {
+    const int nv = stiffness_.count_v();
+    for (int i = displaced_.i0; i < displaced_.i1; ++i)
+      for (int j = displaced_.j0; j < displaced_.j1; ++j)
+        displaced_sum_[static_cast<std::size_t>(i) * static_cast<std::size_t>(nv) +
+                       static_cast<std::size_t>(j)] = 0.0;
+  }
   displaced_ = {};
   displaced_motion_ = 0.0;
+  displaced_travel_ = 0.0;
   const bool loaded = (loads && !loads->empty()) || !forces.isZero(0.0);
   if (loaded) resting_ = false;
   if (step_idle_) {

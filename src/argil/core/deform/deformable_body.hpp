@@ -135,6 +135,12 @@ class DeformableBody {
   /// Largest distance a control point moved over the last step [mm] (0 before
   /// the first): the surface moved no farther (convex hull, fixed weights).
   double last_step_motion() const;
+  /// How far any point of the surface can have moved since the last step
+  /// began [mm]: the step's largest pole move plus the largest sum of one
+  /// pole's joint corrections since (a seam weld puts a pair at its mean,
+  /// which stays within that). last_step_motion() takes the larger of the two
+  /// instead: a measure of activity for settling, not a bound.
+  double last_step_travel() const;
   /// Whether the body is at rest to within `distance` [mm]: every control
   /// point within `distance` of its rest position (the unloaded equilibrium:
   /// K is positive definite on the free points whenever the foundation or a
@@ -207,6 +213,8 @@ class DeformableBody {
   int window_slack(int direction) const { return slack_[static_cast<std::size_t>(direction)]; }
 
  private:
+  /// The largest distance a pole moved in the last step itself [mm].
+  double step_pole_motion() const;
   /// The unknowns of one factorisation: a window's poles in solve order
   /// (row-major in the direction that gives the narrower band), its tied join
   /// rows, and its factor, computed a few rows at a time for a local window.
@@ -295,6 +303,10 @@ class DeformableBody {
   /// Poles a joint moved since the last step, and how far the farthest went [mm].
   PoleWindow displaced_;
   double displaced_motion_ = 0.0;
+  /// Per pole, the sum of the joints' moves since the last step (nonzero
+  /// only in displaced_), and the largest sum [mm].
+  std::vector<double> displaced_sum_;
+  double displaced_travel_ = 0.0;
   bool step_local_ = false;  // this step solves local_ (else full_)
   bool step_idle_ = false;   // this step changes nothing: exactly at rest, no load
   // Scratch over the whole net; a local step touches only rows near its window.

@@ -82,10 +82,11 @@ SphereProxy::Seen& SphereProxy::seen(std::size_t index) {
   return seen_[index];
 }
 
-void SphereProxy::set_surface_motion(std::vector<double> motion) {
+void SphereProxy::set_surface_motion(std::vector<double> motion, std::vector<double> travel) {
   ++epoch_;
-  if (surface_path_.size() < motion.size()) surface_path_.resize(motion.size(), 0.0);
-  for (std::size_t b = 0; b < motion.size(); ++b) surface_path_[b] += 2.0 * motion[b];
+  if (travel.empty()) travel = motion;
+  if (surface_path_.size() < travel.size()) surface_path_.resize(travel.size(), 0.0);
+  for (std::size_t b = 0; b < travel.size(); ++b) surface_path_[b] += travel[b];
   motion_ = std::move(motion);
 }
 

@@ -83,11 +83,14 @@ class SphereProxy {
                      double travel = 0.0);
   /// The nearest surface to `centre` (and updates the side record far from surfaces).
   ProxyContact nearest(const std::vector<TrimmedSurface>& surfaces, const Eigen::Vector3d& centre);
-  /// How far any point of each surface moved since the proxy's last queries
-  /// [mm] (its body's last step; 0 for a rigid or sleeping body, and for a
-  /// surface not listed): a surface that moved into the centre may have
-  /// crossed it by that much (push_out). Kept until set again.
-  void set_surface_motion(std::vector<double> motion);
+  /// How far each surface moved since the proxy's last queries [mm] (its
+  /// body's last step; 0 for a rigid or sleeping body, and for a surface not
+  /// listed): a surface that moved into the centre may have crossed it by
+  /// that much (push_out). Kept until set again. `travel`, when given, bounds
+  /// how far any point of each surface moved (DeformableBody::
+  /// last_step_travel); the surfaces passed by rely on it. Not given, `motion`
+  /// is taken as that bound.
+  void set_surface_motion(std::vector<double> motion, std::vector<double> travel = {});
   /// Forgets which side of surface `index` the centre is on, and what the
   /// last query on it found: the next query records the side from the sign
   /// of the signed distance (for a surface the proxy did not query for a
@@ -167,9 +170,7 @@ class SphereProxy {
   double path_ = 0.0;
   bool walked_ = false;  // last_centre_ is set
   Eigen::Vector3d last_centre_ = Eigen::Vector3d::Zero();
-  /// Per surface, the sum of twice the motions set_surface_motion was told
-  /// [mm]: a step's motion and its joints' correction (last_step_motion
-  /// reports the larger of the two), which a seam weld stays within.
+  /// Per surface, the sum of the travels set_surface_motion was told [mm].
   std::vector<double> surface_path_;
   std::uint64_t epoch_ = 0;
   long queries_ = 0;

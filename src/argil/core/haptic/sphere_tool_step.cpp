@@ -42,11 +42,15 @@ HapticWorld::ProxyMove HapticWorld::move_sphere(const ProxyState& previous,
   const std::vector<TrimmedSurface> surfs = trimmed_surfaces(reach);
   // How far each body's surface moved since the proxy's last queries: its
   // last step (a surface springing back may have crossed the centre).
-  std::vector<double> motion(bodies_.size(), 0.0);
+  // And how far any point of it can have moved: the bound the proxy passes
+  // far surfaces by.
+  std::vector<double> motion(bodies_.size(), 0.0), travel(bodies_.size(), 0.0);
   for (std::size_t b = 0; b < bodies_.size(); ++b)
-    if (bodies_[b].deformable && !bodies_[b].asleep)
+    if (bodies_[b].deformable && !bodies_[b].asleep) {
       motion[b] = bodies_[b].deformable->last_step_motion();
-  sphere_->set_surface_motion(std::move(motion));
+      travel[b] = bodies_[b].deformable->last_step_travel();
+    }
+  sphere_->set_surface_motion(std::move(motion), std::move(travel));
   const Eigen::Vector3d& p_WD = device.X_WD.p;
   ProxyMove out;
   out.next.X_WT.R = device.X_WD.R;
