@@ -147,8 +147,10 @@ std::vector<Eigen::Index> visibly_moved(const std::vector<Eigen::Vector3d>& move
   return out;
 }
 
-/// The box of the vertices in `visible`.
-Box3 region_box(const io::TriangleMesh& mesh, const std::vector<Eigen::Index>& visible) {
+/// The box of the vertices in `visible`; none when there are none.
+std::optional<Box3> region_box(const io::TriangleMesh& mesh,
+                               const std::vector<Eigen::Index>& visible) {
+  if (visible.empty()) return std::nullopt;
   Box3 box{Eigen::Vector3d::Constant(1e300), Eigen::Vector3d::Constant(-1e300)};
   for (const Eigen::Index k : visible) {
     const Eigen::Vector3d p = mesh.positions.row(k).transpose();
@@ -158,18 +160,20 @@ Box3 region_box(const io::TriangleMesh& mesh, const std::vector<Eigen::Index>& v
   return box;
 }
 
-/// The box of the visible change. Grown by half its size and to at least
-/// three tool radii; none when nothing moved visibly or when it spans more
-/// than a third of the model (the whole view shows it).
-std::optional<Box3> moved_region(const io::TriangleMesh& after_mesh,
-                                 const std::vector<Eigen::Index>& visible, double tool_radius_mm,
-                                 const Box3& models) {
-  if (visible.empty()) return std::nullopt;
-  const Box3 box = region_box(after_mesh, visible);
-  if (box.diagonal() > models.diagonal() / 3.0) return std::nullopt;
-  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
+/// Whether a change spanning `change` is small enough for the zoom inset: a
+/// third of the model at most (beyond, the whole view shows it).
+bool fits_inset(const Box3& change, const Box3& models) {
+  return !(change.diagonal() > models.diagonal() / 3.0);
+}
+
+/// The zoom inset's region round the visible change `change`: grown by half
+/// its size and to at least three tool radii; none when the change does not
+/// fit the inset.
+std::optional<Box3> moved_region(const Box3& change, double tool_radius_mm, const Box3& models) {
+  if (!fits_inset(change, models)) return std::nullopt;
+  const Eigen::Vector3d centre = 0.5 * (change.min + change.max);
   const Eigen::Vector3d half =
-      (0.75 * (box.max - box.min)).cwiseMax(Eigen::Vector3d::Constant(1.5 * tool_radius_mm));
+      (0.75 * (change.max - change.min)).cwiseMax(Eigen::Vector3d::Constant(1.5 * tool_radius_mm));
   return Box3{centre - half, centre + half};
 }
 
@@ -182,15 +186,10 @@ std::optional<Eigen::Vector3d> mean_normal(const io::TriangleMesh& mesh,
   return normal.normalized();
 }
 
-/// Where to look at the change from: the mean outward normal of the vertices
-/// that moved visibly, tilted a third of the way towards the whole view's eye
-/// so its relief shows; none when the normals cancel out.
-std::optional<Eigen::Vector3d> change_eye(const io::TriangleMesh& after_mesh,
-                                          const std::vector<Eigen::Index>& visible,
-                                          const Eigen::Vector3d& view_eye) {
-  const std::optional<Eigen::Vector3d> mean = mean_normal(after_mesh, visible);
-  if (!mean) return std::nullopt;
-  const Eigen::Vector3d& normal = *mean;
+/// Where to look at a change from: its mean outward normal (mean_normal of
+/// the vertices that moved visibly), tilted a third of the way towards the
+/// whole view's eye so its relief shows.
+Eigen::Vector3d change_eye(const Eigen::Vector3d& normal, const Eigen::Vector3d& view_eye) {
   const Eigen::Vector3d tangent = view_eye - view_eye.dot(normal) * normal;
   return (normal + 0.5 * tangent).normalized();
 }
@@ -223,12 +222,11 @@ Status write_session_pictures(const SessionPicturesRequest& request,
   // at a glancing angle or from behind (its mean normal more than 60 degrees
   // from the eye) is looked at by the whole view: a groove along the side of
   // a screw was on its silhouette.
-  Eigen::Vector3d eye = eye_direction_for(before_mesh.value());
-  const bool inset = !visible.empty() && !(region_box(after_mesh.value(), visible).diagonal() >
-                                           models.diagonal() / 3.0);
+  const std::optional<Box3> change = region_box(after_mesh.value(), visible);
   const std::optional<Eigen::Vector3d> change_normal = mean_normal(after_mesh.value(), visible);
-  if (!inset && change_normal && change_normal->dot(eye) < 0.5)
-    eye = change_eye(after_mesh.value(), visible, eye).value_or(eye);
+  Eigen::Vector3d eye = eye_direction_for(before_mesh.value());
+  if (change && !fits_inset(*change, models) && change_normal && change_normal->dot(eye) < 0.5)
+    eye = change_eye(*change_normal, eye);
   const Camera camera = fit_camera(with_engaged_path(models, path), 960, 720, eye);
   SurfacePictureOptions before_options;
   before_options.title = title + ": before";
@@ -249,11 +247,9 @@ Status write_session_pictures(const SessionPicturesRequest& request,
   after_options.tool_position = before_options.tool_position;
   after_options.tool_radius_mm = before_options.tool_radius_mm;
   after_options.tool_mesh = before_options.tool_mesh;
-  after_options.zoom =
-      moved_region(after_mesh.value(), visible, after_options.tool_radius_mm, models);
-  if (after_options.zoom) {
-    after_options.zoom_eye = change_eye(after_mesh.value(), visible, camera.eye_direction);
-  }
+  if (change) after_options.zoom = moved_region(*change, after_options.tool_radius_mm, models);
+  if (after_options.zoom && change_normal)
+    after_options.zoom_eye = change_eye(*change_normal, camera.eye_direction);
   const struct {
     const char* name;
     Result<std::string> png;

@@ -101,66 +101,57 @@ void SphereProxy::walk_to(const Eigen::Vector3d& centre) {
   last_centre_ = centre;
 }
 
+SphereProxy::Stance SphereProxy::stance(const TrimmedSurface& surface, std::size_t index) const {
+  return {surface.hierarchy->version(), epoch_,
+          index < surface_path_.size() ? surface_path_[index] : 0.0};
+}
+
 double SphereProxy::surface_moved(const TrimmedSurface& surface, std::size_t index,
-                                  std::uint64_t version, std::uint64_t epoch,
-                                  double surface_path) const {
-  if (surface.hierarchy->version() == version) return 0.0;
-  const double now = index < surface_path_.size() ? surface_path_[index] : 0.0;
-  const double told = now - surface_path;
+                                  const Stance& then) const {
+  const Stance now = stance(surface, index);
+  if (now.version == then.version) return 0.0;
+  const double told = now.surface_path - then.surface_path;
   // Changed, and no motion told for it since (not listed, or told 0: a
   // sleeping body a joint nudged): unknown.
-  if (epoch == epoch_ || !(told > 0.0)) return std::numeric_limits<double>::infinity();
+  if (now.epoch == then.epoch || !(told > 0.0)) return std::numeric_limits<double>::infinity();
   return told;
 }
 
 int SphereProxy::side_where_passed(const TrimmedSurface& surface, std::size_t index,
-                                   const Seen& s) {
+                                   const Pass& pass) {
   const double tiny = 1e-3 * eps_;
-  const double moved =
-      surface_moved(surface, index, s.passed_version, s.passed_epoch, s.passed_surface_path);
-  if (!(s.passed_clear - moved > tiny)) return 0;
-  const ClosestPoint there = closest_point(surface, s.passed_at, {.tolerance = 0.25 * eps_});
+  if (!(pass.clear - surface_moved(surface, index, pass.stance) > tiny)) return 0;
+  const ClosestPoint there = closest_point(surface, pass.at, {.tolerance = 0.25 * eps_});
   ++queries_;
   if (!there.status.ok() || !(std::abs(there.signed_distance) > tiny)) return 0;
   return there.signed_distance < 0.0 ? -1 : 1;
 }
 
-double SphereProxy::distance_at_least(const TrimmedSurface& surface, std::size_t index) {
+SphereProxy::DistanceBounds SphereProxy::distance_bounds(const TrimmedSurface& surface,
+                                                         std::size_t index) {
   const Seen& s = seen(index);
-  if (s.hierarchy != surface.hierarchy || s.trim != surface.trim)
-    return -std::numeric_limits<double>::infinity();
+  if (s.hierarchy != surface.hierarchy || s.trim != surface.trim) return {};
   // The distance found is within eps/4 of the true one; since, the centre
   // went no farther than its path and the surface no farther than it moved.
-  return s.found.distance - 0.25 * eps_ - (path_ - s.path) -
-         surface_moved(surface, index, s.version, s.epoch, s.surface_path);
-}
-
-double SphereProxy::distance_at_most(const TrimmedSurface& surface, std::size_t index) {
-  const Seen& s = seen(index);
-  if (s.hierarchy != surface.hierarchy || s.trim != surface.trim)
-    return std::numeric_limits<double>::infinity();
-  return s.found.distance + (path_ - s.path) +
-         surface_moved(surface, index, s.version, s.epoch, s.surface_path);
+  const double since = (path_ - s.path) + surface_moved(surface, index, s.stance);
+  return {s.found.distance - 0.25 * eps_ - since, s.found.distance + since};
 }
 
 ClosestPoint SphereProxy::closest(const TrimmedSurface& surface, std::size_t index,
                                   const Eigen::Vector3d& centre, bool record) {
   Seen& s = seen(index);
   if (s.hierarchy == surface.hierarchy && s.trim == surface.trim &&
-      s.version == surface.hierarchy->version() && s.centre == centre)
+      s.stance.version == surface.hierarchy->version() && s.centre == centre)
     return s.found;
   ClosestPoint cp = closest_point(surface, centre, {.tolerance = 0.25 * eps_});
   ++queries_;
   if (record && cp.status.ok()) {
-    const double moved = index < surface_path_.size() ? surface_path_[index] : 0.0;
     s = {.hierarchy = surface.hierarchy,
          .trim = surface.trim,
-         .version = surface.hierarchy->version(),
-         .epoch = epoch_,
+         .stance = stance(surface, index),
          .path = path_,
-         .surface_path = moved,
          .clear = false,
-         .passed = false,
+         .passed = std::nullopt,
          .centre = centre,
          .found = cp};
   }
@@ -173,21 +164,16 @@ SphereProxy::Push SphereProxy::push_out(const TrimmedSurface& surface, std::size
   walk_to(c);
   // No point of the surface can have come within reach since it was seen:
   // no push, and the centre cannot have crossed it.
-  const double clear = distance_at_least(surface, index);
-  if (Seen& pass = seen(index); pass.clear && clear > radius_ + tiny) {
-    pass.passed = true;
-    pass.passed_at = c;
-    pass.passed_clear = clear;
-    pass.passed_version = surface.hierarchy->version();
-    pass.passed_epoch = epoch_;
-    pass.passed_surface_path = index < surface_path_.size() ? surface_path_[index] : 0.0;
+  const double clear = distance_bounds(surface, index).at_least;
+  if (Seen& record = seen(index); record.clear && clear > radius_ + tiny) {
+    record.passed = Pass{c, clear, stance(surface, index)};
     return {Status::success(), c, false};
   }
-  const Seen before = seen(index);
+  const std::optional<Pass> passed = seen(index).passed;
   ClosestPoint cp = closest(surface, index, c, true);
   if (!cp.status.ok()) return {std::move(cp.status), c, false};
   seen(index).clear = false;  // until found clear below
-  seen(index).passed = false;
+  seen(index).passed.reset();
   const bool boundary = on_boundary(surface.hierarchy->surface(), cp);
   int& s = side(index);
   // Passed by, the side was not followed round an edge (below). If the
@@ -195,10 +181,10 @@ SphereProxy::Push SphereProxy::push_out(const TrimmedSurface& surface, std::size
   // the sign here; else it is the sign where it was last passed (farther
   // than the radius then, and nothing crossed on the way there), and the
   // last step, from there to here, is judged below as any other.
-  if (before.passed) {
+  if (passed) {
     if (clear > 0.0) {
       if (std::abs(cp.signed_distance) > tiny) s = cp.signed_distance < 0.0 ? -1 : 1;
-    } else if (const int there = side_where_passed(surface, index, before); there != 0) {
+    } else if (const int there = side_where_passed(surface, index, *passed); there != 0) {
       s = there;
     }
   }
@@ -279,13 +265,15 @@ ProxyContact SphereProxy::nearest(const std::vector<TrimmedSurface>& surfaces,
   // A surface certainly farther than eps beyond the nearest's distance as
   // found (within eps/4 of some surface's bound) is neither the nearest nor
   // in the blend below: the answer is the same without querying it.
+  std::vector<DistanceBounds> bounds(surfaces.size());
   double nearest_at_most = std::numeric_limits<double>::infinity();
   for (std::size_t b = 0; b < surfaces.size(); ++b)
-    if (surfaces[b].hierarchy)
-      nearest_at_most = std::min(nearest_at_most, distance_at_most(surfaces[b], b));
+    if (surfaces[b].hierarchy) {
+      bounds[b] = distance_bounds(surfaces[b], b);
+      nearest_at_most = std::min(nearest_at_most, bounds[b].at_most);
+    }
   for (std::size_t b = 0; b < surfaces.size(); ++b) {
-    if (!surfaces[b].hierarchy ||
-        distance_at_least(surfaces[b], b) > nearest_at_most + 1.25 * eps_) {
+    if (!surfaces[b].hierarchy || bounds[b].at_least > nearest_at_most + 1.25 * eps_) {
       skipped[b] = 1;
       continue;
     }

@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "argil/core/collision/trimmed_contact.hpp"
@@ -115,47 +117,56 @@ class SphereProxy {
                 double travel);
   int& side(std::size_t index);
 
+  /// Where a surface stood: its hierarchy's control-point version, the
+  /// set_surface_motion calls made before, and its surface_path_ then.
+  struct Stance {
+    std::uint64_t version = 0;
+    std::uint64_t epoch = 0;
+    double surface_path = 0.0;
+  };
+  /// The last centre a push_out passed a surface by at, and the lower bound
+  /// on the surface's distance there.
+  struct Pass {
+    Eigen::Vector3d at = Eigen::Vector3d::Zero();
+    double clear = 0.0;
+    Stance stance;
+  };
   /// The last closest point found on one surface, and where the centre and
   /// the surface stood then.
   struct Seen {
     const SurfaceHierarchy* hierarchy = nullptr;  // null: nothing seen
     const TrimRegion* trim = nullptr;
-    std::uint64_t version = 0;  // the hierarchy's control-point version
-    std::uint64_t epoch = 0;    // set_surface_motion calls before
-    double path = 0.0;          // path_ then
-    double surface_path = 0.0;  // surface_path_ of the surface then
+    Stance stance;
+    double path = 0.0;  // path_ then
     /// push_out found the centre clear of it, on its side: until the
     /// surface can have reached the sphere since, it cannot push.
     bool clear = false;
-    /// A push_out passed the surface by since its side was last read, so
-    /// the side was not followed round an edge meanwhile; the last centre
-    /// it was passed at, the lower bound on its distance there, and the
-    /// surface's version, epoch and surface_path then.
-    bool passed = false;
-    Eigen::Vector3d passed_at = Eigen::Vector3d::Zero();
-    double passed_clear = 0.0;
-    std::uint64_t passed_version = 0;
-    std::uint64_t passed_epoch = 0;
-    double passed_surface_path = 0.0;
+    /// Set when a push_out passed the surface by since its side was last
+    /// read: the side was not followed round an edge meanwhile.
+    std::optional<Pass> passed;
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     ClosestPoint found;
   };
   Seen& seen(std::size_t index);
   /// Adds the move from the last queried centre to `centre` to path_.
   void walk_to(const Eigen::Vector3d& centre);
-  /// How far the surface may have moved since it stood at `version` after
-  /// `epoch` set_surface_motion calls with `surface_path` [mm]; infinite when
-  /// its control points changed and no motion was told for it since.
-  double surface_moved(const TrimmedSurface& surface, std::size_t index, std::uint64_t version,
-                       std::uint64_t epoch, double surface_path) const;
-  /// The side of the surface at the centre it was last passed at (the sign
-  /// there, read now), or 0 when the surface may have reached that centre
-  /// since or the sign there is noise.
-  int side_where_passed(const TrimmedSurface& surface, std::size_t index, const Seen& s);
+  /// Where surface `index` stands now.
+  Stance stance(const TrimmedSurface& surface, std::size_t index) const;
+  /// How far the surface may have moved since it stood at `then` [mm];
+  /// infinite when its control points changed and no motion was told for it
+  /// since.
+  double surface_moved(const TrimmedSurface& surface, std::size_t index, const Stance& then) const;
+  /// The side of the surface where it was last passed by (the sign there,
+  /// read now), or 0 when the surface may have reached that centre since or
+  /// the sign there is noise.
+  int side_where_passed(const TrimmedSurface& surface, std::size_t index, const Pass& pass);
   /// Lower and upper bounds on the distance of the surface's material from
-  /// the centre now (after walk_to) [mm]; -inf / +inf when not seen.
-  double distance_at_least(const TrimmedSurface& surface, std::size_t index);
-  double distance_at_most(const TrimmedSurface& surface, std::size_t index);
+  /// the centre now (after walk_to) [mm]; -inf and +inf when not seen.
+  struct DistanceBounds {
+    double at_least = -std::numeric_limits<double>::infinity();
+    double at_most = std::numeric_limits<double>::infinity();
+  };
+  DistanceBounds distance_bounds(const TrimmedSurface& surface, std::size_t index);
   /// The closest point to `centre`: the one seen when the centre and the
   /// surface are where they were then, else a query (recorded when `record`).
   ClosestPoint closest(const TrimmedSurface& surface, std::size_t index,

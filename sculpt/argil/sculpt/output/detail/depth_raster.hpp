@@ -32,8 +32,6 @@ struct RasterTriangle {
 class DepthRaster {
  public:
   DepthRaster(int width, int height);
-  int width() const { return width_; }
-  int height() const { return height_; }
 
   /// Draws the triangle where it is nearer than what is there. With `clip`,
   /// only its points inside the box are drawn (a cut-away view of a region).
