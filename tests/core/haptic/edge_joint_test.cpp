@@ -417,3 +417,61 @@ TEST_CASE("joints: a panel cut in two and joined deforms as the uncut panel", "[
   CHECK(std::abs(joined.dent - whole.dent) <= 0.03 * whole.dent);
   CHECK(std::abs(joined.peak_force - whole.peak_force) <= 0.02 * whole.peak_force);
 }
+
+namespace {
+
+/// Panels a and b of press_across, flat and joined, in a fresh world.
+argil::HapticWorld joined_panels() {
+  argil::WorldOptions o;
+  o.tolerance = kEps;
+  o.coupling = {.stiffness = 1.0, .damping = 0.0, .max_force = 100.0};
+  auto created = argil::HapticWorld::create(argil::SphereToolShape{kRadius}, o);
+  REQUIRE(created.ok());
+  argil::HapticWorld w = std::move(created).value();
+  const argil::Material clay = *argil::material_preset("clay");
+  argil::BoundaryConditions held_u0, held_u1;
+  held_u0.fixed_u0 = true;
+  held_u1.fixed_u1 = true;
+  REQUIRE(w.add_deformable(panel_at({0, 0, 0}), clay, held_u0, 0.3).ok());
+  REQUIRE(w.add_deformable(panel_at({kSize, 0, 0}), clay, held_u1, 0.3).ok());
+  REQUIRE(w.join(0, uv_line({1, 0}, {1, 1}), 1, uv_line({0, 0}, {0, 1})).ok());
+  return w;
+}
+
+}  // namespace
+
+TEST_CASE("joints: an edge the tool comes near is prepared before the contact tick",
+          "[haptic][joint]") {
+  argil::HapticWorld w = joined_panels();
+  REQUIRE_FALSE(w.joint(0).joint.ready());
+  // From 6 mm above the edge down into it at 0.01 mm a tick.
+  const Eigen::Vector3d start(kSize - 0.5, 0.5 * kSize, kRadius + 6.0);
+  bool ready_before_contact = false;
+  int first_contact = -1;
+  for (int t = 0; t < 800 && first_contact < 0; ++t) {
+    const argil::DeviceSample s{.tick = t,
+                                .t = t * kDt,
+                                .X_WD = argil::Pose::at(start - Eigen::Vector3d(0, 0, 0.01 * t)),
+                                .engaged = true};
+    ready_before_contact = w.joint(0).joint.ready();
+    const argil::TickResult r = w.step(s, kDt);
+    REQUIRE(r.status.ok());
+    if (r.contacts > 0) first_contact = t;
+  }
+  REQUIRE(first_contact > 0);
+  CHECK(ready_before_contact);
+}
+
+TEST_CASE("joints: an edge the tool stays away from is not prepared", "[haptic][joint]") {
+  argil::HapticWorld w = joined_panels();
+  // Over panel a, 0.5 mm above it, along y, 7 mm and more from the edge at x = 10.
+  for (int t = 0; t < 500; ++t) {
+    const Eigen::Vector3d p(3.0, 1.0 + 0.016 * t, kRadius + 0.5);
+    const argil::DeviceSample s{
+        .tick = t, .t = t * kDt, .X_WD = argil::Pose::at(p), .engaged = true};
+    const argil::TickResult r = w.step(s, kDt);
+    REQUIRE(r.status.ok());
+    REQUIRE(r.contacts == 0);
+  }
+  CHECK_FALSE(w.joint(0).joint.ready());
+}

@@ -565,10 +565,22 @@ void DeformableBody::anticipate(const Eigen::Vector2d& uv, double dt) {
   const PoleWindow loads{su - p, su + 1, sv - q, sv + 1};
   const PoleWindow target =
       tie_closed(loads.grown(margin_[0] + slack_[0], margin_[1] + slack_[1], nu, nv));
-  if (target == PoleWindow{0, nu, 0, nv}) return;  // the whole net: nothing to prepare
+  anticipated_whole_ = target == PoleWindow{0, nu, 0, nv};
+  if (anticipated_whole_) return;  // nothing to prepare
   pending_ = region(target);
   pending_->dt = dt;
   pending_->outside_at_rest = resting_;
+}
+
+bool DeformableBody::step_may_move_any(const std::vector<Eigen::Index>& poles) const {
+  if (!local_solves_) return true;
+  const std::optional<SolveRegion>& planned = pending_ ? pending_ : local_;
+  if (!planned) return anticipated_whole_;
+  const int nv = stiffness_.count_v();
+  return std::any_of(poles.begin(), poles.end(), [&](Eigen::Index p) {
+    const auto [i, j] = pole_ij(p, nv);
+    return planned->window.contains(i, j);
+  });
 }
 
 void DeformableBody::set_local_solves(bool on) {

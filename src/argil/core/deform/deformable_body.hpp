@@ -168,6 +168,11 @@ class DeformableBody {
   bool resting() const { return resting_; }
   /// A window is active or being factorised.
   bool window_planned() const { return local_.has_value() || pending_.has_value(); }
+  /// Whether a step under the load anticipate() last prepared for can move
+  /// any of `poles`: the window being factorised (else the active one) holds
+  /// one, or that load needs the whole net, or local solves are off. False
+  /// when nothing was anticipated.
+  bool step_may_move_any(const std::vector<Eigen::Index>& poles) const;
 
   /// Adds a joint's correction (edge_joint.hpp) to some poles: P += dp, V +=
   /// dv, held poles left alone. The body is no longer resting, and the next
@@ -297,6 +302,8 @@ class DeformableBody {
   /// The active local window and a larger one being factorised.
   std::optional<SolveRegion> local_, pending_;
   bool local_solves_ = true;
+  /// The last anticipate() found the load's window to be the whole net.
+  bool anticipated_whole_ = false;
   /// Influence margin and growth slack of a window, in poles along u and v.
   std::array<int, 2> margin_{0, 0}, slack_{0, 0};
   PoleWindow stepped_window_;

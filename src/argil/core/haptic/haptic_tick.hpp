@@ -210,6 +210,7 @@ class HapticWorld {
     /// Forces its joints apply to its poles [N] (empty: none yet), added to
     /// every step's load so a held edge does not spring open again.
     ControlNet joint_force;
+    std::vector<int> joints;  // joining it to a face (or to itself)
   };
   Status install_tool(const ToolShape& tool);
   /// The proxy's move this tick (steps 1-2) and its contacts with every body.
@@ -240,7 +241,8 @@ class HapticWorld {
   std::vector<char> within_reach(const ProxyState& previous, const DeviceSample& device,
                                  double extra = 0.0) const;
   /// Bodies resting in reach of the tool at p_WT prepare the window its
-  /// closest point would need (DeformableBody::anticipate).
+  /// closest point would need (DeformableBody::anticipate); one joint such
+  /// a window reaches is prepared ahead (prepare_joint_ahead).
   void anticipate(const std::vector<char>& near, const Eigen::Vector3d& p_WT, double dt);
   /// Wakes the bodies in reach; a sphere proxy records its side of a body
   /// that comes back into reach afresh.
@@ -258,6 +260,11 @@ class HapticWorld {
   Status enforce_joints(double dt);
   /// Gives joint `j` its bodies' step responses at dt.
   Status prepare_joint(Joint& j, double dt);
+  /// Prepares the joint nearest the tool at p_WT, of those of a `near` body
+  /// not yet prepared for dt whose edge is within one tool reach of the
+  /// tool's and whose poles a step under the tool can move. A failure is left
+  /// for enforce_joints to report when the joint is needed.
+  void prepare_joint_ahead(const std::vector<char>& near, const Eigen::Vector3d& p_WT, double dt);
   /// Moves each welded pole pair of seam `j` to its mean (to the held one's
   /// place when one is held).
   void weld_seam(const Joint& j);
@@ -276,6 +283,17 @@ class HapticWorld {
   std::unique_ptr<OperatorCache> cache_;
   std::vector<Body> bodies_;
   std::vector<Joint> joints_;
+  /// Per joint, what prepare_joint_ahead knows of its edge: the sample
+  /// points at rest [mm], half their largest spacing, and the tool's
+  /// distance to the edge (less that half spacing) when last measured, and
+  /// where the tool was then.
+  struct EdgeAhead {
+    std::vector<Eigen::Vector3d> points;
+    double half_spacing = 0.0;
+    double distance = -1.0;  // negative: not measured
+    Eigen::Vector3d from = Eigen::Vector3d::Zero();
+  };
+  std::vector<EdgeAhead> edges_ahead_;
   std::vector<TrimRegion> trims_;  // per body; bodies past its end are untrimmed
   TrimRegion untrimmed_;
   std::optional<SphereProxy> sphere_;
