@@ -317,15 +317,15 @@ argil::BSplineSurface u_piece(const argil::BSplineSurface& whole, double u0, dou
 
 struct SplitOutcome {
   double peak_force = 0.0;             // [N]
-  double dent = 0.0;                   // deepest point below the rest plane [mm]
+  double dent = 0.0;                   // deepest pole below the rest plane [mm]
   std::vector<Eigen::Vector3d> shape;  // the surface on a grid of (u, v), after settling
 };
 
-/// The panel held along x = 0 and x = 20, as one face or as two faces joined
-/// along x = 10; a sphere pressed 1.5 mm down beside that line, held,
-/// released, and left to settle.
 enum class Cut { none, joined, loose };
 
+/// The panel held along x = 0 and x = 20, as one face or as two faces along
+/// x = 10 (joined or not); the device taken 2 mm down 1 mm beside that line,
+/// held, released, and the panel left to settle.
 SplitOutcome press_panel(Cut cut_at_middle) {
   const bool split = cut_at_middle != Cut::none;
   argil::WorldOptions o;

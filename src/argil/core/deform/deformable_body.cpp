@@ -575,7 +575,8 @@ void DeformableBody::anticipate(const Eigen::Vector2d& uv, double dt) {
 bool DeformableBody::step_may_move_any(const std::vector<Eigen::Index>& poles) const {
   if (!local_solves_) return true;
   const std::optional<SolveRegion>& planned = pending_ ? pending_ : local_;
-  if (!planned) return anticipated_whole_;
+  // No window: a body that moves steps its whole net.
+  if (!planned) return anticipated_whole_ || !resting_;
   const int nv = stiffness_.count_v();
   return std::any_of(poles.begin(), poles.end(), [&](Eigen::Index p) {
     const auto [i, j] = pole_ij(p, nv);

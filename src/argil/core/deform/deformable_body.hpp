@@ -170,8 +170,9 @@ class DeformableBody {
   bool window_planned() const { return local_.has_value() || pending_.has_value(); }
   /// Whether a step under the load anticipate() last prepared for can move
   /// any of `poles`: the window being factorised (else the active one) holds
-  /// one, or that load needs the whole net, or local solves are off. False
-  /// when nothing was anticipated.
+  /// one, or that load needs the whole net, or the body moves with no window
+  /// (it steps its whole net), or local solves are off. False for a body at
+  /// rest with nothing anticipated.
   bool step_may_move_any(const std::vector<Eigen::Index>& poles) const;
 
   /// Adds a joint's correction (edge_joint.hpp) to some poles: P += dp, V +=

@@ -87,6 +87,7 @@ Result<int> HapticWorld::join(int a, const BSplineCurve& pcurve_a, int b,
   std::vector<std::pair<Eigen::Index, Eigen::Index>> welded;
   if (a == b && deformable(a)) welded = coinciding_rows(*fa.surface, pcurve_a);
   EdgeAhead edge;
+  edge.poles = {joint.value().loaded_poles(0), joint.value().loaded_poles(1)};
   for (const EdgeSample& sample : samples)
     edge.points.push_back(evaluate(*fa.surface, sample.uv_a.x(), sample.uv_a.y()));
   for (std::size_t k = 1; k < edge.points.size(); ++k)
@@ -131,8 +132,8 @@ void HapticWorld::prepare_joint_ahead(const std::vector<char>& near, const Eigen
     if (!near[b] || !body.deformable) continue;
     for (const int k : body.joints) {
       const Joint& j = joints_[static_cast<std::size_t>(k)];
-      if (j.joint.ready() && j.joint.response_dt() == dt) continue;
       EdgeAhead& edge = edges_ahead_[static_cast<std::size_t>(k)];
+      if ((j.joint.ready() && j.joint.response_dt() == dt) || edge.failed) continue;
       // Measured again once the tool could have come within `ahead` of it.
       if (edge.distance >= 0.0 && edge.distance - (p_WT - edge.from).norm() > ahead) continue;
       double distance = std::numeric_limits<double>::infinity();
@@ -140,14 +141,15 @@ void HapticWorld::prepare_joint_ahead(const std::vector<char>& near, const Eigen
       edge.distance = std::max(0.0, distance - edge.half_spacing);
       edge.from = p_WT;
       if (!(edge.distance <= nearest)) continue;
-      if (!body.deformable->step_may_move_any(
-              j.joint.loaded_poles(j.a == static_cast<int>(b) ? 0 : 1)))
+      if (!body.deformable->step_may_move_any(edge.poles[j.a == static_cast<int>(b) ? 0 : 1]))
         continue;
       nearest = edge.distance;
       first = k;
     }
   }
-  if (first >= 0) (void)prepare_joint(joints_[static_cast<std::size_t>(first)], dt);
+  if (first < 0) return;
+  const auto k = static_cast<std::size_t>(first);
+  edges_ahead_[k].failed = !prepare_joint(joints_[k], dt).ok();
 }
 
 Status HapticWorld::enforce_joints(double dt) {

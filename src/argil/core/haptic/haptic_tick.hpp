@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <memory>
 #include <optional>
 #include <variant>
@@ -283,15 +284,18 @@ class HapticWorld {
   std::unique_ptr<OperatorCache> cache_;
   std::vector<Body> bodies_;
   std::vector<Joint> joints_;
-  /// Per joint, what prepare_joint_ahead knows of its edge: the sample
-  /// points at rest [mm], half their largest spacing, and the tool's
-  /// distance to the edge (less that half spacing) when last measured, and
-  /// where the tool was then.
+  /// Per joint, what prepare_joint_ahead knows of it: the poles it loads
+  /// on each side, its edge's sample points at rest [mm] and half their
+  /// largest spacing, the tool's distance to the edge (less that half
+  /// spacing) when last measured and where the tool was then, and whether its
+  /// preparation failed (it is then left for when it is needed).
   struct EdgeAhead {
+    std::array<std::vector<Eigen::Index>, 2> poles;
     std::vector<Eigen::Vector3d> points;
     double half_spacing = 0.0;
     double distance = -1.0;  // negative: not measured
     Eigen::Vector3d from = Eigen::Vector3d::Zero();
+    bool failed = false;
   };
   std::vector<EdgeAhead> edges_ahead_;
   std::vector<TrimRegion> trims_;  // per body; bodies past its end are untrimmed
