@@ -116,10 +116,12 @@ Status HapticWorld::prepare_joint(Joint& j, double dt) {
 
 void HapticWorld::prepare_joint_ahead(const std::vector<char>& near, const Eigen::Vector3d& p_WT,
                                       double dt) {
-  // Prepared when first needed, a joint costs that tick 7 to 15 ms on a real
+  // Prepared when first needed, a joint costs that tick 7 to 30 ms on a real
   // part's long edge (two window factorisations and G's eigenpairs), and that
   // tick is one with contact. Its response does not depend on the nets'
   // state, so preparing it while the tool approaches changes nothing else.
+  // Not in a tick that had to prepare one: two in one tick doubled the
+  // largest tick where the tool engages in contact.
   // Only edges the tool comes near: a face it passes costs nothing. (Joints
   // a neighbour's joint carries open later; preparing those when they begin
   // to open prepared, on the screw groove example, a 31 ms seam that never
@@ -152,8 +154,9 @@ void HapticWorld::prepare_joint_ahead(const std::vector<char>& near, const Eigen
   edges_ahead_[k].failed = !prepare_joint(joints_[k], dt).ok();
 }
 
-Status HapticWorld::enforce_joints(double dt) {
+Result<int> HapticWorld::enforce_joints(double dt) {
   const double slack = kJointSlack * options_.tolerance;
+  int prepared = 0;
   for (Joint& j : joints_) {
     Body& a = bodies_[static_cast<std::size_t>(j.a)];
     Body& b = bodies_[static_cast<std::size_t>(j.b)];
@@ -165,6 +168,7 @@ Status HapticWorld::enforce_joints(double dt) {
     // Built when first needed: most joints of a large model are never reached.
     if (!j.joint.ready() || j.joint.response_dt() != dt) {
       if (Status s = prepare_joint(j, dt); !s.ok()) return s;
+      ++prepared;
       c = j.joint.correction(surface(j.a).control_points, surface(j.b).control_points, slack);
     }
     for (const auto& [body, change] : {std::pair{&a, &c.a}, std::pair{&b, &c.b}}) {
@@ -189,7 +193,7 @@ Status HapticWorld::enforce_joints(double dt) {
   // cap edge meets its seam there), and a tick must end with seams closed.
   for (const Joint& j : joints_)
     if (!bodies_[static_cast<std::size_t>(j.a)].asleep) weld_seam(j);
-  return Status::success();
+  return prepared;
 }
 
 void HapticWorld::weld_seam(const Joint& j) {

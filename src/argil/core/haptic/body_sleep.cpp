@@ -47,7 +47,6 @@ void HapticWorld::anticipate(const std::vector<char>& near, const Eigen::Vector3
     }
     if (body.asleep) (void)d.prepare_window(dt);
   }
-  prepare_joint_ahead(near, p_WT, dt);
 }
 
 void HapticWorld::wake(const std::vector<char>& reach) {

@@ -185,7 +185,7 @@ Status HapticWorld::relax(double dt) {
     Status s = b.asleep ? b.deformable->prepare_window(dt) : b.deformable->step(dt, b.joint_force);
     if (!s.ok()) return s;
   }
-  if (Status s = enforce_joints(dt); !s.ok()) return s;
+  if (Result<int> joints = enforce_joints(dt); !joints.ok()) return joints.status();
   // No tool: every body is out of reach.
   settle(std::vector<char>(bodies_.size(), 0));
   return Status::success();
@@ -221,7 +221,8 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
       options_.cull || options_.sleep ? near : std::vector<char>(bodies_.size(), 1);
   wake(reach);
   // Windows are prepared from one tool reach further out than contact can come.
-  anticipate(within_reach(previous, device, tool_reach_), previous.X_WT.p, dt);
+  const std::vector<char> around = within_reach(previous, device, tool_reach_);
+  anticipate(around, previous.X_WT.p, dt);
 
   // 1-2. Proxy: frictionless target, then stick or slip from the last pose.
   const std::vector<char> queried = options_.cull ? reach : std::vector<char>(reach.size(), 1);
@@ -250,11 +251,13 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
     r.status = std::move(load.status);
     return r;
   }
-  if (Status s = enforce_joints(dt); !s.ok()) {
-    r.status = std::move(s);
+  const Result<int> joints = enforce_joints(dt);
+  if (!joints.ok()) {
+    r.status = joints.status();
     return r;
   }
   settle(reach);
+  if (joints.value() == 0) prepare_joint_ahead(around, next.X_WT.p, dt);
   r.force = load.force;
   r.body_force = load.body_force;
   r.clamped = load.clamped;

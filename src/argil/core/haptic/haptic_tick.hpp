@@ -242,8 +242,7 @@ class HapticWorld {
   std::vector<char> within_reach(const ProxyState& previous, const DeviceSample& device,
                                  double extra = 0.0) const;
   /// Bodies resting in reach of the tool at p_WT prepare the window its
-  /// closest point would need (DeformableBody::anticipate); one joint such
-  /// a window reaches is prepared ahead (prepare_joint_ahead).
+  /// closest point would need (DeformableBody::anticipate).
   void anticipate(const std::vector<char>& near, const Eigen::Vector3d& p_WT, double dt);
   /// Wakes the bodies in reach; a sphere proxy records its side of a body
   /// that comes back into reach afresh.
@@ -258,13 +257,15 @@ class HapticWorld {
   Status relax(double dt);
   /// Restores every joint whose bodies moved this tick of dt [s] (after they
   /// stepped); fails only when a body's step matrix cannot be factorised.
-  Status enforce_joints(double dt);
+  /// Returns how many joints it had to prepare.
+  Result<int> enforce_joints(double dt);
   /// Gives joint `j` its bodies' step responses at dt.
   Status prepare_joint(Joint& j, double dt);
   /// Prepares the joint nearest the tool at p_WT, of those of a `near` body
   /// not yet prepared for dt whose edge is within one tool reach of the
-  /// tool's and whose poles a step under the tool can move. A failure is left
-  /// for enforce_joints to report when the joint is needed.
+  /// tool's and whose poles a step under the tool can move. Called at the end
+  /// of a tick that prepared no joint. A failure is left for enforce_joints
+  /// to report when the joint is needed.
   void prepare_joint_ahead(const std::vector<char>& near, const Eigen::Vector3d& p_WT, double dt);
   /// Moves each welded pole pair of seam `j` to its mean (to the held one's
   /// place when one is held).
