@@ -43,6 +43,27 @@ argil::BSplineCurve uv_line(const Eigen::Vector2d& from, const Eigen::Vector2d& 
   return c;
 }
 
+/// A world for the 2 mm sphere at eps 0.01 mm, coupled by 1 N/mm.
+argil::HapticWorld sphere_world() {
+  argil::WorldOptions o;
+  o.tolerance = kEps;
+  o.coupling = {.stiffness = 1.0, .damping = 0.0, .max_force = 100.0};
+  auto created = argil::HapticWorld::create(argil::SphereToolShape{kRadius}, o);
+  REQUIRE(created.ok());
+  return std::move(created).value();
+}
+
+/// Clay panel a over [0, 10] x [0, 10], held along x = 0, and panel b beside
+/// it along x = 10 (turned by `fold`), held along its far edge: bodies 0, 1.
+void add_panels(argil::HapticWorld& w, double fold) {
+  const argil::Material clay = *argil::material_preset("clay");
+  argil::BoundaryConditions held_u0, held_u1;
+  held_u0.fixed_u0 = true;
+  held_u1.fixed_u1 = true;
+  REQUIRE(w.add_deformable(panel_at({0, 0, 0}), clay, held_u0, 0.3).ok());
+  REQUIRE(w.add_deformable(panel_at({kSize, 0, 0}, fold), clay, held_u1, 0.3).ok());
+}
+
 struct Outcome {
   double gap = 0.0;      // largest distance between the faces along the edge [mm]
   double angle = 0.0;    // largest angle between their normals along it [rad]
@@ -55,20 +76,9 @@ struct Outcome {
 /// by `fold`), held along their far edges; a sphere pressed 1 mm down across
 /// the shared edge, held, released, and left to settle.
 Outcome press_across(bool joined, double fold) {
-  argil::WorldOptions o;
-  o.tolerance = kEps;
-  o.coupling = {.stiffness = 1.0, .damping = 0.0, .max_force = 100.0};
-  auto created = argil::HapticWorld::create(argil::SphereToolShape{kRadius}, o);
-  REQUIRE(created.ok());
-  argil::HapticWorld w = std::move(created).value();
-  const argil::Material clay = *argil::material_preset("clay");
-  argil::BoundaryConditions held_u0, held_u1;
-  held_u0.fixed_u0 = true;
-  held_u1.fixed_u1 = true;
-  const argil::BSplineSurface a = panel_at({0, 0, 0});
+  argil::HapticWorld w = sphere_world();
+  add_panels(w, fold);
   const argil::BSplineSurface b = panel_at({kSize, 0, 0}, fold);
-  REQUIRE(w.add_deformable(a, clay, held_u0, 0.3).ok());
-  REQUIRE(w.add_deformable(b, clay, held_u1, 0.3).ok());
   Outcome out;
   if (joined) {
     const argil::Result<int> j = w.join(0, uv_line({1, 0}, {1, 1}), 1, uv_line({0, 0}, {0, 1}));
@@ -173,12 +183,7 @@ struct SeamOutcome {
 /// The tube held at both ends, a sphere pressed 1.5 mm into it just beside
 /// its seam, held, released, and left to settle with the tool taken away.
 SeamOutcome press_beside_seam(bool joined) {
-  argil::WorldOptions o;
-  o.tolerance = kEps;
-  o.coupling = {.stiffness = 1.0, .damping = 0.0, .max_force = 100.0};
-  auto created = argil::HapticWorld::create(argil::SphereToolShape{kRadius}, o);
-  REQUIRE(created.ok());
-  argil::HapticWorld w = std::move(created).value();
+  argil::HapticWorld w = sphere_world();
   argil::BoundaryConditions ends;
   ends.fixed_v0 = true;
   ends.fixed_v1 = true;
@@ -328,12 +333,7 @@ enum class Cut { none, joined, loose };
 /// held, released, and the panel left to settle.
 SplitOutcome press_panel(Cut cut_at_middle) {
   const bool split = cut_at_middle != Cut::none;
-  argil::WorldOptions o;
-  o.tolerance = kEps;
-  o.coupling = {.stiffness = 1.0, .damping = 0.0, .max_force = 100.0};
-  auto created = argil::HapticWorld::create(argil::SphereToolShape{kRadius}, o);
-  REQUIRE(created.ok());
-  argil::HapticWorld w = std::move(created).value();
+  argil::HapticWorld w = sphere_world();
   const argil::Material clay = *argil::material_preset("clay");
   argil::BoundaryConditions held_u0, held_u1, held_both;
   held_u0.fixed_u0 = true;
@@ -422,18 +422,8 @@ namespace {
 
 /// Panels a and b of press_across, flat and joined, in a fresh world.
 argil::HapticWorld joined_panels() {
-  argil::WorldOptions o;
-  o.tolerance = kEps;
-  o.coupling = {.stiffness = 1.0, .damping = 0.0, .max_force = 100.0};
-  auto created = argil::HapticWorld::create(argil::SphereToolShape{kRadius}, o);
-  REQUIRE(created.ok());
-  argil::HapticWorld w = std::move(created).value();
-  const argil::Material clay = *argil::material_preset("clay");
-  argil::BoundaryConditions held_u0, held_u1;
-  held_u0.fixed_u0 = true;
-  held_u1.fixed_u1 = true;
-  REQUIRE(w.add_deformable(panel_at({0, 0, 0}), clay, held_u0, 0.3).ok());
-  REQUIRE(w.add_deformable(panel_at({kSize, 0, 0}), clay, held_u1, 0.3).ok());
+  argil::HapticWorld w = sphere_world();
+  add_panels(w, 0.0);
   REQUIRE(w.join(0, uv_line({1, 0}, {1, 1}), 1, uv_line({0, 0}, {0, 1})).ok());
   return w;
 }
