@@ -105,13 +105,28 @@ std::vector<std::size_t> kept_positions(const std::vector<Item>& items, int max_
       ++kept;
     }
   }
+  // Where each run of contacts of one region and one depth (to the bit)
+  // starts: such a run is in order of x (same_depth_order).
+  std::vector<std::size_t> run_start(n, 0);
+  for (std::size_t i = 1; i < n; ++i) {
+    const Contact& a = contact_of(items[i - 1]);
+    const Contact& b = contact_of(items[i]);
+    run_start[i] = a.region == b.region && a.depth == b.depth ? run_start[i - 1] : i;
+  }
   // The rest in order, each contact once: its copies lie among the contacts
-  // of its region within kEqualDepth of its depth, just before it.
+  // of its region within kEqualDepth of its depth, just before it. In its own
+  // run, those more than kEqualDepth lower in x are no copies, nor is anything
+  // before them in the run: a curve's crossings (thousands, all at depth 0)
+  // are each compared with their few neighbours in x, not with all before.
   const auto found_before = [&](std::size_t i) {
     const Contact& c = contact_of(items[i]);
     for (std::size_t j = i; j-- > 0;) {
       const Contact& before = contact_of(items[j]);
       if (before.region != c.region || before.depth - c.depth > kEqualDepth) return false;
+      if (j >= run_start[i] && before.point[0] < c.point[0] - kEqualDepth) {
+        j = run_start[i];  // on to the runs of other depths before it
+        continue;
+      }
       if (same_contact(before, c)) return true;
     }
     return false;

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -55,6 +56,13 @@ class NearCurve {
   }
 
   bool operator()(const Eigen::Vector3d& p) const {
+    // Points asked in turn along a chord mostly lie by the chord that held
+    // the last one, or the next: tried before the runs.
+    for (const std::size_t k : {last_chord_, last_chord_ + 1})
+      if (chord_holds(k, p)) {
+        last_chord_ = k;
+        return true;
+      }
     if (holds(last_, p)) return true;
     for (std::size_t run = 0; run < boxes_.size(); ++run) {
       if (run != last_ && holds(run, p)) {
@@ -71,12 +79,20 @@ class NearCurve {
   /// Chords to test: a single point is a chord from itself to itself.
   std::size_t chords() const { return points_.size() < 2 ? points_.size() : points_.size() - 1; }
 
+  bool chord_holds(std::size_t k, const Eigen::Vector3d& p) const {
+    if (k >= chords()) return false;
+    const std::size_t next = std::min(k + 1, points_.size() - 1);
+    return distance_to_chord(p, points_[k], points_[next]) <= within_;
+  }
+
   bool holds(std::size_t run, const Eigen::Vector3d& p) const {
     if (run >= boxes_.size() || !boxes_[run].contains(p)) return false;
     const std::size_t end = std::min(run * kRun + kRun, chords());
     for (std::size_t k = run * kRun; k < end; ++k) {
-      const std::size_t next = std::min(k + 1, points_.size() - 1);
-      if (distance_to_chord(p, points_[k], points_[next]) <= within_) return true;
+      if (chord_holds(k, p)) {
+        last_chord_ = k;
+        return true;
+      }
     }
     return false;
   }
@@ -85,6 +101,7 @@ class NearCurve {
   double within_;
   std::vector<Eigen::AlignedBox3d> boxes_;
   mutable std::size_t last_ = 0;
+  mutable std::size_t last_chord_ = 0;
 };
 
 void reverse(IntersectionCurve& c) {
@@ -161,10 +178,14 @@ struct Bounds {
   }
 };
 
-/// A curve's chords in runs, each with its box grown by `within`: whether a
-/// point lies within `within` of a long curve then takes a few box tests and
-/// the chords of the runs whose boxes hold it, not a pass over every chord
-/// (covering() asks this every eps/4 along each candidate's chords).
+/// A curve's chords in runs, each with its box grown by `within`, and the
+/// runs' boxes merged pairwise, level by level, up to one box: whether a point
+/// lies within `within` of a long curve then takes the boxes on the way down
+/// to the runs that hold it and those runs' chords, not a pass over every run
+/// (covering() asks this every eps/4 along each candidate's chords, and an
+/// end's march every 3 eps of its way: 100,000-point curves at 1e-8 have
+/// thousands of runs). Consecutive runs lie side by side along the curve, so
+/// the merged boxes stay tight.
 class ChordRuns {
  public:
   ChordRuns(const IntersectionCurve& c, double within) : c_(c), within_(within) {
@@ -172,33 +193,81 @@ class ChordRuns {
     if (n == 1) add_run(0, 0);
     for (std::size_t first = 0; first + 1 < n; first += kChords)
       add_run(first, std::min(first + kChords, n - 1));
+    std::vector<Bounds> level;
+    for (const Run& r : runs_) level.push_back(r.box);
+    while (level.size() > 1) {
+      std::vector<Bounds> up;
+      for (std::size_t k = 0; k < level.size(); k += 2)
+        up.push_back(k + 1 < level.size() ? merged(level[k], level[k + 1]) : level[k]);
+      levels_.push_back(std::move(level));
+      level = std::move(up);
+    }
+    levels_.push_back(std::move(level));
   }
 
   /// True when some point of the curve lies within `within` of p.
   bool near(const Eigen::Vector3d& p) const {
-    for (const Run& r : runs_) {
-      if (!r.box.holds(p)) continue;
+    // Points asked in turn along a march mostly lie by the chord that held
+    // the last one: tried first.
+    if (last_chord_ + 1 < c_.points.size() &&
+        distance_to_chord(p, c_.points[last_chord_], c_.points[last_chord_ + 1]) <= within_)
+      return true;
+    return any_run(p, p, [&](const Run& r) {
       if (r.first == r.last && (c_.points[r.first] - p).norm() <= within_) return true;
       for (std::size_t k = r.first; k < r.last; ++k)
-        if (distance_to_chord(p, c_.points[k], c_.points[k + 1]) <= within_) return true;
-    }
-    return false;
+        if (distance_to_chord(p, c_.points[k], c_.points[k + 1]) <= within_) {
+          last_chord_ = k;
+          return true;
+        }
+      return false;
+    });
   }
 
   /// True when one chord of the curve lies within `within` of both p and q:
   /// then of every point between them (the distance to a segment is convex).
   bool holds_between(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const {
-    for (const Run& r : runs_) {
-      if (!r.box.holds(p) || !r.box.holds(q)) continue;
+    return any_run(p, q, [&](const Run& r) {
       for (std::size_t k = r.first; k < r.last; ++k)
         if (distance_to_chord(p, c_.points[k], c_.points[k + 1]) <= within_ &&
             distance_to_chord(q, c_.points[k], c_.points[k + 1]) <= within_)
           return true;
+      return false;
+    });
+  }
+
+ private:
+  struct Run {
+    Bounds box;
+    std::size_t first, last;  // point indices: chords first..last-1
+  };
+
+  static Bounds merged(const Bounds& a, const Bounds& b) {
+    return {a.lo.cwiseMin(b.lo), a.hi.cwiseMax(b.hi)};
+  }
+
+  /// True when `test` accepts a run whose box holds both p and q, tried
+  /// down from the top box through the boxes that hold both.
+  template <class Test>
+  bool any_run(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Test& test) const {
+    if (runs_.empty()) return false;
+    // Depth-first, a box's second child waiting: at most one per level.
+    std::array<std::pair<std::size_t, std::size_t>, 2 * kMaxLevels> stack;
+    std::size_t size = 0;
+    stack[size++] = {levels_.size() - 1, 0};
+    while (size > 0) {
+      const auto [level, index] = stack[--size];
+      const Bounds& box = levels_[level][index];
+      if (!box.holds(p) || !box.holds(q)) continue;
+      if (level == 0) {
+        if (test(runs_[index])) return true;
+        continue;
+      }
+      for (const std::size_t child : {2 * index + 1, 2 * index})
+        if (child < levels_[level - 1].size()) stack[size++] = {level - 1, child};
     }
     return false;
   }
 
- private:
   void add_run(std::size_t first, std::size_t last) {
     Bounds b{c_.points[first], c_.points[first]};
     for (std::size_t k = first; k <= last; ++k) {
@@ -211,13 +280,12 @@ class ChordRuns {
   }
 
   static constexpr std::size_t kChords = 16;
-  struct Run {
-    Bounds box;
-    std::size_t first, last;  // point indices: chords first..last-1
-  };
+  static constexpr std::size_t kMaxLevels = 64;  // 2^63 runs
   const IntersectionCurve& c_;
   double within_;
   std::vector<Run> runs_;
+  std::vector<std::vector<Bounds>> levels_;  // [0]: the runs' boxes; the last: one box
+  mutable std::size_t last_chord_ = 0;
 };
 
 Bounds bounds_of(const IntersectionCurve& c, double eps) {
