@@ -569,7 +569,7 @@ detail::GapBridge bridge_for(const SurfacePair& pair, double eps) {
 /// edge's end, where no triangle pair found the curve: the march follows it on.
 detail::EndMarch march_for(const SurfacePair& pair, double eps) {
   return [&pair, eps](const detail::CurvePoint& end, const Eigen::Vector3d& outward,
-                      const std::function<bool(const Eigen::Vector3d&)>& stop) {
+                      const ChordStop& stop) {
     return march_from_end(pair, {end.point, end.uv_a, end.uv_b}, outward, eps / 3.0, stop);
   };
 }

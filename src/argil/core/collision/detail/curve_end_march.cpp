@@ -13,10 +13,6 @@ namespace {
 /// At most this many points marched from one end.
 constexpr std::size_t kMaxPoints = 10000;
 
-/// `stop` is asked along the marched chords every this many tolerances (an
-/// eps): a long step must not pass the end of another piece unasked.
-constexpr double kStopSpacing = 3.0;
-
 /// A parameter on its domain edge whose rate along the curve points out of
 /// the domain by more than this fraction of its surface's rate: the curve
 /// leaves there (below it, the rate is rounding: the curve runs along the edge).
@@ -40,7 +36,7 @@ CurveTangent oriented(CurveTangent t, const Eigen::Vector3d& along) {
 
 IntersectionCurve march_from_end(const SurfacePair& pair, const PairPoint& end,
                                  const Eigen::Vector3d& outward, double tolerance,
-                                 const std::function<bool(const Eigen::Vector3d&)>& stop) {
+                                 const ChordStop& stop) {
   IntersectionCurve out;
   const Eigen::Vector4d lo(pair.a.domain_start(Direction::u), pair.a.domain_start(Direction::v),
                            pair.b.domain_start(Direction::u), pair.b.domain_start(Direction::v));
@@ -108,14 +104,13 @@ IntersectionCurve march_from_end(const SurfacePair& pair, const PairPoint& end,
     between->points.push_back(r->point);
     between->uv_a.push_back(r->uv_a);
     between->uv_b.push_back(r->uv_b);
-    // Up to the first chord along which `stop` accepts a point.
+    // Up to the first chord that `stop` accepts (a whole chord is asked at
+    // once: a long step must not pass the end of another piece unasked).
     bool stopped = false;
     Eigen::Vector3d from = at.point;
     for (std::size_t k = 0; k < between->points.size() && !stopped; ++k) {
       const Eigen::Vector3d& to = between->points[k];
-      const double samples = std::ceil((to - from).norm() / (kStopSpacing * tolerance));
-      for (double i = 1.0; i <= samples && !stopped; i += 1.0)
-        stopped = stop(from + (i / samples) * (to - from));
+      stopped = stop(from, to);
       out.points.push_back(to);
       out.uv_a.push_back(between->uv_a[k]);
       out.uv_b.push_back(between->uv_b[k]);

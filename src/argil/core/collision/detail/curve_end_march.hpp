@@ -12,6 +12,9 @@
 
 namespace argil {
 
+/// True when the marched chord from `from` to `to` comes near another piece.
+using ChordStop = std::function<bool(const Eigen::Vector3d& from, const Eigen::Vector3d& to)>;
+
 /// The refined points that continue a curve past its free end `end` (a point
 /// on both surfaces), leaving along `outward`, every chord within `tolerance`
 /// of the curve (CurveDensifier). Steps along the curve's tangent n_a x n_b
@@ -20,11 +23,11 @@ namespace argil {
 /// point is needed between steps or halves it, down to the tolerance, where a
 /// step does not refine ahead. Stops where the curve leaves either domain,
 /// where it no longer refines (a tangency, or no curve beyond the end), at the
-/// end of the first chord along which `stop` accepts a point (asked every 3
-/// tolerances: another piece reached), and at 1e4 points. Empty when the curve
-/// does not go on, or `outward` has no direction.
+/// end of the first chord that `stop` accepts (it comes near another piece),
+/// and at 1e4 points. Empty when the curve does not go on, or `outward` has
+/// no direction.
 IntersectionCurve march_from_end(const SurfacePair& pair, const PairPoint& end,
                                  const Eigen::Vector3d& outward, double tolerance,
-                                 const std::function<bool(const Eigen::Vector3d&)>& stop);
+                                 const ChordStop& stop);
 
 }  // namespace argil

@@ -9,6 +9,8 @@
 #include <numeric>
 #include <optional>
 
+#include "argil/core/geometry/triangle_distance.hpp"
+
 namespace argil::detail {
 
 namespace {
@@ -223,6 +225,18 @@ class ChordRuns {
     });
   }
 
+  /// True when some point of the curve lies within `within` of some point of
+  /// the segment from p to q.
+  bool near_chord(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const {
+    const Bounds chord{p.cwiseMin(q), p.cwiseMax(q)};
+    return any_run_meeting(chord, [&](const Run& r) {
+      if (r.first == r.last) return distance_to_chord(c_.points[r.first], p, q) <= within_;
+      for (std::size_t k = r.first; k < r.last; ++k)
+        if (segment_segment_distance(p, q, c_.points[k], c_.points[k + 1]) <= within_) return true;
+      return false;
+    });
+  }
+
   /// True when one chord of the curve lies within `within` of both p and q:
   /// then of every point between them (the distance to a segment is convex).
   bool holds_between(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const {
@@ -249,6 +263,19 @@ class ChordRuns {
   /// down from the top box through the boxes that hold both.
   template <class Test>
   bool any_run(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Test& test) const {
+    return any_run_where([&](const Bounds& box) { return box.holds(p) && box.holds(q); }, test);
+  }
+
+  /// True when `test` accepts a run whose box meets `box`.
+  template <class Test>
+  bool any_run_meeting(const Bounds& box, const Test& test) const {
+    return any_run_where([&](const Bounds& b) { return b.meets(box); }, test);
+  }
+
+  /// True when `test` accepts a run whose box `keep` accepts, tried down from
+  /// the top box through the boxes it accepts.
+  template <class Keep, class Test>
+  bool any_run_where(const Keep& keep, const Test& test) const {
     if (runs_.empty()) return false;
     // Depth-first, a box's second child waiting: at most one per level.
     std::array<std::pair<std::size_t, std::size_t>, 2 * kMaxLevels> stack;
@@ -256,8 +283,7 @@ class ChordRuns {
     stack[size++] = {levels_.size() - 1, 0};
     while (size > 0) {
       const auto [level, index] = stack[--size];
-      const Bounds& box = levels_[level][index];
-      if (!box.holds(p) || !box.holds(q)) continue;
+      if (!keep(levels_[level][index])) continue;
       if (level == 0) {
         if (test(runs_[index])) return true;
         continue;
@@ -838,10 +864,10 @@ void march_ends(std::vector<IntersectionCurve>& curves, double eps, const EndMar
     for (int side = 0; side < 2; ++side) {
       const IntersectionCurve own = before_end(c, 2.0 * eps);
       const ChordRuns own_runs(own, eps);
-      const auto stop = [&](const Eigen::Vector3d& p) {
-        if (own_runs.near(p)) return true;
+      const auto stop = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+        if (own_runs.near_chord(from, to)) return true;
         for (std::size_t j = 0; j < curves.size(); ++j)
-          if (j != i && !touch[j] && runs[j]->near(p)) return true;
+          if (j != i && !touch[j] && runs[j]->near_chord(from, to)) return true;
         return false;
       };
       append(c, march(end_point(c, false), end_of(c, false).outward, stop));

@@ -27,10 +27,11 @@ using GapBridge =
 
 /// The refined points that continue a curve past its free end `end`, which
 /// it leaves along `outward`, up to where the curve ends (a face's edge) or
-/// `stop` accepts a point (another piece reached); empty when it does not go on.
-using EndMarch =
-    std::function<IntersectionCurve(const CurvePoint& end, const Eigen::Vector3d& outward,
-                                    const std::function<bool(const Eigen::Vector3d&)>& stop)>;
+/// `stop` accepts a chord from one point to the next (another piece reached);
+/// empty when it does not go on.
+using EndMarch = std::function<IntersectionCurve(
+    const CurvePoint& end, const Eigen::Vector3d& outward,
+    const std::function<bool(const Eigen::Vector3d& from, const Eigen::Vector3d& to)>& stop)>;
 
 /// How far apart two free ends may lie for tidy_curves() to ask the bridge,
 /// in eps: pieces of one curve meet up to about 1.6 eps apart where leaves of
