@@ -105,34 +105,32 @@ std::vector<std::size_t> kept_positions(const std::vector<Item>& items, int max_
       ++kept;
     }
   }
-  // Where each run of contacts of one region and one depth (to the bit)
-  // starts: such a run is in order of x (same_depth_order).
-  std::vector<std::size_t> run_start(n, 0);
-  for (std::size_t i = 1; i < n; ++i) {
-    const Contact& a = contact_of(items[i - 1]);
-    const Contact& b = contact_of(items[i]);
-    run_start[i] = a.region == b.region && a.depth == b.depth ? run_start[i - 1] : i;
-  }
   // The rest in order, each contact once: its copies lie among the contacts
-  // of its region within kEqualDepth of its depth, just before it. In its own
-  // run, those more than kEqualDepth lower in x are no copies, nor is anything
-  // before them in the run: a curve's crossings (thousands, all at depth 0)
-  // are each compared with their few neighbours in x, not with all before.
-  const auto found_before = [&](std::size_t i) {
+  // of its region within kEqualDepth of its depth, just before it. A run of
+  // contacts of one region and one depth (to the bit) is in order of x
+  // (same_depth_order): in i's own run, from `run_start`, those more than
+  // kEqualDepth lower in x are no copies, nor is anything before them in the
+  // run. So a curve's crossings (thousands, all at depth 0) are each compared
+  // with their few neighbours in x, not with all before.
+  const auto found_before = [&](std::size_t i, std::size_t run_start) {
     const Contact& c = contact_of(items[i]);
     for (std::size_t j = i; j-- > 0;) {
       const Contact& before = contact_of(items[j]);
       if (before.region != c.region || before.depth - c.depth > kEqualDepth) return false;
-      if (j >= run_start[i] && before.point[0] < c.point[0] - kEqualDepth) {
-        j = run_start[i];  // on to the runs of other depths before it
+      if (j >= run_start && before.point[0] < c.point[0] - kEqualDepth) {
+        j = run_start;  // on to the runs of other depths before it
         continue;
       }
       if (same_contact(before, c)) return true;
     }
     return false;
   };
+  std::size_t run_start = 0;
   for (std::size_t i = 1; i < n && kept < limit; ++i) {
-    if (!keep[i] && !found_before(i)) {
+    const Contact& a = contact_of(items[i - 1]);
+    const Contact& b = contact_of(items[i]);
+    if (!(a.region == b.region && a.depth == b.depth)) run_start = i;
+    if (!keep[i] && !found_before(i, run_start)) {
       keep[i] = true;
       ++kept;
     }

@@ -36,76 +36,6 @@ double distance_to_curve(const Eigen::Vector3d& p, const IntersectionCurve& c) {
   return best;
 }
 
-/// Whether points lie within `within` of a curve (of one of its chords): the
-/// same test as distance_to_curve(p, c) <= within, with the chords in runs
-/// under boxes grown by `within`, and the run that held the last point tried
-/// first. A chord sampled every eps/4 against a curve of many thousand
-/// points at a tight eps made the whole-curve scan most of a query's time.
-class NearCurve {
- public:
-  NearCurve(const IntersectionCurve& c, double within) : points_(c.points), within_(within) {
-    // Grown a little more than `within`, so rounding in the box cannot drop
-    // a point the distance holds.
-    const double grow = within * (1.0 + 1e-9) + 1e-300;
-    for (std::size_t first = 0; first < chords(); first += kRun) {
-      Eigen::AlignedBox3d box;
-      for (std::size_t k = first; k <= std::min(first + kRun, chords()); ++k)
-        box.extend(points_[std::min(k, points_.size() - 1)]);
-      box.min().array() -= grow;
-      box.max().array() += grow;
-      boxes_.push_back(box);
-    }
-  }
-
-  bool operator()(const Eigen::Vector3d& p) const {
-    // Points asked in turn along a chord mostly lie by the chord that held
-    // the last one, or the next: tried before the runs.
-    for (const std::size_t k : {last_chord_, last_chord_ + 1})
-      if (chord_holds(k, p)) {
-        last_chord_ = k;
-        return true;
-      }
-    if (holds(last_, p)) return true;
-    for (std::size_t run = 0; run < boxes_.size(); ++run) {
-      if (run != last_ && holds(run, p)) {
-        last_ = run;
-        return true;
-      }
-    }
-    return false;
-  }
-
- private:
-  static constexpr std::size_t kRun = 32;
-
-  /// Chords to test: a single point is a chord from itself to itself.
-  std::size_t chords() const { return points_.size() < 2 ? points_.size() : points_.size() - 1; }
-
-  bool chord_holds(std::size_t k, const Eigen::Vector3d& p) const {
-    if (k >= chords()) return false;
-    const std::size_t next = std::min(k + 1, points_.size() - 1);
-    return distance_to_chord(p, points_[k], points_[next]) <= within_;
-  }
-
-  bool holds(std::size_t run, const Eigen::Vector3d& p) const {
-    if (run >= boxes_.size() || !boxes_[run].contains(p)) return false;
-    const std::size_t end = std::min(run * kRun + kRun, chords());
-    for (std::size_t k = run * kRun; k < end; ++k) {
-      if (chord_holds(k, p)) {
-        last_chord_ = k;
-        return true;
-      }
-    }
-    return false;
-  }
-
-  const std::vector<Eigen::Vector3d>& points_;
-  double within_;
-  std::vector<Eigen::AlignedBox3d> boxes_;
-  mutable std::size_t last_ = 0;
-  mutable std::size_t last_chord_ = 0;
-};
-
 void reverse(IntersectionCurve& c) {
   std::reverse(c.points.begin(), c.points.end());
   std::reverse(c.uv_a.begin(), c.uv_a.end());
@@ -209,8 +139,8 @@ class ChordRuns {
 
   /// True when some point of the curve lies within `within` of p.
   bool near(const Eigen::Vector3d& p) const {
-    // Points asked in turn along a march mostly lie by the chord that held
-    // the last one: tried first.
+    // Points asked in turn along a chord (every eps/4) mostly lie by the
+    // chord that held the last one: tried first.
     if (last_chord_ + 1 < c_.points.size() &&
         distance_to_chord(p, c_.points[last_chord_], c_.points[last_chord_ + 1]) <= within_)
       return true;
@@ -300,8 +230,11 @@ class ChordRuns {
       b.lo = b.lo.cwiseMin(c_.points[k]);
       b.hi = b.hi.cwiseMax(c_.points[k]);
     }
-    b.lo.array() -= within_;
-    b.hi.array() += within_;
+    // Grown a little more than `within`, so rounding in the box cannot drop
+    // a point the distance holds.
+    const double grow = within_ * (1.0 + 1e-9) + 1e-300;
+    b.lo.array() -= grow;
+    b.hi.array() += grow;
     runs_.push_back({b, first, last});
   }
 
@@ -535,7 +468,8 @@ bool trim_retraced_start(IntersectionCurve& c, double eps) {
     IntersectionCurve after;
     after.points.assign(c.points.begin() + static_cast<long>(k), c.points.end());
     const double within = 0.5 * eps;
-    const NearCurve on_after(after, within);
+    const ChordRuns after_runs(after, within);
+    const auto on_after = [&](const Eigen::Vector3d& p) { return after_runs.near(p); };
     for (std::size_t i = 0; i < k; ++i)
       if (!on_after(c.points[i]) ||
           !chord_held(c.points[i], c.points[i + 1], 0.5 * within, on_after))
@@ -673,7 +607,8 @@ bool join_overlapping(IntersectionCurve& head, const IntersectionCurve& tail, do
   if (tail.points.size() < 2 || !(e.outward.squaredNorm() > 0.0) ||
       !(distance_to_curve(tail.points.front(), head) <= within))
     return false;
-  const NearCurve on_head(head, within);
+  const ChordRuns head_runs(head, within);
+  const auto on_head = [&](const Eigen::Vector3d& p) { return head_runs.near(p); };
   for (std::size_t m = 1; m < tail.points.size(); ++m) {
     const Eigen::Vector3d& before = tail.points[m - 1];
     if (!on_head(before)) return false;
