@@ -24,6 +24,7 @@
 #include <Interface_CheckIterator.hxx>
 #include <Interface_InterfaceModel.hxx>
 #include <Interface_Static.hxx>
+#include <NCollection_DataMap.hxx>
 #include <Precision.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_Failure.hxx>
@@ -43,16 +44,20 @@
 #include <TCollection_HAsciiString.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_ShapeMapHasher.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_TShape.hxx>
 #include <TopoDS_Wire.hxx>
+#include <TransferBRep.hxx>
 #include <Transfer_TransientProcess.hxx>
 #include <XSControl_Reader.hxx>
 #include <XSControl_TransferReader.hxx>
 #include <XSControl_WorkSession.hxx>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -447,22 +452,61 @@ std::string entity_label(const Handle(Interface_InterfaceModel) & model,
   return "D" + std::to_string(2 * number - 1);
 }
 
-// The file's entity a face was made from; null when the reader does not say.
-Handle(Standard_Transient)
-    source_entity(const Handle(XSControl_WorkSession) & session, const TopoDS_Shape& face) {
-  const Handle(XSControl_TransferReader) reader = session->TransferReader();
-  if (reader.IsNull()) return nullptr;
-  Handle(Standard_Transient) entity = reader->EntityFromShapeResult(face, 1);
-  if (entity.IsNull()) entity = reader->EntityFromShapeResult(face, -1);
-  return entity;
-}
+// The file's entity each face was made from, found for every face in one
+// pass. XSControl_TransferReader::EntityFromShapeResult answers one shape by
+// a pass over every transferred entity: asked for each face (and again in
+// mode -1 when mode 1 finds nothing), reading 11752.stp (1018 faces) spent
+// 1.4 s of its 12 s there. The answers are the same, in the same order of
+// preference: the first entity whose result is the face itself, else the
+// last whose result is the face in another orientation, else the last whose
+// result shares its underlying face at another location.
+class FaceSources {
+ public:
+  explicit FaceSources(const Handle(XSControl_WorkSession) & session) {
+    const Handle(XSControl_TransferReader) reader = session->TransferReader();
+    if (reader.IsNull()) return;
+    const Handle(Transfer_TransientProcess) process = reader->TransientProcess();
+    if (process.IsNull()) return;
+    for (Standard_Integer i = 1; i <= process->NbMapped(); ++i) {
+      const Handle(Standard_Transient) entity = process->Mapped(i);
+      const TopoDS_Shape shape = TransferBRep::ShapeResult(process, entity);
+      if (shape.IsNull() || shape.ShapeType() != TopAbs_FACE) continue;
+      if (!same_.IsBound(shape)) same_.Bind(shape, Found{});
+      Found& found = same_.ChangeFind(shape);
+      Handle(Standard_Transient)& equal =
+          found.equal[static_cast<std::size_t>(shape.Orientation())];
+      if (equal.IsNull()) equal = entity;
+      found.same = entity;
+      partner_[shape.TShape().get()] = entity;
+    }
+  }
+
+  // Null when the reader does not say.
+  Handle(Standard_Transient) of(const TopoDS_Shape& face) const {
+    if (const Found* found = same_.Seek(face)) {
+      const Handle(Standard_Transient)& equal =
+          found->equal[static_cast<std::size_t>(face.Orientation())];
+      return equal.IsNull() ? found->same : equal;
+    }
+    const auto partner = partner_.find(face.TShape().get());
+    return partner == partner_.end() ? nullptr : partner->second;
+  }
+
+ private:
+  struct Found {
+    std::array<Handle(Standard_Transient), 4> equal;  // the first, per orientation
+    Handle(Standard_Transient) same;                  // the last
+  };
+  NCollection_DataMap<TopoDS_Shape, Found, TopTools_ShapeMapHasher> same_;
+  std::map<const TopoDS_TShape*, Handle(Standard_Transient)> partner_;  // the last
+};
 
 // Where a face came from: "#<entity>" in STEP, "D<directory entry>" in IGES.
-void describe_source(const Handle(XSControl_WorkSession) & session, const TopoDS_Shape& face,
-                     CadFormat format, FaceRecord& record) {
-  const Handle(Standard_Transient) entity = source_entity(session, face);
+void describe_source(const Handle(Interface_InterfaceModel) & model,
+                     const Handle(Standard_Transient) & entity, CadFormat format,
+                     FaceRecord& record) {
   if (entity.IsNull()) return;
-  record.source_id = entity_label(session->Model(), entity, format);
+  record.source_id = entity_label(model, entity, format);
   if (format == CadFormat::step) {
     const auto item = Handle(StepRepr_RepresentationItem)::DownCast(entity);
     if (!item.IsNull() && !item->Name().IsNull()) record.name = item->Name()->ToCString();
@@ -797,20 +841,23 @@ Result<std::vector<FaceRecord>> face_records(const std::filesystem::path& path,
                                              const LoadedShape& loaded, CadFormat format,
                                              std::vector<detail::ReadFace>& sources) {
   std::vector<FaceRecord> faces;
+  const FaceSources entities(loaded.session);
+  const Handle(Interface_InterfaceModel) model = loaded.session->Model();
   int index = 0;
   for (TopExp_Explorer e(loaded.shape, TopAbs_FACE); e.More(); e.Next(), ++index) {
-    const WrittenNet written = written_net(source_entity(loaded.session, e.Current()), format);
+    const Handle(Standard_Transient) entity = entities.of(e.Current());
+    const WrittenNet written = written_net(entity, format);
     Result<FaceRecord> record =
         face_record(TopoDS::Face(e.Current()), written, sources.emplace_back());
     if (!record.ok()) {
       FaceRecord source;  // only for the entity id in the message
-      describe_source(loaded.session, e.Current(), format, source);
+      describe_source(model, entity, format, source);
       return file_error(path, record.status().code,
                         "face " + std::to_string(index) +
                             (source.source_id.empty() ? "" : " (" + source.source_id + ")") + ": " +
                             record.status().message);
     }
-    describe_source(loaded.session, e.Current(), format, record.value());
+    describe_source(model, entity, format, record.value());
     faces.push_back(std::move(record).value());
   }
   return faces;
