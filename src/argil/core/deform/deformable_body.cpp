@@ -675,8 +675,9 @@ Status DeformableBody::advance_pending(double dt, const PoleWindow& loads) {
     // whole-net step it replaces.
     SolveRegion& r = *pending_;
     const int size = r.window.count_u() * r.window.count_v();
-    double work = kWindowFactorWorkPerStep;
-    if (!loads.empty() && !(local_ && local_->window.contains(loads))) {
+    const bool held = local_ && local_->window.contains(loads);
+    double work = held && !loads.empty() ? kWindowGrowthWorkPerStep : kWindowFactorWorkPerStep;
+    if (!loads.empty() && !held) {
       // (A net too large to factorise at create never solves the whole: its
       // first window is factorised at once.)
       work = full_.solver

@@ -40,9 +40,12 @@ struct LoadPreview {
   double compliance = 0.0;
 };
 
-/// Multiply-adds of factorisation a step spends on a growing local window
+/// Multiply-adds of factorisation a step spends on a window being prepared
 /// (about 0.1 ms): a new window is factorised over several steps, never in one.
 inline constexpr double kWindowFactorWorkPerStep = 2e5;
+/// The same while the active window still holds the loads (it grows ahead of
+/// them): a quarter, so a growing window's steps stay near the median step.
+inline constexpr double kWindowGrowthWorkPerStep = 5e4;
 
 /// A window with no load left is dropped (the whole net solved again) once
 /// none of its poles moved this far [mm] over a step.

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "argil/core/base/detail/simd_clones.hpp"
 #include "argil/core/base/number_text.hpp"
 
 namespace argil {
@@ -51,9 +52,10 @@ Status BandedCholesky::factorize_rows(SymmetricBandMatrix& a, int begin, int end
 namespace {
 
 /// The two triangular sweeps with C right-hand sides per row, C fixed so the
-/// inner loops unroll and vectorise. `l` is row-major band storage of L.
+/// inner loops unroll and vectorise (across the C columns, so each column's
+/// sums keep their order). `l` is row-major band storage of L.
 template <int C>
-void solve_rows(const double* l, int n, int b, double* x) {
+ARGIL_AVX2_CLONES void solve_rows(const double* l, int n, int b, double* x) {
   const int stride = b + 1;
   for (int i = 0; i < n; ++i) {                                           // L y = b
     const double* row = l + static_cast<std::ptrdiff_t>(i) * stride + b;  // row[k - i] = L(i, k)
