@@ -1,6 +1,5 @@
 // The sphere (or point) tool's part of HapticWorld::step: the god-object
 // proxy moves, sticks or slips, and is collided with every body.
-#include <algorithm>
 #include <optional>
 
 #include "argil/core/collision/trimmed_contact.hpp"
@@ -67,21 +66,6 @@ HapticWorld::ProxyMove HapticWorld::move_sphere(const ProxyState& previous,
     if (!stick.status.ok()) return {std::move(stick.status), {}, {}, {0, 0, 0}};
     ProxyContact at = sphere_->nearest(surfs, stick.p_WT);
     if (!at.status.ok()) return {std::move(at.status), {}, {}, {0, 0, 0}};
-    // Clay that yields under a pressing proxy draws away from the stick
-    // point: settle it back onto the surface along the normal (no farther
-    // than the device), so friction decides from there. Without this, once
-    // the clay had drawn eps away, the free move towards the device jumped
-    // the proxy sideways past the hand: a force kick every 20 ticks or so.
-    // (Within eps/4 is where a move's push-out leaves the sphere anyway.)
-    if (at.body >= 0 && at.clearance > 0.25 * eps) {
-      const double settle = std::min(at.clearance, -(p_WD - stick.p_WT).dot(at.outward_normal));
-      if (settle > 0.0) {
-        stick = sphere_->move(surfs, stick.p_WT, stick.p_WT - settle * at.outward_normal);
-        if (!stick.status.ok()) return {std::move(stick.status), {}, {}, {0, 0, 0}};
-        at = sphere_->nearest(surfs, stick.p_WT);
-        if (!at.status.ok()) return {std::move(at.status), {}, {}, {0, 0, 0}};
-      }
-    }
     if (at.body >= 0 && at.clearance <= eps) {
       const FrictionOutcome fr =
           coulomb_friction(k * (p_WD - stick.p_WT), at.outward_normal, friction(at.body), k);
