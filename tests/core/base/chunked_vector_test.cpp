@@ -1,6 +1,6 @@
 // ChunkedVector: growth never moves an element, truncation frees the chunks
-// past the kept ones, copies are deep, and every element added is destroyed
-// exactly once (chunks are raw storage).
+// past the kept ones, clearing keeps them all for reuse, copies are deep, and
+// every element added is destroyed exactly once (chunks are raw storage).
 #include <catch2/catch.hpp>
 
 #include <memory>
@@ -46,6 +46,22 @@ TEST_CASE("truncating a chunked vector keeps the first elements and resets the r
   CHECK(v[0] == "y");
 }
 
+TEST_CASE("a cleared chunked vector reuses its chunks", "[chunked_vector]") {
+  ChunkedVector<std::string, 4> v;
+  for (int i = 0; i < 9; ++i) v.push_back(std::to_string(i));
+  const std::string* first = &v[0];
+  const std::string* last = &v[8];
+  v.clear();
+  CHECK(v.empty());
+  for (int i = 0; i < 9; ++i) v.push_back("again " + std::to_string(i));
+  REQUIRE(v.size() == 9);
+  CHECK(&v[0] == first);  // the same storage: nothing allocated
+  CHECK(&v[8] == last);
+  CHECK(v[8] == "again 8");
+  v.push_back("past the old size");  // a new chunk
+  CHECK(v[9] == "past the old size");
+}
+
 TEST_CASE("a copied chunked vector is independent of the original", "[chunked_vector]") {
   ChunkedVector<int, 3> a;
   for (int i = 0; i < 8; ++i) a.push_back(i * i);
@@ -70,6 +86,16 @@ TEST_CASE("a chunked vector destroys each element it holds exactly once", "[chun
     for (int i = 0; i < 10; ++i) v.push_back(token);
     CHECK(token.use_count() == 11);
     v.truncate(3);  // within a chunk and across chunks
+    CHECK(token.use_count() == 4);
+    {
+      ChunkedVector<std::shared_ptr<int>, 4> cleared = v;
+      cleared.push_back(token);
+      CHECK(token.use_count() == 8);
+      cleared.clear();
+      CHECK(token.use_count() == 4);
+      cleared.push_back(token);
+      CHECK(token.use_count() == 5);
+    }
     CHECK(token.use_count() == 4);
     ChunkedVector<std::shared_ptr<int>, 4> copy = v;
     CHECK(token.use_count() == 7);

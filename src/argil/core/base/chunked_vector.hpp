@@ -63,6 +63,13 @@ class ChunkedVector {
     ++size_;
   }
 
+  /// Destroys every element and keeps the chunks for the elements added next
+  /// (a scratch store reused from one query to the next touches no fresh memory).
+  void clear() {
+    for (std::size_t i = 0; i < size_; ++i) slot(i)->~T();
+    size_ = 0;
+  }
+
   /// Keeps the first `count` elements (count <= size()): the others are
   /// destroyed and the chunks past the kept ones freed.
   void truncate(std::size_t count) {

@@ -7,11 +7,13 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <tuple>
 #include <vector>
 
 #include "argil/core/base/chunked_vector.hpp"
+#include "argil/core/base/detail/id_slots.hpp"
 #include "argil/core/collision/detail/contact_regions.hpp"
 #include "argil/core/collision/detail/curve_densifier.hpp"
 #include "argil/core/collision/detail/curve_end_march.hpp"
@@ -166,6 +168,56 @@ struct Sweep {
   double reach() const { return half_translation.norm() + turn_reach; }
 };
 
+/// What one side of a query remembers about the entries it has seen: ids map
+/// to slots, slots index views and cones (so a query pays a slot per id, not
+/// a view). Views never move (a chunked store: a doubling vector of them was
+/// fresh memory, page faults, in every tick).
+struct SideScratch {
+  IdSlots node_slots, block_slots, cone_slots;
+  ChunkedVector<View, 64> views;
+  std::vector<std::optional<NormalCone>> cones;
+
+  void clear() {
+    node_slots.clear();
+    block_slots.clear();
+    cone_slots.clear();
+    views.clear();
+    cones.clear();
+  }
+};
+
+/// A side's scratch, taken from this thread's pool and given back cleared:
+/// the next query reuses its memory instead of allocating, filling and
+/// first-touching its own (a query holds two; a query inside a query more).
+class SideScratchLease {
+ public:
+  SideScratchLease() {
+    std::vector<std::unique_ptr<SideScratch>>& pool = free_pool();
+    if (pool.empty()) {
+      scratch_ = std::make_unique<SideScratch>();
+    } else {
+      scratch_ = std::move(pool.back());
+      pool.pop_back();
+    }
+  }
+  SideScratchLease(const SideScratchLease&) = delete;
+  SideScratchLease& operator=(const SideScratchLease&) = delete;
+  ~SideScratchLease() {
+    scratch_->clear();
+    free_pool().push_back(std::move(scratch_));
+  }
+
+  SideScratch* operator->() const { return scratch_.get(); }
+
+ private:
+  static std::vector<std::unique_ptr<SideScratch>>& free_pool() {
+    thread_local std::vector<std::unique_ptr<SideScratch>> pool;
+    return pool;
+  }
+
+  std::unique_ptr<SideScratch> scratch_;
+};
+
 /// Entries of one side: blocks as -(id + 1), hierarchy nodes as id >= 0.
 class Side {
  public:
@@ -180,33 +232,34 @@ class Side {
         placed_(std::move(placed)),
         sweep_(std::move(sweep)) {}
 
-  /// The entry's bounds, placed. Views never move (a chunked store: a
-  /// doubling vector of them was fresh memory, page faults, in every tick).
+  /// The entry's bounds, placed (a reference that stays valid for the query).
   const View& view(int entry) {
     // An entry is read (and placed) once per query: the descent views each
     // node of one side against many of the other's.
-    std::vector<int>& slots = entry < 0 ? block_slots_ : node_slots_;
+    IdSlots& slots = entry < 0 ? scratch_->block_slots : scratch_->node_slots;
     const auto id = static_cast<std::size_t>(entry < 0 ? -entry - 1 : entry);
-    if (id >= slots.size()) slots.resize(std::max(id + 1, 2 * slots.size()), -1);
-    if (slots[id] < 0) {
-      slots[id] = static_cast<int>(views_.size());
-      views_.push_back(placed_ ? placed(own_view(entry)) : own_view(entry));
+    int slot = slots.find(id);
+    if (slot < 0) {
+      slot = static_cast<int>(scratch_->views.size());
+      slots.set(id, slot);
+      scratch_->views.push_back(placed_ ? placed(own_view(entry)) : own_view(entry));
     }
-    return views_[static_cast<std::size_t>(slots[id])];
+    return scratch_->views[static_cast<std::size_t>(slot)];
   }
 
   /// A node's normal cone, placed (nullopt where normal_cone() gives none),
   /// computed once per query.
   const std::optional<NormalCone>& cone(int node) {
     const auto id = static_cast<std::size_t>(node);
-    if (id >= cone_slots_.size()) cone_slots_.resize(std::max(id + 1, 2 * cone_slots_.size()), -1);
-    if (cone_slots_[id] < 0) {
-      cone_slots_[id] = static_cast<int>(cones_.size());
+    int slot = scratch_->cone_slots.find(id);
+    if (slot < 0) {
+      slot = static_cast<int>(scratch_->cones.size());
+      scratch_->cone_slots.set(id, slot);
       std::optional<NormalCone> c = normal_cone(h_.node(node).patch);
       if (c && placed_) c->axis = placed_->R * c->axis;
-      cones_.push_back(c);
+      scratch_->cones.push_back(c);
     }
-    return cones_[static_cast<std::size_t>(cone_slots_[id])];
+    return scratch_->cones[static_cast<std::size_t>(slot)];
   }
 
   /// The entry's bounds in its own frame.
@@ -315,12 +368,7 @@ class Side {
   QueryCounters& counters_;
   std::optional<Rigid> placed_;
   std::optional<Sweep> sweep_;  // a swept query's motion
-  // Views of the entries seen so far: ids index slots (-1: not yet seen),
-  // slots index views, so a query pays 4 bytes per id, not a view.
-  std::vector<int> node_slots_, block_slots_;
-  ChunkedVector<View, 64> views_;
-  std::vector<int> cone_slots_;  // node ids to cones_ (-1: not yet computed)
-  std::vector<std::optional<NormalCone>> cones_;
+  SideScratchLease scratch_;
 };
 
 /// True when every point of `other` lies more than eps beyond the plane
