@@ -220,5 +220,34 @@ TEST_CASE("11752.stp's faces on closed surfaces, moved 2 um, export as one valid
   CHECK(out.faces == 1018);
 }
 
+TEST_CASE("a B-rep torn apart is written face by face, and the warning says which write failed",
+          "[io][occt][brep]") {
+  const Result<Model> read = read_model(test::shared_data("screw.step"));
+  REQUIRE(read.ok());
+  Model model = read.value();
+  // The shank moved 20 mm and stretched: its neighbour's wire no longer
+  // closes, so the solid fails its read-back and the faces go alone.
+  model.faces[5].surface.control_points.col(2).array() -= 20.0;
+  model.faces[5].surface.control_points.col(0).array() *= 1.5;
+  test::TempDir dir;
+  std::vector<std::string> warnings;
+  WriteOptions options;
+  options.cad.tolerance_mm = 0.005;
+  options.cad.warnings = &warnings;
+  const Status written = write_model(model, dir / "torn.step", options);
+  INFO(written.message);
+  REQUIRE(written.ok());
+  REQUIRE(warnings.size() == 1);
+  INFO(warnings[0]);
+  CHECK_THAT(warnings[0], Catch::Contains("the B-rep could not be written whole (1 of 10 faces "
+                                          "do not read back valid: face 6"));
+  CHECK_THAT(warnings[0], Catch::EndsWith("its faces were written one by one instead (no shared "
+                                          "edges, shells or solids), and every one of them reads "
+                                          "back valid"));
+  const test::OcctTopology out = test::occt_topology(dir / "torn.step");
+  CHECK(out.solids == 0);
+  CHECK(out.faces == 10);
+}
+
 }  // namespace
 }  // namespace argil::io

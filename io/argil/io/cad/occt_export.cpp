@@ -547,11 +547,13 @@ Status write_cad(const Model& model, const std::filesystem::path& path, CadForma
   const Status written =
       guarded([&] { return write_faces(model, path, format, tolerance, options.read_back); });
   if (!written.ok()) return failed(written);
+  // The reason names what went wrong with the whole B-rep (faces it lost on
+  // reading back, say), not with the file written: say which is which.
   if (!torn.empty() && options.warnings != nullptr) {
-    options.warnings->push_back(path.string() +
-                                ": the B-rep could not be written whole, faces written one by "
-                                "one (no shared edges, shells or solids): " +
-                                torn);
+    options.warnings->push_back(
+        path.string() + ": the B-rep could not be written whole (" + torn +
+        "); its faces were written one by one instead (no shared edges, shells or solids)" +
+        (options.read_back ? ", and every one of them reads back valid" : ""));
   }
   return written;
 }
