@@ -177,11 +177,21 @@ struct SideScratch {
   ChunkedVector<View, 64> views;
   std::vector<std::optional<NormalCone>> cones;
 
+  /// Views kept for the next query: a haptic tick's queries see a few
+  /// hundred (under 200 on the 64 x 64 panel); an offline query of two large
+  /// faces can see millions, whose views (a few hundred bytes each) are
+  /// freed rather than kept per thread.
+  static constexpr std::size_t kKeptViews = 1 << 14;
+
   void clear() {
     node_slots.clear();
     block_slots.clear();
     cone_slots.clear();
-    views.clear();
+    if (views.size() > kKeptViews) {
+      views.truncate(0);
+    } else {
+      views.clear();
+    }
     cones.clear();
   }
 };
