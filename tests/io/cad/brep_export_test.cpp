@@ -127,6 +127,18 @@ TEST_CASE("loose IGES faces convert to STEP and IGES as loose faces", "[io][occt
   }
 }
 
+// Writes `model` to `file` with eps 0.005 mm; returns the warnings it gave.
+std::vector<std::string> write_at_5um(const Model& model, const std::filesystem::path& file) {
+  std::vector<std::string> warnings;
+  WriteOptions options;
+  options.cad.tolerance_mm = 0.005;
+  options.cad.warnings = &warnings;
+  const Status written = write_model(model, file, options);
+  INFO(written.message);
+  REQUIRE(written.ok());
+  return warnings;
+}
+
 TEST_CASE("a face moved off its neighbours exports as a solid whose open edges are reported",
           "[io][occt][brep]") {
   const Result<Model> read = read_model(test::shared_data("screw.step"));
@@ -135,13 +147,7 @@ TEST_CASE("a face moved off its neighbours exports as a solid whose open edges a
   // The bottom disc lowered by 0.05 mm, ten times eps: its edge opens.
   model.faces[9].surface.control_points.col(2).array() -= 0.05;
   test::TempDir dir;
-  std::vector<std::string> warnings;
-  WriteOptions options;
-  options.cad.tolerance_mm = 0.005;
-  options.cad.warnings = &warnings;
-  const Status written = write_model(model, dir / "opened.step", options);
-  INFO(written.message);
-  REQUIRE(written.ok());
+  const std::vector<std::string> warnings = write_at_5um(model, dir / "opened.step");
   REQUIRE(warnings.size() == 1);
   CHECK_THAT(warnings[0], Catch::Contains("shared edges are open wider than eps (0.005 mm)"));
   CHECK_THAT(warnings[0], Catch::Contains("face 9"));
@@ -150,9 +156,7 @@ TEST_CASE("a face moved off its neighbours exports as a solid whose open edges a
   CHECK(out.solids == 1);
   CHECK(out.faces == 10);
   // As read, nothing is open at the same eps.
-  warnings.clear();
-  REQUIRE(write_model(read.value(), dir / "closed.step", options).ok());
-  CHECK(warnings.empty());
+  CHECK(write_at_5um(read.value(), dir / "closed.step").empty());
 }
 
 TEST_CASE("a placement that is not a rotation and a translation is refused by name",
@@ -230,13 +234,7 @@ TEST_CASE("a B-rep torn apart is written face by face, and the warning says whic
   model.faces[5].surface.control_points.col(2).array() -= 20.0;
   model.faces[5].surface.control_points.col(0).array() *= 1.5;
   test::TempDir dir;
-  std::vector<std::string> warnings;
-  WriteOptions options;
-  options.cad.tolerance_mm = 0.005;
-  options.cad.warnings = &warnings;
-  const Status written = write_model(model, dir / "torn.step", options);
-  INFO(written.message);
-  REQUIRE(written.ok());
+  const std::vector<std::string> warnings = write_at_5um(model, dir / "torn.step");
   REQUIRE(warnings.size() == 1);
   INFO(warnings[0]);
   CHECK_THAT(warnings[0], Catch::Contains("the B-rep could not be written whole (1 of 10 faces "
