@@ -318,6 +318,18 @@ double DeformableBody::step_pole_motion() const {
   return step_dt_ * largest;
 }
 
+bool DeformableBody::rests_outside(const PoleWindow& kept) const {
+  const int nv = stiffness_.count_v();
+  const PoleWindow& w = stepped_window_;
+  for (int i = w.i0; i < w.i1; ++i)
+    for (int j = w.j0; j < w.j1; ++j)
+      if (!kept.contains(i, j) &&
+          !(step_dt_ * velocities_.row(static_cast<Eigen::Index>(i) * nv + j).norm() <
+            kWindowRestMotion))
+        return false;
+  return true;
+}
+
 double DeformableBody::last_step_motion() const {
   return std::max(step_pole_motion(), displaced_motion_);
 }
@@ -614,9 +626,11 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
     if (!forces.row(p).isZero(0.0)) load_at(p);
   loads = loads.united(displaced_);  // a joint moved them: solved as loaded
   if (!loads.empty()) {
-    // Grow (never shrink) the window once the loads come within the influence
-    // margin of its edge, with slack so the tool can travel before the next
-    // growth. The first window has no slack: it is factorised at once.
+    // Move the window once the loads come within the influence margin of its
+    // edge, with slack so the tool can travel before the next move. The first
+    // window has no slack: it is factorised at once. The part the loads left
+    // behind (a stroke's trail) is dropped when it has come to rest, so a long
+    // stroke's tick costs what its first did; else the window grows.
     const PoleWindow needed = loads.grown(margin_[0], margin_[1], nu, nv);
     if (resting_ && !(local_ && local_->window.contains(needed)) &&
         !(pending_ && pending_->window.contains(needed))) {
@@ -627,10 +641,11 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
     const PoleWindow current = local_ ? local_->window : PoleWindow{};
     if (!current.contains(needed) && !(pending_ && pending_->window.contains(needed))) {
       const int su = local_ ? slack_[0] : 0, sv = local_ ? slack_[1] : 0;
-      PoleWindow target = loads.grown(margin_[0] + su, margin_[1] + sv, nu, nv)
-                              .united(current)
-                              .united(pending_ ? pending_->window : PoleWindow{});
-      target = tie_closed(target);
+      PoleWindow target = tie_closed(loads.grown(margin_[0] + su, margin_[1] + sv, nu, nv));
+      if (!rests_outside(target)) {
+        target =
+            tie_closed(target.united(current).united(pending_ ? pending_->window : PoleWindow{}));
+      }
       // Poles outside a window opened on a resting body stay at rest.
       const bool outside_at_rest = local_ ? local_->outside_at_rest : resting_;
       pending_.reset();

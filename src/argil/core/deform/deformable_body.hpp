@@ -224,6 +224,9 @@ class DeformableBody {
  private:
   /// The largest distance a pole moved in the last step itself [mm].
   double step_pole_motion() const;
+  /// Whether every pole the last step solved outside `kept` moved less than
+  /// kWindowRestMotion in it (poles it did not solve have no velocity).
+  bool rests_outside(const PoleWindow& kept) const;
   /// The unknowns of one factorisation: a window's poles in solve order
   /// (row-major in the direction that gives the narrower band), its tied join
   /// rows, and its factor, computed a few rows at a time for a local window.
