@@ -18,6 +18,25 @@ namespace argil {
 
 namespace {
 
+/// One axis of the window that follows the loads [lo, hi) out of the current
+/// window [cur_lo, cur_hi) (empty: cur_lo >= cur_hi), m the margin, s the
+/// slack, n the poles along the axis. A side the loads' margin passed gets
+/// the slack (the way they travel) and the side opposite it the margin only
+/// (they travel away from it); an axis they did not leave keeps the current
+/// sides, between margin and margin + slack from the loads.
+std::array<int, 2> follow_axis(int lo, int hi, int cur_lo, int cur_hi, int m, int s, int n) {
+  const bool empty = cur_lo >= cur_hi;
+  const bool past_lo = empty || std::max(0, lo - m) < cur_lo;
+  const bool past_hi = empty || std::min(n, hi + m) > cur_hi;
+  std::array<int, 2> out;
+  if (past_lo || past_hi) {
+    out = {lo - m - (past_lo ? s : 0), hi + m + (past_hi ? s : 0)};
+  } else {
+    out = {std::clamp(cur_lo, lo - m - s, lo - m), std::clamp(cur_hi, hi + m, hi + m + s)};
+  }
+  return {std::max(0, out[0]), std::min(n, out[1])};
+}
+
 /// Which control points the boundary conditions hold (one flag per pole).
 std::vector<char> held_poles(int nu, int nv, const BoundaryConditions& c) {
   std::vector<char> fixed(static_cast<std::size_t>(nu) * static_cast<std::size_t>(nv), 0);
@@ -641,7 +660,11 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
     const PoleWindow current = local_ ? local_->window : PoleWindow{};
     if (!current.contains(needed) && !(pending_ && pending_->window.contains(needed))) {
       const int su = local_ ? slack_[0] : 0, sv = local_ ? slack_[1] : 0;
-      PoleWindow target = tie_closed(loads.grown(margin_[0] + su, margin_[1] + sv, nu, nv));
+      const std::array<int, 2> u =
+          follow_axis(loads.i0, loads.i1, current.i0, current.i1, margin_[0], su, nu);
+      const std::array<int, 2> v =
+          follow_axis(loads.j0, loads.j1, current.j0, current.j1, margin_[1], sv, nv);
+      PoleWindow target = tie_closed({u[0], u[1], v[0], v[1]});
       if (!rests_outside(target)) {
         target =
             tie_closed(target.united(current).united(pending_ ? pending_->window : PoleWindow{}));
