@@ -103,10 +103,7 @@ void DeformableBody::plastic_flow(const ControlNet& points, const PoleWindow& mo
       for (const int b : bv.poles[static_cast<std::size_t>(cj)])
         bound = std::max(bound, pole_stretch[static_cast<Eigen::Index>(a) * nv + b]);
     if (!(bound > material_.yield)) return;
-    double largest = 0.0;
-    for (int su = 3 * ci; su < 3 * ci + 3; ++su)
-      for (int sv = 3 * cj; sv < 3 * cj + 3; ++sv)
-        largest = std::max(largest, sample_stretch(su, sv).norm());
+    const double largest = largest_cell_stretch(ci, cj);
     if (!(largest > material_.yield)) return;
     flow_.row(i) = (1.0 - material_.yield / largest) * stretch_.row(i);
     flowing_poles.push_back(i);
@@ -165,6 +162,47 @@ void DeformableBody::plastic_flow(const ControlNet& points, const PoleWindow& mo
     rest_.row(r.on) = points.row(r.on) - l * (points.row(r.before) - rest_.row(r.before)) -
                       (1.0 - l) * (points.row(r.after) - rest_.row(r.after));
   }
+}
+
+double DeformableBody::largest_cell_stretch(int ci, int cj) {
+  double largest = 0.0;
+  if (surface().is_rational()) {
+    for (int su = 3 * ci; su < 3 * ci + 3; ++su)
+      for (int sv = 3 * cj; sv < 3 * cj + 3; ++sv)
+        largest = std::max(largest, sample_stretch(su, sv).norm());
+    return largest;
+  }
+  // A polynomial basis is a tensor product that sums to one: each of the
+  // cell's three v samples is summed along v once per row of poles the cell
+  // reads, then along u for each u sample (a third of the products that
+  // evaluating the nine samples one by one takes).
+  const YieldBasis& bu = yield_basis_[0];
+  const YieldBasis& bv = yield_basis_[1];
+  const int p = bu.degree, q = bv.degree, nv = stiffness_.count_v();
+  const auto at = [](const std::vector<int>& v, int k) { return v[static_cast<std::size_t>(k)]; };
+  const int row0 = at(bu.first, 3 * ci), rows = at(bu.first, 3 * ci + 2) + p + 1 - row0;
+  cell_rows_.resize(static_cast<std::size_t>(3 * rows));
+  for (int k = 0; k < 3; ++k) {
+    const int sv = 3 * cj + k, fv = at(bv.first, sv);
+    const double* vv = &bv.values[static_cast<std::size_t>(sv) * static_cast<std::size_t>(q + 1)];
+    for (int r = 0; r < rows; ++r) {
+      Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+      const Eigen::Index first = static_cast<Eigen::Index>(row0 + r) * nv + fv;
+      for (int b = 0; b <= q; ++b) sum += vv[b] * stretch_.row(first + b);
+      cell_rows_[static_cast<std::size_t>(3 * r + k)] = sum;
+    }
+  }
+  for (int su = 3 * ci; su < 3 * ci + 3; ++su) {
+    const int fu = at(bu.first, su) - row0;
+    const double* vu = &bu.values[static_cast<std::size_t>(su) * static_cast<std::size_t>(p + 1)];
+    for (int k = 0; k < 3; ++k) {
+      Eigen::RowVector3d sample = Eigen::RowVector3d::Zero();
+      for (int a = 0; a <= p; ++a)
+        sample += vu[a] * cell_rows_[static_cast<std::size_t>(3 * (fu + a) + k)];
+      largest = std::max(largest, sample.norm());
+    }
+  }
+  return largest;
 }
 
 Eigen::RowVector3d DeformableBody::sample_stretch(int su, int sv) const {

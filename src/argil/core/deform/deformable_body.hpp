@@ -299,6 +299,9 @@ class DeformableBody {
   std::array<YieldBasis, 2> yield_basis_;
   /// The stretch of the surface at sample su (along u: 3 per pole) x sv.
   Eigen::RowVector3d sample_stretch(int su, int sv) const;
+  /// The largest stretch of the surface over the 3 x 3 samples of pole
+  /// (ci, cj)'s yield cell.
+  double largest_cell_stretch(int ci, int cj);
   /// How many poles away along u and v a yield cell's poles reach.
   std::array<int, 2> yield_reach_{0, 0};
   /// The rows of poles across the face's C0 knot lines (join_rows.hpp): the
@@ -327,6 +330,8 @@ class DeformableBody {
   Eigen::MatrixXd stretch_, force_, flow_;
   Eigen::VectorXd stretch_norm_;
   std::vector<Eigen::Index> flowing_poles_;  // plastic flow's non-zero rows
+  /// largest_cell_stretch's partial sums: 3 per row of poles the cell reads.
+  std::vector<Eigen::RowVector3d> cell_rows_;
   // Between begin_step and finish_step, in solve order.
   RowMajorMatrix work_;
   /// The last pattern scattered over the net (zero elsewhere).
