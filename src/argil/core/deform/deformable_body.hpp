@@ -43,7 +43,7 @@ struct LoadPreview {
 /// Multiply-adds of factorisation a step spends on a window being prepared
 /// (about 0.1 ms): a new window is factorised over several steps, never in one.
 inline constexpr double kWindowFactorWorkPerStep = 2e5;
-/// The same while the active window still holds the loads (it grows ahead of
+/// The same while the active window still holds the loads (it moves ahead of
 /// them): a quarter, so a growing window's steps stay near the median step.
 inline constexpr double kWindowGrowthWorkPerStep = 5e4;
 
@@ -224,8 +224,10 @@ class DeformableBody {
  private:
   /// The largest distance a pole moved in the last step itself [mm].
   double step_pole_motion() const;
-  /// Whether every pole the last step solved outside `kept` moved less than
-  /// kWindowRestMotion in it (poles it did not solve have no velocity).
+  /// Whether every free pole the last step solved outside `kept` is at rest:
+  /// it moved less than kWindowRestMotion in the step, and its elastic force
+  /// would move it less than that on its own (its row of K (P - P_rest) over
+  /// its diagonal). Poles the step did not solve have no velocity.
   bool rests_outside(const PoleWindow& kept) const;
   /// The unknowns of one factorisation: a window's poles in solve order
   /// (row-major in the direction that gives the narrower band), its tied join
