@@ -719,7 +719,9 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
       const std::array<int, 2> v =
           follow_axis(loads.j0, loads.j1, current.j0, current.j1, margin_[1], sv, nv);
       PoleWindow target = tie_closed({u[0], u[1], v[0], v[1]});
-      if (!rests_outside(target)) {
+      // Only an active window leaves a trail (a whole-net step has none to
+      // drop, and scanning the net's forces would cost that step a pass).
+      if (current.empty() || !rests_outside(target)) {
         target =
             tie_closed(target.united(current).united(pending_ ? pending_->window : PoleWindow{}));
       }
