@@ -1,8 +1,11 @@
 // IdSlots: an id maps to what was set for it since the last clear, -1 before;
-// clear forgets every id however large, and ids set after it start clean.
+// clear forgets every id however large, and ids set after it start clean; the
+// table grows with the ids one query sets (against a brute-force map).
 #include <catch2/catch.hpp>
 
 #include <cstddef>
+#include <map>
+#include <random>
 
 #include "argil/core/base/detail/id_slots.hpp"
 
@@ -13,9 +16,9 @@ using argil::IdSlots;
 TEST_CASE("id slots hold what was set since the last clear", "[id_slots]") {
   IdSlots slots;
   CHECK(slots.find(0) == -1);
-  CHECK(slots.find(1000000) == -1);  // beyond the storage: absent, nothing grown
+  CHECK(slots.find(1000000) == -1);  // nothing stored yet
   slots.set(3, 7);
-  slots.set(100000, 0);  // far past the storage: it grows
+  slots.set(100000, 0);  // a large id costs no more than a small one
   slots.set(3, 9);       // set again: the last value counts
   CHECK(slots.find(3) == 9);
   CHECK(slots.find(100000) == 0);
@@ -42,6 +45,36 @@ TEST_CASE("id slots forget every id over many clears", "[id_slots]") {
     CHECK(slots.find(id) == query);
     CHECK(slots.find(id + 1) == -query);
     slots.clear();
+  }
+}
+
+TEST_CASE("id slots agree with a map over growth, collisions and clears", "[id_slots]") {
+  IdSlots slots;
+  std::mt19937_64 rng(7);
+  for (int query = 0; query < 40; ++query) {
+    std::map<std::size_t, int> truth;
+    // From a handful of ids to thousands: the table doubles inside a query
+    // and keeps what was set before it grew.
+    const int count = query % 4 == 0 ? 5000 : 1 + static_cast<int>(rng() % 300);
+    for (int k = 0; k < count; ++k) {
+      // Dense ids (a hierarchy's nodes), ids that share low bits, and huge ones.
+      const std::size_t id = k % 3 == 0 ? rng() % 2000 : k % 3 == 1 ? (rng() % 64) << 20 : rng();
+      const int value = static_cast<int>(rng() % 1000);
+      slots.set(id, value);
+      truth[id] = value;
+    }
+    for (const auto& [id, value] : truth) REQUIRE(slots.find(id) == value);
+    for (int k = 0; k < 200; ++k) {
+      const std::size_t id = rng() % 4000;
+      const auto it = truth.find(id);
+      CHECK(slots.find(id) == (it == truth.end() ? -1 : it->second));
+    }
+    if (query == 20) {
+      slots.release();
+    } else {
+      slots.clear();
+    }
+    for (const auto& [id, value] : truth) REQUIRE(slots.find(id) == -1);
   }
 }
 

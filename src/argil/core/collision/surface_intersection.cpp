@@ -189,6 +189,9 @@ struct SideScratch {
     cone_slots.clear();
     if (views.size() > kKeptViews) {
       views.truncate(0);
+      node_slots.release();
+      block_slots.release();
+      cone_slots.release();
     } else {
       views.clear();
     }
