@@ -9,6 +9,7 @@
 // base
 #include "argil/core/base/chunked_vector.hpp"  // IWYU pragma: export
 #include "argil/core/base/number_text.hpp"     // IWYU pragma: export
+#include "argil/core/base/resident_heap.hpp"   // IWYU pragma: export
 #include "argil/core/base/status.hpp"          // IWYU pragma: export
 // linalg
 #include "argil/core/linalg/banded_cholesky.hpp"  // IWYU pragma: export
