@@ -18,7 +18,7 @@ TEST_CASE("id slots hold what was set since the last clear", "[id_slots]") {
   CHECK(slots.find(0) == -1);
   CHECK(slots.find(1000000) == -1);  // nothing stored yet
   slots.set(3, 7);
-  slots.set(100000, 0);  // a large id costs no more than a small one
+  slots.set(100000, 0);  // a page of its own, far from the first
   slots.set(3, 9);       // set again: the last value counts
   CHECK(slots.find(3) == 9);
   CHECK(slots.find(100000) == 0);
@@ -48,17 +48,20 @@ TEST_CASE("id slots forget every id over many clears", "[id_slots]") {
   }
 }
 
-TEST_CASE("id slots agree with a map over growth, collisions and clears", "[id_slots]") {
+TEST_CASE("id slots agree with a map over pages, shared low bits and clears", "[id_slots]") {
   IdSlots slots;
   std::mt19937_64 rng(7);
   for (int query = 0; query < 40; ++query) {
     std::map<std::size_t, int> truth;
-    // From a handful of ids to thousands: the table doubles inside a query
-    // and keeps what was set before it grew.
+    // From a handful of ids to thousands: pages are added inside a query
+    // and keep what was set before.
     const int count = query % 4 == 0 ? 5000 : 1 + static_cast<int>(rng() % 300);
     for (int k = 0; k < count; ++k) {
-      // Dense ids (a hierarchy's nodes), ids that share low bits, and huge ones.
-      const std::size_t id = k % 3 == 0 ? rng() % 2000 : k % 3 == 1 ? (rng() % 64) << 20 : rng();
+      // Dense ids (a hierarchy's nodes), ids that share low bits (one slot
+      // of many pages), and ids spread over a million.
+      const std::size_t id = k % 3 == 0   ? rng() % 2000
+                             : k % 3 == 1 ? (rng() % 64) << 14
+                                          : rng() % 1000000;
       const int value = static_cast<int>(rng() % 1000);
       slots.set(id, value);
       truth[id] = value;
