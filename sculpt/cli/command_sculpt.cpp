@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -18,6 +19,12 @@ namespace {
 
 using namespace argil::sculpt;
 using Clock = std::chrono::steady_clock;
+
+/// Heap touched ahead for the ticks (RunOptions::resident_heap_bytes): a
+/// stroke on a 64 x 64 panel takes under 2 MB once the session is made; the
+/// rest is room for larger scenes. (The ticks run on the main thread, whose
+/// heap has no size limit.)
+constexpr std::size_t kTickHeapReserve = std::size_t{64} << 20;
 
 struct Options {
   std::filesystem::path scene, script, out;
@@ -159,8 +166,12 @@ int run_sculpt(const std::vector<std::string>& args) {
   Options o;
   if (const int status = parse(args, o); status >= 0) return status;
 
-  RunOptions options{
-      .scene = o.scene, .script = o.script, .out = o.out, .fresh = o.fresh, .realtime = o.realtime};
+  RunOptions options{.scene = o.scene,
+                     .script = o.script,
+                     .out = o.out,
+                     .fresh = o.fresh,
+                     .realtime = o.realtime,
+                     .resident_heap_bytes = kTickHeapReserve};
   if (o.tolerance > 0.0) options.tolerance = o.tolerance;
   ProgressBar progress;
   options.on_progress = [&progress](const RunProgress& p) {

@@ -1,6 +1,5 @@
 #include "argil/sculpt/run/session_runner.hpp"
 
-#include <cstddef>
 #include <system_error>
 #include <utility>
 
@@ -18,11 +17,6 @@ using detail::RunInputs;
 using detail::RunState;
 
 constexpr const char* kJournalName = "session.journal";
-
-/// Heap touched ahead for the ticks (keep_heap_resident): a stroke on a
-/// 64 x 64 panel takes under 2 MB after the session is made; the rest is
-/// room for larger scenes and for the outputs written after the ticks.
-constexpr std::size_t kTickHeapReserve = std::size_t{64} << 20;
 
 /// The journal to write into, and how the run starts.
 struct OpenedJournal {
@@ -129,7 +123,7 @@ Result<RunReport> run_session(const RunOptions& options) {
   if (!prepared.ok()) return prepared.status();
   Session& session = prepared.value();
   // After the session is made (its own memory stays its own), before any tick.
-  keep_heap_resident(kTickHeapReserve);
+  if (options.resident_heap_bytes > 0) keep_heap_resident(options.resident_heap_bytes);
   const std::vector<io::Model> before = current_faces(session);
   Result<OpenedJournal> journal = open_journal(in, options.fresh);
   if (!journal.ok()) return journal.status();

@@ -4,6 +4,7 @@
 // losing a finished stroke; the sculpted surfaces, logs, timing and pictures
 // out. Every input is checked before anything is written.
 
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -35,6 +36,11 @@ struct RunOptions {
   std::optional<double> tolerance{};  // eps [mm], > 0, in place of the scene's
   bool fresh = false;                 // start afresh even if `out` holds an unfinished journal
   bool realtime = false;  // pace live ticks at the haptic rate, as a device delivers them
+  /// When > 0, once the session is made and before any tick, the process's
+  /// heap is kept resident with this many bytes touched ahead
+  /// (keep_heap_resident: process-wide and for the process's life; `argil
+  /// sculpt` asks for 64 MB). 0 leaves the allocator alone.
+  std::size_t resident_heap_bytes = 0;
   std::optional<OutputOptions> outputs{};  // files to write; empty: the scene's choice
   /// Called after every `progress_every`-th live tick and after the last one.
   /// Returning stop ends the run as a kill would: the journal keeps the strokes

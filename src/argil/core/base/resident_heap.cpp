@@ -3,16 +3,37 @@
 #include <cstdlib>
 #include <vector>
 
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
+// glibc's allocator, unless a sanitizer's replaces it (GCC names those with
+// __SANITIZE_*__, clang with __has_feature).
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__) && \
+    !defined(__SANITIZE_HWADDRESS__)
+#if defined(__has_feature)
+#if !__has_feature(address_sanitizer) && !__has_feature(hwaddress_sanitizer) && \
+    !__has_feature(memory_sanitizer) && !__has_feature(thread_sanitizer)
+#define ARGIL_RESIDENT_HEAP 1
+#endif
+#else
+#define ARGIL_RESIDENT_HEAP 1
+#endif
+#endif
+
+#ifdef ARGIL_RESIDENT_HEAP
 #include <malloc.h>
 #include <unistd.h>
-#define ARGIL_GLIBC_MALLOC 1
 #endif
 
 namespace argil {
 
+bool resident_heap_supported() {
+#ifdef ARGIL_RESIDENT_HEAP
+  return true;
+#else
+  return false;
+#endif
+}
+
 bool keep_heap_resident(std::size_t bytes) {
-#ifdef ARGIL_GLIBC_MALLOC
+#ifdef ARGIL_RESIDENT_HEAP
   // No separate mappings (so no unmapping on free), and no trimming (-1 is
   // the largest threshold: the heap's free top stays mapped).
   if (mallopt(M_MMAP_MAX, 0) != 1 || mallopt(M_TRIM_THRESHOLD, -1) != 1) return false;
@@ -32,7 +53,7 @@ bool keep_heap_resident(std::size_t bytes) {
     for (std::size_t at = 0; at < kPiece; at += page) bytes_of[at] = 0;
     pieces.push_back(p);
   }
-  // Freed in reverse, each merges into the heap's free top.
+  // Each merges into the heap's free top, which is never trimmed now.
   for (auto it = pieces.rbegin(); it != pieces.rend(); ++it) std::free(*it);
   return true;
 #else

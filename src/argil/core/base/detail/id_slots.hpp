@@ -10,7 +10,7 @@
 // tool's stroke and wrote 128 KB of fresh pages in one haptic tick: 32 page
 // faults, 430 us on the build machine. (A hash table sized by the ids a
 // query sets avoided that too, but scattered neighbouring ids over the table:
-// a large offline query ran 1.45 times slower.)
+// a large offline query ran up to 1.45 times slower.)
 
 #include <array>
 #include <cstddef>
