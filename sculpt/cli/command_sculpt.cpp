@@ -5,12 +5,12 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
+#include "argil/core/base/resident_heap.hpp"
 #include "argil/sculpt/run/session_runner.hpp"
 #include "commands.hpp"
 
@@ -19,12 +19,6 @@ namespace {
 
 using namespace argil::sculpt;
 using Clock = std::chrono::steady_clock;
-
-/// Heap touched ahead for the ticks (RunOptions::resident_heap_bytes): a
-/// stroke on a 64 x 64 panel takes under 2 MB once the session is made; the
-/// rest is room for larger scenes. (The ticks run on the main thread, whose
-/// heap has no size limit.)
-constexpr std::size_t kTickHeapReserve = std::size_t{64} << 20;
 
 struct Options {
   std::filesystem::path scene, script, out;
@@ -171,7 +165,7 @@ int run_sculpt(const std::vector<std::string>& args) {
                      .out = o.out,
                      .fresh = o.fresh,
                      .realtime = o.realtime,
-                     .resident_heap_bytes = kTickHeapReserve};
+                     .resident_heap_bytes = kHapticHeapReserve};
   if (o.tolerance > 0.0) options.tolerance = o.tolerance;
   ProgressBar progress;
   options.on_progress = [&progress](const RunProgress& p) {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstddef>
 
 #include "bench_surfaces.hpp"
 #include "bench_timing.hpp"
@@ -12,8 +11,6 @@
 namespace argil::bench {
 
 namespace {
-
-constexpr std::size_t kTickHeapReserve = std::size_t{64} << 20;  // what `argil sculpt` keeps
 
 double domain_at(const BSplineSurface& s, Direction d, double fraction) {
   return s.domain_start(d) + fraction * (s.domain_end(d) - s.domain_start(d));
@@ -89,7 +86,7 @@ TickLog run_ticks(HapticWorld& world, const std::function<Eigen::Vector3d(int)>&
                   const std::function<void(int)>& after) {
   // As `argil sculpt` does before its ticks: a tick reuses heap pages instead
   // of faulting in fresh ones (the first run's tail otherwise).
-  keep_heap_resident(kTickHeapReserve);
+  keep_heap_resident(kHapticHeapReserve);
   TickLog log;
   log.wall_us.reserve(static_cast<std::size_t>(ticks));
   log.cpu_us.reserve(static_cast<std::size_t>(ticks));

@@ -53,8 +53,8 @@ bool keep_heap_resident(std::size_t bytes) {
     for (std::size_t at = 0; at < kPiece; at += page) bytes_of[at] = 0;
     pieces.push_back(p);
   }
-  // Each merges into the heap's free top, which is never trimmed now.
-  for (auto it = pieces.rbegin(); it != pieces.rend(); ++it) std::free(*it);
+  // They merge into the heap's free top, which is never trimmed now.
+  for (void* p : pieces) std::free(p);
   return true;
 #else
   (void)bytes;

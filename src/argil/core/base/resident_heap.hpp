@@ -4,8 +4,9 @@
 // add more: a large block (over 128 KB at first; glibc raises the threshold
 // up to 32 MB as such blocks are freed) gets its own mapping, unmapped when
 // freed and faulted in again when next taken, and the heap's free top goes
-// back to the system. On the build machine a fault costs 10 to 20 us: the B-spline tool's
-// first stroke on a 64 x 64 panel took 150 faults, up to 40 in one tick.
+// back to the system. On the build machine a fault costs 10 to 20 us: the
+// B-spline tool's first stroke on a 64 x 64 panel took 150 faults, up to 40
+// in one tick.
 
 #include <cstddef>
 
@@ -28,5 +29,11 @@ bool resident_heap_supported();
 /// place (jemalloc, tcmalloc) may take the settings and ignore them. `bytes`
 /// 0 only makes the settings.
 bool keep_heap_resident(std::size_t bytes);
+
+/// What a haptic loop keeps resident (`argil sculpt`, the benchmarks): a
+/// stroke on a 64 x 64 panel takes under 2 MB once its world is made; the
+/// rest is room for larger scenes. On the main thread, whose heap has no
+/// size limit.
+inline constexpr std::size_t kHapticHeapReserve = std::size_t{64} << 20;
 
 }  // namespace argil
