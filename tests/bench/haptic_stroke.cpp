@@ -99,6 +99,10 @@ TickLog run_ticks(HapticWorld& world, const std::function<Eigen::Vector3d(int)>&
     const auto stop = std::chrono::steady_clock::now();
     log.cpu_us.push_back(thread_cpu_us() - cpu_start);
     log.wall_us.push_back(std::chrono::duration<double, std::micro>(stop - start).count());
+    log.contact_queries += r.tool_contact_queries;
+    log.crossing_tests += r.tool_crossing_tests;
+    log.most_contact_queries = std::max(log.most_contact_queries, r.tool_contact_queries);
+    log.most_crossing_tests = std::max(log.most_crossing_tests, r.tool_crossing_tests);
     if (r.status.ok()) {
       log.contacts += r.contacts;
       log.max_depth = std::max(log.max_depth, r.max_depth);

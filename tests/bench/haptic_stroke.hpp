@@ -59,7 +59,10 @@ struct TickLog {
   double force_sum = 0.0;   // sum of |F| on the device [N]
   double peak_force = 0.0;  // [N]
   double max_depth = 0.0;   // [mm]
-  int failed = 0;           // ticks whose status was not ok
+  // The B-spline tool's collision queries (TickResult): in all, and the most in one tick.
+  long contact_queries = 0, crossing_tests = 0;
+  int most_contact_queries = 0, most_crossing_tests = 0;
+  int failed = 0;  // ticks whose status was not ok
   std::string first_error;
 };
 

@@ -96,10 +96,13 @@ void tick_section(const std::vector<TickCase>& cases, int ticks, int repeats) {
           "%-36s run %d ticks %6d wall: p50 %7.1f p99 %7.1f p99.9 %7.1f max %8.1f us |"
           " cpu: p50 %7.1f p99 %7.1f p99.9 %7.1f max %8.1f us |"
           " contacts/tick %4.1f mean |F| %.3g N max depth %.3g mm |"
-          " growing window: %d ticks, max %.1f us; whole net: %d ticks, max %.1f us%s%s\n",
+          " growing window: %d ticks, max %.1f us; whole net: %d ticks, max %.1f us |"
+          " tool queries/tick: contact %.2f (max %d), crossing %.2f (max %d)%s%s\n",
           c.name.c_str(), run + 1, ticks, w.p50, w.p99, w.p999, w.max, p.p50, p.p99, p.p999, p.max,
           s.contacts_per_tick, s.mean_force, s.max_depth, growing_ticks, worst_growing, whole_ticks,
-          worst_whole, log.failed > 0 ? " | failed ticks: " : "",
+          worst_whole, static_cast<double>(log.contact_queries) / ticks, log.most_contact_queries,
+          static_cast<double>(log.crossing_tests) / ticks, log.most_crossing_tests,
+          log.failed > 0 ? " | failed ticks: " : "",
           log.failed > 0 ? (std::to_string(log.failed) + " (" + log.first_error + ")").c_str()
                          : "");
       std::fflush(stdout);

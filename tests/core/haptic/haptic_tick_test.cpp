@@ -57,6 +57,19 @@ void add_soft_panel(argil::HapticWorld& w, const argil::BSplineSurface& s, doubl
   REQUIRE(w.add_deformable(s, m, bc, 0.3).ok());
 }
 
+/// The bowl cap landed on a soft panel (yield 0.05 mm) at (45, 45) with the
+/// hand 3 mm under the panel, at tolerance `eps` (the force clamped at 20 N).
+argil::HapticWorld cap_on_soft_panel(double eps) {
+  argil::HapticWorld w = world(argil::SurfaceToolShape{bowl_cap()}, eps, 20.0);
+  add_soft_panel(w, wavy_sheet(10, 10.0, 0.0), 0.05);
+  REQUIRE(w.step(at(45, 45, 10), 1e-3).status.ok());
+  // The cap's lowest point is 1.2 mm above its frame's origin.
+  for (int t = 0; t < 5 && !w.proxy().in_contact; ++t)
+    REQUIRE(w.step(at(45, 45, -3.0), 1e-3).status.ok());
+  REQUIRE(w.proxy().in_contact);
+  return w;
+}
+
 /// A flat wall in the plane x = `x`, across y in [30, 60] and z in [-5, 10].
 argil::BSplineSurface wall_at(double x) {
   argil::BSplineSurface wall = wavy_sheet(4, 10.0, 0.0);
@@ -559,13 +572,7 @@ TEST_CASE("a B-spline tool follows a panel that gives way under it: the force ne
   // the tool must come down with it, not hang where it was until the gap
   // passes eps, lose the contact and drop the force to zero.
   const double eps = 0.05;
-  argil::HapticWorld w = world(argil::SurfaceToolShape{bowl_cap()}, eps, 20.0);
-  add_soft_panel(w, wavy_sheet(10, 10.0, 0.0), 0.05);
-  REQUIRE(w.step(at(45, 45, 10), 1e-3).status.ok());
-  // The cap's lowest point is 1.2 mm above its frame's origin.
-  for (int t = 0; t < 5 && !w.proxy().in_contact; ++t)  // lands on the panel
-    REQUIRE(w.step(at(45, 45, -3.0), 1e-3).status.ok());
-  REQUIRE(w.proxy().in_contact);
+  argil::HapticWorld w = cap_on_soft_panel(eps);
   const double landed = w.proxy().X_WT.p.z();
   std::vector<double> force;
   double sunk = 0.0;
@@ -591,4 +598,74 @@ TEST_CASE("a B-spline tool follows a panel that gives way under it: the force ne
     CAPTURE(t);
     CHECK(std::abs(force[t] - force[t - 1]) < 0.05 * force[t - 1]);
   }
+}
+
+TEST_CASE("a B-spline tool held on a panel yielding faster than it settles stays stuck on it",
+          "[haptic]") {
+  // The hand holds still 3 mm below where the cap landed on a soft panel, so
+  // the panel flows away from the tool by over eps / 2 a tick. The settle
+  // (3/4 eps, less half of the last tick's flow) then leaves the tool off
+  // by up to eps, and every few ticks it touches nothing where friction held
+  // it. It must settle on and stay stuck, not take a frictionless move
+  // towards the hand: that move searches for its stop with a dozen queries
+  // and does not report the tool stuck.
+  const double eps = 0.05;
+  argil::HapticWorld w = cap_on_soft_panel(eps);
+  const argil::Pose landed = w.proxy().X_WT;
+  double fastest = 0.0;  // the deepest the tool went in one tick
+  for (int t = 0; t < 300; ++t) {
+    const double before = w.proxy().X_WT.p.z();
+    const argil::TickResult r = w.step(at(45, 45, landed.p.z() - 3.0), 1e-3);
+    REQUIRE(r.status.ok());
+    CAPTURE(t);
+    CHECK(r.proxy.in_contact);
+    CHECK(r.proxy.stuck);
+    CHECK(r.proxy.X_WT.p.x() == landed.p.x());
+    CHECK(r.proxy.X_WT.p.y() == landed.p.y());
+    // One contact query a tick (two when it settles further), no crossing
+    // test: the frictionless move searched for its stop with up to a dozen.
+    CHECK(r.tool_contact_queries <= 2);
+    CHECK(r.tool_crossing_tests == 0);
+    fastest = std::max(fastest, before - r.proxy.X_WT.p.z());
+  }
+  // The panel did flow faster than one settle (3/4 eps) follows.
+  CHECK(fastest > 0.8 * eps);
+  CHECK(landed.p.z() - w.proxy().X_WT.p.z() > 2.0);
+}
+
+TEST_CASE("a B-spline tool follows a hand that rests on a floor or lifts off in one query",
+          "[haptic]") {
+  // Landed on a rigid floor and lifted eps / 4 a tick: the hand is never
+  // deeper than where the settle would bring the tool, so nothing presses,
+  // no friction holds it, and the tool goes to the hand with one swept
+  // contact query (the stick point's query and then a move took two).
+  const double eps = 0.05, press = 2.0;
+  argil::HapticWorld w = world(argil::SurfaceToolShape{bowl_cap()}, eps);
+  REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), 0.5).ok());
+  const double rest = land(w, 45, 45, press);
+  REQUIRE(w.proxy().in_contact);
+  // The hand where the tool rests: no force, at the hand, one query.
+  argil::TickResult r = w.step(at(45, 45, rest), 1e-3);
+  REQUIRE(r.status.ok());
+  CHECK(r.proxy.X_WT.p == Eigen::Vector3d(45, 45, rest));
+  CHECK(r.force.norm() == 0.0);
+  CHECK(r.proxy.in_contact);
+  CHECK(r.tool_contact_queries == 1);
+  CHECK(r.tool_crossing_tests == 0);
+  bool left = false;
+  for (int t = 1; t <= 8; ++t) {
+    CAPTURE(t);
+    const double z = rest + 0.25 * eps * t;
+    r = w.step(at(45.001, 45, z), 1e-3);
+    REQUIRE(r.status.ok());
+    CHECK(r.proxy.X_WT.p == Eigen::Vector3d(45.001, 45, z));
+    CHECK(r.force.norm() == 0.0);
+    if (!left) {
+      // Still in contact last tick: friction's part of the tick, one query.
+      CHECK(r.tool_contact_queries == 1);
+      CHECK(r.tool_crossing_tests == 0);
+    }
+    left = !r.proxy.in_contact;
+  }
+  CHECK(left);  // lifted clear of the floor
 }

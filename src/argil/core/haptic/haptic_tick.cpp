@@ -226,8 +226,14 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
 
   // 1-2. Proxy: frictionless target, then stick or slip from the last pose.
   const std::vector<char> queried = options_.cull ? reach : std::vector<char>(reach.size(), 1);
+  const SurfaceToolProxy::QueryCounts before =
+      surface_tool_ ? surface_tool_->queries() : SurfaceToolProxy::QueryCounts{};
   ProxyMove move = sphere_ ? move_sphere(previous, device, queried)
                            : move_surface_tool(previous, device, queried);
+  if (surface_tool_) {
+    r.tool_contact_queries = static_cast<int>(surface_tool_->queries().contacts - before.contacts);
+    r.tool_crossing_tests = static_cast<int>(surface_tool_->queries().crossings - before.crossings);
+  }
   if (!move.status.ok()) {
     r.status = std::move(move.status);
     return r;

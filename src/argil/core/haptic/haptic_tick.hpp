@@ -80,6 +80,11 @@ struct [[nodiscard]] TickResult {
   /// this tick's deformation [mm] (at most eps for a sphere tool).
   double max_depth = 0.0;
   bool clamped = false;
+  /// The B-spline tool's collision queries this tick, one per body queried
+  /// (SurfaceToolProxy::queries): contact queries, placed or swept, and
+  /// yes/no crossing tests. Zero for the sphere tool.
+  int tool_contact_queries = 0;
+  int tool_crossing_tests = 0;
   ProxyState proxy;
   /// One entry per body: its contacts at the proxy pose.
   std::vector<std::vector<Contact>> body_contacts;

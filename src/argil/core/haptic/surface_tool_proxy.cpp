@@ -61,6 +61,7 @@ ToolContacts SurfaceToolProxy::contacts(const std::vector<const SurfaceHierarchy
                                    .curves = false,
                                    .stop_at_crossing = partial_when_crossing,
                                    .material_a = materials_.empty() ? nullptr : materials_[b]};
+    ++queries_.contacts;
     CollisionResult r = swept_from
                             ? collide_swept(*surfaces[b], hierarchy_, *swept_from, X_WT, request)
                             : collide(*surfaces[b], hierarchy_, X_WT, request);
@@ -116,6 +117,7 @@ SurfaceToolProxy::Crossing SurfaceToolProxy::crossing(
                                  .curves = false};
   for (const SurfaceHierarchy* surface : surfaces) {
     if (!surface) continue;
+    ++queries_.crossings;
     CollisionResult r = swept_from ? collide_swept(*surface, hierarchy_, *swept_from, X_WT, request)
                                    : collide(*surface, hierarchy_, X_WT, request);
     // A failed query counts as crossing: the proxy must not move where it

@@ -6,6 +6,7 @@
 // along the surface after it stops.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -126,6 +127,15 @@ class SurfaceToolProxy {
   ToolMove move(const std::vector<const SurfaceHierarchy*>& surfaces, const Pose& X_WT_from,
                 const Pose& X_WT_to, Start start = Start::unknown,
                 const ToolContacts* at_from = nullptr);
+  /// Collision queries run since the proxy was made, one per surface
+  /// queried: contact queries (placed or swept) and yes/no crossing tests.
+  /// A tick's cost is mostly these (a contact query of a tool lying on a
+  /// face costs hundreds of microseconds, a crossing test a fraction).
+  struct QueryCounts {
+    std::int64_t contacts = 0;
+    std::int64_t crossings = 0;
+  };
+  const QueryCounts& queries() const { return queries_; }
   /// The tool's hierarchy, in its own frame T.
   const SurfaceHierarchy& hierarchy() const { return hierarchy_; }
   /// Diagonal of the tool's control-point box [mm].
@@ -177,6 +187,7 @@ class SurfaceToolProxy {
   double reach_;  // largest distance of a control point from T's origin [mm]
   int max_contacts_;
   std::vector<const TrimRegion*> materials_;
+  QueryCounts queries_;
 };
 
 }  // namespace argil
