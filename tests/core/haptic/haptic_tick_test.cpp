@@ -605,10 +605,10 @@ TEST_CASE("a B-spline tool held on a panel yielding faster than it settles stays
   // The hand holds still 3 mm below where the cap landed on a soft panel, so
   // the panel flows away from the tool by over eps / 2 a tick. The settle
   // (3/4 eps, less half of the last tick's flow) then leaves the tool off
-  // by up to eps, and every few ticks it touches nothing where friction held
-  // it. It must settle on and stay stuck, not take a frictionless move
-  // towards the hand: that move searches for its stop with a dozen queries
-  // and does not report the tool stuck.
+  // by up to eps, and on most of the first ticks (and now and then after)
+  // it touches nothing where friction held it. It must settle on and stay stuck, not take a
+  // frictionless move towards the hand: that move searches for its stop with a dozen queries and
+  // does not report the tool stuck.
   const double eps = 0.05;
   argil::HapticWorld w = cap_on_soft_panel(eps);
   const argil::Pose landed = w.proxy().X_WT;
@@ -668,4 +668,66 @@ TEST_CASE("a B-spline tool follows a hand that rests on a floor or lifts off in 
     left = !r.proxy.in_contact;
   }
   CHECK(left);  // lifted clear of the floor
+}
+
+TEST_CASE(
+    "a B-spline tool left farther off a yielding panel than it aims follows a hand just under it",
+    "[haptic]") {
+  // Held deep in a soft panel, the tool stands off it by more than the
+  // settle aims at (3/4 eps at most) on most ticks. A hand then brought to a
+  // micrometre under the tool does not press past where the settle would
+  // bring the tool: no normal force, so the tool goes to the hand in one
+  // swept query (before: the stick point's query, then a move).
+  const double eps = 0.05;
+  argil::HapticWorld w = cap_on_soft_panel(eps);
+  const argil::Pose landed = w.proxy().X_WT;
+  int tried = 0;
+  for (int t = 0; t < 100 && tried < 5; ++t) {
+    CAPTURE(t);
+    if (-w.proxy().max_depth > 0.76 * eps) {
+      const Eigen::Vector3d hand = w.proxy().X_WT.p - 1e-3 * w.proxy().outward_normal;
+      const argil::TickResult r = w.step(at(hand.x(), hand.y(), hand.z()), 1e-3);
+      REQUIRE(r.status.ok());
+      CHECK(r.proxy.X_WT.p == hand);
+      CHECK(r.force.norm() == 0.0);
+      CHECK(r.tool_contact_queries == 1);
+      CHECK(r.tool_crossing_tests == 0);
+      ++tried;
+    }
+    REQUIRE(w.step(at(landed.p.x(), landed.p.y(), landed.p.z() - 3.0), 1e-3).status.ok());
+  }
+  CHECK(tried == 5);
+}
+
+TEST_CASE("a hand turning on past where the B-spline tool's rim meets a floor costs no extra query",
+          "[haptic]") {
+  // The hand rests at the tool and turns 0.02 rad a tick: the rim soon meets
+  // the floor and the tool's turn is blocked, while the hand turns on. The
+  // turned pose at the hand crosses, so following it in one query is not
+  // tried (a wasted query a tick, five in the worst one): the stick point's
+  // query and the move decide, at most four contact queries a tick.
+  const double eps = 0.05;
+  const argil::BSplineSurface tool = bowl_cap();
+  argil::HapticWorld w = world(argil::SurfaceToolShape{tool}, eps);
+  REQUIRE(w.add_rigid(wavy_sheet(10, 10.0, 0.0), 0.5).ok());
+  land(w, 45, 45, 2.0);
+  REQUIRE(w.proxy().in_contact);
+  const argil::SurfaceHierarchy floor_h = w.hierarchy(0);
+  argil::OperatorCache cache;
+  argil::SurfaceToolProxy check =
+      argil::SurfaceToolProxy::create(tool, eps, cache, argil::WorldOptions{}.max_contacts).value();
+  const Eigen::Vector3d axis = Eigen::Vector3d(1, 0.3, 0).normalized();
+  double blocked = 0.0;  // the largest angle between the hand and the tool
+  for (int t = 1; t < 100; ++t) {
+    CAPTURE(t);
+    argil::Pose hand = w.proxy().X_WT;
+    hand.R = Eigen::Quaterniond(Eigen::AngleAxisd(0.02 * t, axis));
+    const argil::TickResult r =
+        w.step({.tick = t, .t = 1e-3 * t, .X_WD = hand, .engaged = true}, 1e-3);
+    REQUIRE(r.status.ok());
+    CHECK(r.tool_contact_queries <= 4);
+    CHECK_FALSE(check.crossing({&floor_h}, r.proxy.X_WT).crosses);
+    blocked = std::max(blocked, hand.R.angularDistance(r.proxy.X_WT.R));
+  }
+  CHECK(blocked > 0.5);  // the turn was blocked, the hand turned on
 }

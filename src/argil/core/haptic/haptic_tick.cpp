@@ -59,7 +59,11 @@ ContactSummary summarize(const std::vector<std::vector<Contact>>& body_contacts,
   return s;
 }
 
-ProxyState at_device(const DeviceSample& device) { return {device.X_WD, {0, 0, 0}, false, false}; }
+ProxyState at_device(const DeviceSample& device) {
+  ProxyState s;
+  s.X_WT = device.X_WD;
+  return s;
+}
 
 }  // namespace
 

@@ -56,10 +56,11 @@ struct ProxyState {
   /// there (move_surface_tool).
   double max_depth = 0.0;
   /// How far off them the B-spline tool stood once this tick settled it
-  /// [mm] (-1 when friction did not decide the tick: it did not stick or
-  /// slip into contact): the next tick's max_depth tells how far the
-  /// surfaces drew away since.
-  double settled_gap = -1.0;
+  /// [mm], measured from where they were when the last tick ended (negative
+  /// when it settled past that; none when friction did not decide the tick:
+  /// it did not stick or slip into contact): the next tick's max_depth tells
+  /// how far the surfaces drew away since.
+  std::optional<double> settled_gap;
 };
 
 struct [[nodiscard]] TickResult {

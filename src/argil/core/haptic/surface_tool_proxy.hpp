@@ -140,6 +140,9 @@ class SurfaceToolProxy {
   const SurfaceHierarchy& hierarchy() const { return hierarchy_; }
   /// Diagonal of the tool's control-point box [mm].
   double size() const { return size_; }
+  /// Largest distance of a control point from T's origin [mm]: a turn by
+  /// angle a about the origin moves no point of the tool farther than reach a.
+  double reach() const { return reach_; }
   static constexpr int kMaxBisections = 12;
 
  private:

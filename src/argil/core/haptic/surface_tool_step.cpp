@@ -38,8 +38,7 @@ struct Settling {
 
   Settling(const ProxyState& previous, const Pose& held, const Eigen::Vector3d& hand, double eps)
       : gap(-previous.max_depth) {
-    const double receding =
-        previous.settled_gap >= 0.0 ? std::max(gap - previous.settled_gap, 0.0) : 0.0;
+    const double receding = previous.settled_gap ? std::max(gap - *previous.settled_gap, 0.0) : 0.0;
     aim = std::clamp(0.75 * eps - 0.5 * receding, 0.25 * eps, 0.75 * eps);
     below = std::max(-previous.outward_normal.dot(hand - held.p), 0.0);
     // At most 3/4 eps: one swept slip away (SurfaceToolProxy::slip).
@@ -96,8 +95,13 @@ FrictionMove friction_move(SurfaceToolProxy& tool, const Surfaces& surfs,
   // resting on the surfaces without pressing): no normal force, no friction,
   // and the tool follows the hand. Within eps of where the tool was that is
   // one swept query, where the stick point's query and then the move's were
-  // two contact queries (over a millisecond for a pad lying on a face).
-  if (!settling.pressing() && (hand - held.p).norm() <= eps) {
+  // two contact queries (over a millisecond for a pad lying on a face). Not
+  // tried for a turn that moves the tool's far points by more than its
+  // clearance there (a turn blocked where the rim would dip in, the hand
+  // turning on): that pose likely crosses, and the query would be wasted.
+  const double turn = previous.X_WT.R.angularDistance(device.X_WD.R);
+  if (!settling.pressing() && (hand - held.p).norm() <= eps &&
+      turn * tool.reach() <= gap - settling.below) {
     std::optional<ToolContacts> free = tool.slip(surfs, held, device.X_WD);
     if (free && !free->status.ok()) return {std::move(free->status), {}, {}, {}};
     if (free && !free->crosses)
@@ -116,8 +120,7 @@ FrictionMove friction_move(SurfaceToolProxy& tool, const Surfaces& surfs,
   // at, as the next tick reads it, is the last tick's less both settles.
   const auto settled_further = [&](const Pose& from) {
     std::optional<ToolMove> on = settle_further(tool, surfs, from, n, hand, eps);
-    if (on && on->status.ok())
-      next.settled_gap = std::max(gap - settled - n.dot(from.p - on->X_WT.p), 0.0);
+    if (on && on->status.ok()) next.settled_gap = gap - settled - n.dot(from.p - on->X_WT.p);
     return on;
   };
   // Settled first; where the settled stick point crosses (the surface
@@ -199,10 +202,11 @@ FrictionMove friction_move(SurfaceToolProxy& tool, const Surfaces& surfs,
       out.moved = tool.move(surfs, slid, device.X_WD, SurfaceToolProxy::Start::clear, &*at);
   } else if (!at->crosses) {
     // Here `at` is the stick point's (a swept slip clear of everything was
-    // taken above). Held there and pressed, it settles on.
-    if (fr.normal_force > 0.0) out.moved = settled_further(stick);
+    // taken above). Held there and pressed, it settles on. (A slip whose way
+    // crossed moves from there towards the device, frictionless, as before.)
+    if (fr.normal_force > 0.0 && fr.stick) out.moved = settled_further(stick);
     if (out.moved) {
-      next.stuck = fr.stick;
+      next.stuck = true;
     } else {
       out.at_stick = std::move(at);
       out.stick_point = stick;
