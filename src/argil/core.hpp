@@ -1,10 +1,10 @@
 #pragma once
 // argil::core, the entry header. Modules from the bottom up (each includes only
-// those above it in this list): base (status, results, number text), linalg (banded solvers),
-// geometry (B-spline surfaces, evaluation, Bezier patches, tool shapes),
-// operators (precomputed fitting and evaluation matrices), hierarchy (the
-// conservative lazy bound tree), collision (queries and contacts), deform
-// (materials and the deformable body), haptic (proxies, coupling, the tick).
+// those above it in this list): base (status, results, number text), linalg (banded solvers, the
+// pseudo-inverse), geometry (B-spline surfaces, evaluation, Bezier patches, tool shapes), operators
+// (precomputed fitting and evaluation matrices), hierarchy (the conservative lazy bound tree),
+// collision (queries and contacts), deform (materials and the deformable body), haptic (proxies,
+// coupling, the tick).
 
 // base
 #include "argil/core/base/chunked_vector.hpp"  // IWYU pragma: export
@@ -12,8 +12,9 @@
 #include "argil/core/base/resident_heap.hpp"   // IWYU pragma: export
 #include "argil/core/base/status.hpp"          // IWYU pragma: export
 // linalg
-#include "argil/core/linalg/banded_cholesky.hpp"  // IWYU pragma: export
-#include "argil/core/linalg/banded_lu.hpp"        // IWYU pragma: export
+#include "argil/core/linalg/banded_cholesky.hpp"     // IWYU pragma: export
+#include "argil/core/linalg/banded_lu.hpp"           // IWYU pragma: export
+#include "argil/core/linalg/psd_pseudo_inverse.hpp"  // IWYU pragma: export
 // geometry
 #include "argil/core/geometry/basis.hpp"              // IWYU pragma: export
 #include "argil/core/geometry/bezier.hpp"             // IWYU pragma: export

@@ -1,6 +1,5 @@
 #include "argil/core/deform/edge_joint.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -9,6 +8,7 @@
 
 #include "argil/core/geometry/basis.hpp"
 #include "argil/core/geometry/evaluate.hpp"
+#include "argil/core/linalg/psd_pseudo_inverse.hpp"
 
 namespace argil {
 namespace {
@@ -349,28 +349,12 @@ void EdgeJoint::set_response(const StepResponse& a, const StepResponse& b, doubl
   g = 0.5 * (g + g.transpose()).eval();
   // Eigenpairs below 1e-10 of the largest are directions the conditions do
   // not fix independently (rounding): they get no multiplier.
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(g);
+  inverse_factor_ = psd_pseudo_inverse_factor(g, 1e-10);
   response_dt_ = dt;
-  if (eigen.info() != Eigen::Success) {  // no multipliers: the joint holds nothing
-    range_.resize(g.rows(), 0);
-    inverse_eigen_.resize(0);
-    return;
-  }
-  const Eigen::VectorXd& mu = eigen.eigenvalues();
-  const double floor = 1e-10 * std::max(mu.cwiseAbs().maxCoeff(), 1e-300);
-  std::vector<Eigen::Index> kept;
-  for (Eigen::Index k = 0; k < mu.size(); ++k)
-    if (mu[k] > floor) kept.push_back(k);
-  range_.resize(g.rows(), static_cast<Eigen::Index>(kept.size()));
-  inverse_eigen_.resize(static_cast<Eigen::Index>(kept.size()));
-  for (std::size_t k = 0; k < kept.size(); ++k) {
-    range_.col(static_cast<Eigen::Index>(k)) = eigen.eigenvectors().col(kept[k]);
-    inverse_eigen_[static_cast<Eigen::Index>(k)] = 1.0 / mu[kept[k]];
-  }
 }
 
 Eigen::VectorXd EdgeJoint::pseudo_solve(const Eigen::VectorXd& b) const {
-  return range_ * inverse_eigen_.cwiseProduct(range_.transpose() * b);
+  return inverse_factor_ * (inverse_factor_.transpose() * b);
 }
 
 EdgeJoint::Correction EdgeJoint::correction(const ControlNet& pa, const ControlNet& pb,

@@ -131,12 +131,12 @@ class EdgeJoint {
   /// A: one row per condition, three columns per unknown.
   Eigen::SparseMatrix<double, Eigen::RowMajor> rows_;
   std::array<StepResponse, 2> response_;
-  // G^+ = V diag(1/mu) V^T over G = A h^2 S^-1 A^T's eigenpairs above the
-  // floor: G is singular (more samples than the nets can follow), and a
-  // pivoted LDL^T with small pivots dropped is not a pseudo-inverse there:
-  // on the screw's shank and cone it left a 0.4 mm gap uncorrected.
-  Eigen::MatrixXd range_;          // V: the kept eigenvectors, one per column
-  Eigen::VectorXd inverse_eigen_;  // 1/mu for each
+  // G^+ = F F^T (psd_pseudo_inverse.hpp), over G = A h^2 S^-1 A^T's
+  // eigenpairs above the floor: G is singular (more samples than the nets
+  // can follow), and a pivoted LDL^T with small pivots dropped is not a
+  // pseudo-inverse there: on the screw's shank and cone it left a 0.4 mm gap
+  // uncorrected.
+  Eigen::MatrixXd inverse_factor_;  // one column q / sqrt(mu) per kept eigenpair
   double response_dt_ = 0.0;
 };
 
