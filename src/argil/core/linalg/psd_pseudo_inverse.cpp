@@ -4,7 +4,6 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <vector>
 
@@ -27,7 +26,7 @@ std::optional<Eigen::MatrixXd> pivoted_range(const Eigen::MatrixXd& g, Eigen::In
   Eigen::VectorXd d = g.diagonal();  // the remaining Schur complement's diagonal
   const double cut = kRangePivot * std::max(d.maxCoeff(), 0.0);
   std::vector<char> used(static_cast<std::size_t>(m), 0);
-  Eigen::MatrixXd l(m, std::min(m, max_rank + 1));
+  Eigen::MatrixXd l(m, max_rank);
   Eigen::Index r = 0;
   for (; r < m; ++r) {
     Eigen::Index p = -1;
@@ -56,11 +55,9 @@ std::optional<Eigen::MatrixXd> pivoted_range(const Eigen::MatrixXd& g, Eigen::In
   return Eigen::MatrixXd(l.leftCols(r));
 }
 
-/// The kept eigenpairs of `s` (eigenvalues above floor times the largest),
-/// each eigenvector column scaled by `scale(mu)`; nothing if the solver fails.
-template <class Scale>
-std::optional<Eigen::MatrixXd> kept_eigenvectors(const Eigen::MatrixXd& s, double floor,
-                                                 Scale scale) {
+/// The eigenvectors q of `s` whose eigenvalues mu pass floor times the
+/// largest, as columns q / sqrt(mu); nothing if the solver fails.
+std::optional<Eigen::MatrixXd> inverse_root_columns(const Eigen::MatrixXd& s, double floor) {
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(s);
   if (eigen.info() != Eigen::Success) return std::nullopt;
   const Eigen::VectorXd& mu = eigen.eigenvalues();
@@ -68,12 +65,12 @@ std::optional<Eigen::MatrixXd> kept_eigenvectors(const Eigen::MatrixXd& s, doubl
   std::vector<Eigen::Index> kept;
   for (Eigen::Index k = 0; k < mu.size(); ++k)
     if (mu[k] > least) kept.push_back(k);
-  Eigen::MatrixXd v(s.rows(), static_cast<Eigen::Index>(kept.size()));
+  Eigen::MatrixXd columns(s.rows(), static_cast<Eigen::Index>(kept.size()));
   for (std::size_t k = 0; k < kept.size(); ++k) {
     const Eigen::Index c = kept[k];
-    v.col(static_cast<Eigen::Index>(k)) = eigen.eigenvectors().col(c) * scale(mu[c]);
+    columns.col(static_cast<Eigen::Index>(k)) = eigen.eigenvectors().col(c) / std::sqrt(mu[c]);
   }
-  return v;
+  return columns;
 }
 
 }  // namespace
@@ -82,7 +79,9 @@ Eigen::MatrixXd psd_pseudo_inverse_factor(const Eigen::MatrixXd& g, double floor
                                           PseudoInverseMethod method) {
   const Eigen::Index m = g.rows();
   const Eigen::MatrixXd none(m, 0);
-  if (m == 0) return none;
+  // The range path reads only the columns it pivots on: a NaN elsewhere
+  // would pass unseen (the whole decomposition fails on it).
+  if (m == 0 || !g.allFinite()) return none;
   if (method != PseudoInverseMethod::eigen_of_whole) {
     const Eigen::Index max_rank =
         method == PseudoInverseMethod::range_first
@@ -98,8 +97,8 @@ Eigen::MatrixXd psd_pseudo_inverse_factor(const Eigen::MatrixXd& g, double floor
       // whole's own move by 8e-6 when G's entries move by a rounding unit.)
       const Eigen::HouseholderQR<Eigen::MatrixXd> qr(*l);
       const Eigen::MatrixXd upper = qr.matrixQR().topRows(r).triangularView<Eigen::Upper>();
-      const std::optional<Eigen::MatrixXd> v = kept_eigenvectors(
-          upper * upper.transpose(), floor, [](double mu) { return 1.0 / std::sqrt(mu); });
+      const std::optional<Eigen::MatrixXd> v =
+          inverse_root_columns(upper * upper.transpose(), floor);
       if (!v) return none;
       Eigen::MatrixXd f = Eigen::MatrixXd::Zero(m, v->cols());
       f.topRows(r) = *v;
@@ -107,9 +106,8 @@ Eigen::MatrixXd psd_pseudo_inverse_factor(const Eigen::MatrixXd& g, double floor
       return f;
     }
   }
-  const std::optional<Eigen::MatrixXd> q =
-      kept_eigenvectors(g, floor, [](double mu) { return 1.0 / std::sqrt(mu); });
-  return q ? *q : none;
+  const std::optional<Eigen::MatrixXd> f = inverse_root_columns(g, floor);
+  return f ? *f : none;
 }
 
 }  // namespace argil
