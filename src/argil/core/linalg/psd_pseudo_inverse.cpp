@@ -68,7 +68,8 @@ std::optional<Eigen::MatrixXd> inverse_root_columns(const Eigen::MatrixXd& s, do
   Eigen::MatrixXd columns(s.rows(), static_cast<Eigen::Index>(kept.size()));
   for (std::size_t k = 0; k < kept.size(); ++k) {
     const Eigen::Index c = kept[k];
-    columns.col(static_cast<Eigen::Index>(k)) = eigen.eigenvectors().col(c) / std::sqrt(mu[c]);
+    columns.col(static_cast<Eigen::Index>(k)) =
+        eigen.eigenvectors().col(c) * (1.0 / std::sqrt(mu[c]));
   }
   return columns;
 }
