@@ -43,14 +43,15 @@ argil::DeviceSample at(double x, double y, double z) {
 }
 
 /// Adds `s` as a panel of 1 mm of a dense soft layer yielding at `yield`
-/// [mm], held along its u edges (friction 0.3).
-void add_soft_panel(argil::HapticWorld& w, const argil::BSplineSurface& s, double yield) {
+/// [mm], with `damping` [s], held along its u edges (friction 0.3).
+void add_soft_panel(argil::HapticWorld& w, const argil::BSplineSurface& s, double yield,
+                    double damping = 0.01) {
   argil::Material m;
   m.density = 1e4;
   m.thickness = 1.0;
   m.youngs_modulus = 0.1;
   m.foundation_stiffness = 0.02;
-  m.damping = 0.01;
+  m.damping = damping;
   m.yield = yield;
   argil::BoundaryConditions bc;
   bc.fixed_u0 = bc.fixed_u1 = true;
@@ -730,4 +731,44 @@ TEST_CASE("a hand turning on past where the B-spline tool's rim meets a floor co
     blocked = std::max(blocked, hand.R.angularDistance(r.proxy.X_WT.R));
   }
   CHECK(blocked > 0.5);  // the turn was blocked, the hand turned on
+}
+
+TEST_CASE("a B-spline tool whose settle would cross a panel springing back stays stuck where it was",
+          "[haptic]") {
+  // The cap rests on an elastic soft panel, the hand 3 mm below it. Every
+  // other pair of ticks the hand eases off by 0.5 mm: the panel springs back
+  // up into where the settle would bring the tool (the last tick left it
+  // farther off than the settle aims). The settled stick point crosses; the
+  // tool must fall back to its stick point as the last tick left it and
+  // stay stuck there, not take a frictionless move towards the hand (three
+  // contact queries and two crossing tests, and not stuck).
+  const double eps = 0.05;
+  argil::HapticWorld w = world(argil::SurfaceToolShape{bowl_cap()}, eps, 20.0);
+  add_soft_panel(w, wavy_sheet(10, 10.0, 0.0), 1e9, 0.0);  // elastic, undamped
+  REQUIRE(w.step(at(45, 45, 10), 1e-3).status.ok());
+  for (int t = 0; t < 5 && !w.proxy().in_contact; ++t)
+    REQUIRE(w.step(at(45, 45, -3.0), 1e-3).status.ok());
+  REQUIRE(w.proxy().in_contact);
+  const argil::Pose landed = w.proxy().X_WT;
+  int held = 0;
+  for (int t = 0; t < 120; ++t) {
+    const bool eased = (t / 2) % 2 == 1;
+    const argil::TickResult r =
+        w.step(at(45, 45, landed.p.z() - 3.0 + (eased ? 0.5 : 0.0)), 1e-3);
+    REQUIRE(r.status.ok());
+    CAPTURE(t);
+    CHECK(r.proxy.in_contact);
+    CHECK(r.max_depth <= eps);
+    CHECK(r.proxy.X_WT.p.x() == landed.p.x());
+    CHECK(r.proxy.X_WT.p.y() == landed.p.y());
+    // The second tick of a held hand, eased or not, once the tool has come
+    // down from its landing (two ticks): stuck, in two queries.
+    if (t >= 2 && t % 2 == 1) {
+      CHECK(r.proxy.stuck);
+      CHECK(r.tool_contact_queries <= 2);
+      CHECK(r.tool_crossing_tests == 0);
+      held += r.proxy.stuck ? 1 : 0;
+    }
+  }
+  CHECK(held == 59);
 }
