@@ -342,3 +342,63 @@ TEST_CASE("a window moves on from poles at rest only: poles still moving stay in
   CHECK(!rested_after.contains(rested_before));
   CHECK(rested_after.count_u() < moving_after.count_u());
 }
+
+TEST_CASE(
+    "a window dropped when its body sleeps serves a load that comes back inside it at once, as "
+    "the whole net would; a load elsewhere or at another dt gets a window of its own",
+    "[deformation][local]") {
+  const BSplineSurface s = argil::test::flat_bicubic_panel(630.0, 61);  // 10 mm pitch
+  const argil::Material m = *argil::material_preset("clay");
+  const int nu = s.count(Direction::u), nv = s.count(Direction::v);
+  argil::DeformableBody local = make_body(s, m);
+  argil::DeformableBody full = make_body(s, m);
+  full.set_local_solves(false);
+  const auto press = [&](double u, int steps, double dt) {
+    for (int t = 0; t < steps; ++t) {
+      const Eigen::VectorXd g = pattern_at(s, u, 0.5);
+      for (argil::DeformableBody* body : {&local, &full}) {
+        REQUIRE(body->begin_step(dt, {}, g).ok());
+        body->finish_step(Eigen::Vector3d(0.0, 0.0, -3.0));
+      }
+    }
+  };
+  // A load travelling along u: its window grows ahead of it, larger than a
+  // first window where the load ends (which has no slack).
+  for (int t = 0; t < 30; ++t) press(0.30 + 0.001 * t, 1, 1e-3);
+  const PoleWindow grown = local.solved_window();
+  const auto first_window = [&](double u) {
+    return loaded(s, pattern_at(s, u, 0.5))
+        .grown(local.window_margin(0), local.window_margin(1), nu, nv);
+  };
+  REQUIRE(!(grown == whole(s)));
+  REQUIRE(grown.contains(first_window(0.329)));
+  REQUIRE(!(grown == first_window(0.329)));
+  // Put to sleep, and pressed again where the load ended: the first step
+  // solves the dropped window, factorised long ago (without it, a new window
+  // is factorised within that step).
+  local.halt();
+  full.halt();
+  press(0.329, 1, 1e-3);
+  CHECK(local.solved_window() == grown);
+  CHECK(!local.window_growing());
+  press(0.329, 100, 1e-3);
+  CHECK(local.solved_window() == grown);
+  const ControlNet sink_local = local.control_points() - s.control_points;
+  const ControlNet sink_full = full.control_points() - s.control_points;
+  const double depth = sink_full.col(2).cwiseAbs().maxCoeff();
+  const double difference = (sink_local - sink_full).cwiseAbs().maxCoeff();
+  INFO("dent " << depth << " mm, largest difference " << difference << " mm");
+  REQUIRE(depth > 0.05);
+  CHECK(difference < 0.01 * depth);
+  // Asleep again and pressed there at another dt: a first window of its own
+  // (the dropped one is factorised for 1 ms steps).
+  local.halt();
+  REQUIRE(local.begin_step(2e-3, {}, pattern_at(s, 0.329, 0.5)).ok());
+  local.finish_step(Eigen::Vector3d(0.0, 0.0, -3.0));
+  CHECK(local.solved_window() == first_window(0.329));
+  // And pressed outside it: a first window of its own where it lands.
+  local.halt();
+  REQUIRE(local.begin_step(1e-3, {}, pattern_at(s, 0.7, 0.5)).ok());
+  local.finish_step(Eigen::Vector3d(0.0, 0.0, -3.0));
+  CHECK(local.solved_window() == first_window(0.7));
+}

@@ -733,8 +733,9 @@ TEST_CASE("a hand turning on past where the B-spline tool's rim meets a floor co
   CHECK(blocked > 0.5);  // the turn was blocked, the hand turned on
 }
 
-TEST_CASE("a B-spline tool whose settle would cross a panel springing back stays stuck where it was",
-          "[haptic]") {
+TEST_CASE(
+    "a B-spline tool whose settle would cross a panel springing back stays stuck where it was",
+    "[haptic]") {
   // The cap rests on an elastic soft panel, the hand 3 mm below it. Every
   // other pair of ticks the hand eases off by 0.5 mm: the panel springs back
   // up into where the settle would bring the tool (the last tick left it
@@ -753,8 +754,7 @@ TEST_CASE("a B-spline tool whose settle would cross a panel springing back stays
   int held = 0;
   for (int t = 0; t < 120; ++t) {
     const bool eased = (t / 2) % 2 == 1;
-    const argil::TickResult r =
-        w.step(at(45, 45, landed.p.z() - 3.0 + (eased ? 0.5 : 0.0)), 1e-3);
+    const argil::TickResult r = w.step(at(45, 45, landed.p.z() - 3.0 + (eased ? 0.5 : 0.0)), 1e-3);
     REQUIRE(r.status.ok());
     CAPTURE(t);
     CHECK(r.proxy.in_contact);

@@ -495,10 +495,11 @@ Box3 DeformableBody::solved_box() const {
 
 void DeformableBody::halt() {
   velocities_.setZero();
-  // After a load the next one opens a window where it lands; a window
-  // anticipated on a body still resting is kept (as in a world without sleep).
+  // After a load the next one opens a window where it lands (or takes up the
+  // dropped one, kept, when it lands inside it); a window anticipated on a
+  // body still resting stays active (as in a world without sleep).
   if (!resting_) {
-    local_.reset();
+    keep_local();
     pending_.reset();
   }
   resting_ = true;
@@ -674,7 +675,26 @@ void DeformableBody::set_local_solves(bool on) {
   if (!on) {
     local_.reset();
     pending_.reset();
+    kept_.reset();
   }
+}
+
+void DeformableBody::keep_local() {
+  if (local_ && local_->solver) kept_ = std::move(local_);
+  local_.reset();
+}
+
+bool DeformableBody::take_kept(const PoleWindow& needed, const PoleWindow& target, double dt) {
+  if (!kept_ || kept_->dt != dt || !kept_->window.contains(needed)) return false;
+  const auto size = [](const PoleWindow& w) {
+    return static_cast<long long>(w.count_u()) * w.count_v();
+  };
+  // A window much larger than the loads need costs every step more than it saves.
+  if (size(kept_->window) > 2 * size(target)) return false;
+  // The active window it replaces (which the loads outgrew) is kept instead.
+  std::swap(local_, kept_);
+  if (kept_ && !kept_->solver) kept_.reset();
+  return true;
 }
 
 Status DeformableBody::plan_region(double dt, const ControlNet& forces,
@@ -708,7 +728,7 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
     if (resting_ && !(local_ && local_->window.contains(needed)) &&
         !(pending_ && pending_->window.contains(needed))) {
       // An anticipated window the first load missed: open one where it landed.
-      local_.reset();
+      keep_local();
       pending_.reset();
     }
     const PoleWindow current = local_ ? local_->window : PoleWindow{};
@@ -730,6 +750,9 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
       pending_.reset();
       if (target == net) {
         local_.reset();  // the whole net
+      } else if (take_kept(needed, target, dt)) {
+        // A face a joint moves now and then comes back to the same window.
+        local_->outside_at_rest = outside_at_rest;
       } else {
         pending_ = region(target);
         pending_->dt = dt;
@@ -742,7 +765,7 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
     double motion = 0.0;
     for (const Eigen::Index p : local_->order)
       motion = std::max(motion, step_dt_ * velocities_.row(p).norm());
-    if (motion < kWindowRestMotion) local_.reset();
+    if (motion < kWindowRestMotion) keep_local();
   }
   if (Status f = advance_pending(dt, loads); !f.ok()) return f;
   step_local_ = local_.has_value() && local_->window.contains(loads);

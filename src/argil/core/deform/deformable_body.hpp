@@ -262,6 +262,12 @@ class DeformableBody {
   /// This step's share of the pending window's factorisation (all of it when
   /// `loads` lie outside the active window and the step cannot wait).
   Status advance_pending(double dt, const PoleWindow& loads);
+  /// Drops the active window, keeping it as kept_ when it is factorised.
+  void keep_local();
+  /// Makes kept_ the active window (keeping the one it replaces) for loads
+  /// needing `needed` when it holds them at dt and is at most twice the size
+  /// of `target`, the window they would get; true when it did.
+  bool take_kept(const PoleWindow& needed, const PoleWindow& target, double dt);
   /// begin_step with a pattern or without one (null).
   Result<LoadPreview> start_step(double dt, const ControlNet& forces, const PoleWeights* pattern);
   /// Moves the rest control points so that no stretch exceeds the yield,
@@ -313,6 +319,10 @@ class DeformableBody {
   SolveRegion full_;
   /// The active local window and a larger one being factorised.
   std::optional<SolveRegion> local_, pending_;
+  /// The last factorised window dropped (its loads came to rest, or the body
+  /// slept): a load that comes back inside it steps in it at once instead of
+  /// stepping the whole net while a new window is factorised (take_kept).
+  std::optional<SolveRegion> kept_;
   bool local_solves_ = true;
   /// The last anticipate() found the load's window to be the whole net.
   bool anticipated_whole_ = false;
