@@ -452,11 +452,41 @@ TEST_CASE("joints: an edge the tool comes near is prepared before the contact ti
   CHECK(ready_before_contact);
 }
 
+TEST_CASE(
+    "joints: an edge beyond the tool's reach but within the clay's spread is prepared before "
+    "contact",
+    "[haptic][joint]") {
+  argil::HapticWorld w = joined_panels();
+  // Down onto panel a halfway between one tool reach (2 r + 4 eps) and that
+  // plus the clay's influence length from the edge: a dent there reaches it.
+  const double reach = 2.0 * kRadius + 4.0 * kEps;
+  const double spread = w.deformable(0)->influence_length();
+  REQUIRE(reach + spread < kSize);
+  const Eigen::Vector3d start(kSize - reach - 0.5 * spread, 0.5 * kSize, kRadius + 3.0);
+  bool ready_before_contact = false;
+  int first_contact = -1;
+  for (int t = 0; t < 800 && first_contact < 0; ++t) {
+    const argil::DeviceSample s{.tick = t,
+                                .t = t * kDt,
+                                .X_WD = argil::Pose::at(start - Eigen::Vector3d(0, 0, 0.01 * t)),
+                                .engaged = true};
+    ready_before_contact = w.joint(0).joint.ready();
+    const argil::TickResult r = w.step(s, kDt);
+    REQUIRE(r.status.ok());
+    if (r.contacts > 0) first_contact = t;
+  }
+  REQUIRE(first_contact > 0);
+  CHECK(ready_before_contact);
+}
+
 TEST_CASE("joints: an edge the tool stays away from is not prepared", "[haptic][joint]") {
   argil::HapticWorld w = joined_panels();
-  // Over panel a, 0.5 mm above it, along y, 7 mm and more from the edge at x = 10.
+  // Over panel a, 0.5 mm above it, along y, farther from the edge at x = 10
+  // than one tool reach and the clay's influence length.
+  const double away = 2.0 * kRadius + 4.0 * kEps + w.deformable(0)->influence_length() + 0.2;
+  REQUIRE(away < kSize);
   for (int t = 0; t < 500; ++t) {
-    const Eigen::Vector3d p(3.0, 1.0 + 0.016 * t, kRadius + 0.5);
+    const Eigen::Vector3d p(kSize - away, 1.0 + 0.016 * t, kRadius + 0.5);
     const argil::DeviceSample s{
         .tick = t, .t = t * kDt, .X_WD = argil::Pose::at(p), .engaged = true};
     const argil::TickResult r = w.step(s, kDt);

@@ -322,9 +322,10 @@ Result<DeformableBody> DeformableBody::create(const BSplineSurface& surface,
   // face carries the load: the window is the net.
   {
     const double a = k.membrane * body.elastic_scale_, d = k.bending * body.elastic_scale_;
-    const double length = k.foundation > 0.0 ? 3.0 * std::max(std::pow(d / k.foundation, 0.25),
-                                                              std::sqrt(a / k.foundation))
-                                             : std::numeric_limits<double>::infinity();
+    body.influence_length_ =
+        k.foundation > 0.0 ? std::max(std::pow(d / k.foundation, 0.25), std::sqrt(a / k.foundation))
+                           : std::numeric_limits<double>::infinity();
+    const double length = 3.0 * body.influence_length_;
     const ControlNet& p = surface.control_points;
     double pitch_u = 0.0, pitch_v = 0.0;
     for (int i = 0; i < nu; ++i)

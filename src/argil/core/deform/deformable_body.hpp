@@ -220,6 +220,10 @@ class DeformableBody {
   /// along u and v.
   int window_margin(int direction) const { return margin_[static_cast<std::size_t>(direction)]; }
   int window_slack(int direction) const { return slack_[static_cast<std::size_t>(direction)]; }
+  /// How far a load's dent spreads [mm]: the larger of the bending length
+  /// (D / k_a)^(1/4) and the membrane's sqrt(A / k_a) (+inf without a
+  /// foundation: the whole face carries the load). A window reaches three.
+  double influence_length() const { return influence_length_; }
 
  private:
   /// The largest distance a pole moved in the last step itself [mm].
@@ -328,6 +332,7 @@ class DeformableBody {
   bool anticipated_whole_ = false;
   /// Influence margin and growth slack of a window, in poles along u and v.
   std::array<int, 2> margin_{0, 0}, slack_{0, 0};
+  double influence_length_ = 0.0;  // see influence_length()
   PoleWindow stepped_window_;
   /// Poles a joint moved since the last step, and how far the farthest went [mm].
   PoleWindow displaced_;

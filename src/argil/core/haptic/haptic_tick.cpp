@@ -267,7 +267,9 @@ TickResult HapticWorld::step(const DeviceSample& device, double dt) {
     return r;
   }
   settle(reach);
-  if (joints.value() == 0) prepare_joint_ahead(around, next.X_WT.p, dt);
+  // Out of contact only: in contact a joint prepared ahead costs a tick with
+  // force as much as one prepared when first needed, and may never be needed.
+  if (joints.value() == 0 && !next.in_contact) prepare_joint_ahead(around, next.X_WT.p, dt);
   r.force = load.force;
   r.body_force = load.body_force;
   r.clamped = load.clamped;

@@ -269,9 +269,10 @@ class HapticWorld {
   Status prepare_joint(Joint& j, double dt);
   /// Prepares the joint nearest the tool at p_WT, of those of a `near` body
   /// not yet prepared for dt whose edge is within one tool reach of the
-  /// tool's and whose poles a step under the tool can move. Called at the end
-  /// of a tick that prepared no joint. A failure is left for enforce_joints
-  /// to report when the joint is needed.
+  /// tool's and the body's influence length beyond, and whose poles a step
+  /// under the tool can move. Called at the end of a tick out of contact that
+  /// prepared no joint. A failure is left for enforce_joints to report when
+  /// the joint is needed.
   void prepare_joint_ahead(const std::vector<char>& near, const Eigen::Vector3d& p_WT, double dt);
   /// Moves each welded pole pair of seam `j` to its mean (to the held one's
   /// place when one is held).
