@@ -457,6 +457,7 @@ TEST_CASE(
     "contact",
     "[haptic][joint]") {
   argil::HapticWorld w = joined_panels();
+  REQUIRE_FALSE(w.joint(0).joint.ready());
   // Down onto panel a halfway between one tool reach (2 r + 4 eps) and that
   // plus the clay's influence length from the edge: a dent there reaches it.
   const double reach = 2.0 * kRadius + 4.0 * kEps;

@@ -751,9 +751,10 @@ TEST_CASE(
     REQUIRE(w.step(at(45, 45, -3.0), 1e-3).status.ok());
   REQUIRE(w.proxy().in_contact);
   const argil::Pose landed = w.proxy().X_WT;
-  int held = 0;
+  int held = 0, fell_back = 0;
   for (int t = 0; t < 120; ++t) {
     const bool eased = (t / 2) % 2 == 1;
+    const Eigen::Vector3d before = w.proxy().X_WT.p;
     const argil::TickResult r = w.step(at(45, 45, landed.p.z() - 3.0 + (eased ? 0.5 : 0.0)), 1e-3);
     REQUIRE(r.status.ok());
     CAPTURE(t);
@@ -769,8 +770,12 @@ TEST_CASE(
       CHECK(r.tool_crossing_tests == 0);
       held += r.proxy.stuck ? 1 : 0;
     }
+    // Where the settle crossed, the tool stays exactly where the last tick
+    // left it (settled, or settled further, it comes down).
+    if (t >= 2 && r.proxy.stuck && r.proxy.X_WT.p == before) ++fell_back;
   }
   CHECK(held == 59);
+  CHECK(fell_back >= 20);  // the second eased tick, each time (29 of them)
 }
 
 TEST_CASE(
@@ -785,6 +790,7 @@ TEST_CASE(
   const double eps = 0.05;
   argil::HapticWorld w = cap_on_soft_panel(eps);
   const argil::Pose landed = w.proxy().X_WT;
+  int settled_on = 0;
   for (int t = 0; t < 300; ++t) {
     const double x = landed.p.x() + 0.02 * t;
     const argil::TickResult r = w.step(at(x, landed.p.y(), landed.p.z() - 3.0), 1e-3);
@@ -794,5 +800,8 @@ TEST_CASE(
     CHECK(r.max_depth >= -eps);
     CHECK(r.tool_contact_queries <= 2);
     CHECK(r.tool_crossing_tests == 0);
+    // Slipping, the slip's query and the settle's: two.
+    if (!r.proxy.stuck && r.tool_contact_queries == 2) ++settled_on;
   }
+  CHECK(settled_on > 0);
 }

@@ -653,7 +653,11 @@ void DeformableBody::anticipate(const Eigen::Vector2d& uv, double dt) {
   const PoleWindow target =
       tie_closed(loads.grown(margin_[0] + slack_[0], margin_[1] + slack_[1], nu, nv));
   anticipated_whole_ = target == PoleWindow{0, nu, 0, nv};
-  if (anticipated_whole_) return;  // nothing to prepare
+  if (anticipated_whole_) return;       // nothing to prepare
+  if (take_kept(target, target, dt)) {  // the window a load there last had
+    local_->outside_at_rest = resting_;
+    return;
+  }
   pending_ = region(target);
   pending_->dt = dt;
   pending_->outside_at_rest = resting_;
@@ -687,6 +691,10 @@ void DeformableBody::keep_local() {
 
 bool DeformableBody::take_kept(const PoleWindow& needed, const PoleWindow& target, double dt) {
   if (!kept_ || kept_->dt != dt || !kept_->window.contains(needed)) return false;
+  // Replacing an active window, it must hold all the new one would: that
+  // holds the poles the loads left behind that still move (held outside a
+  // window, they would stop where they are).
+  if (local_ && !kept_->window.contains(target)) return false;
   const auto size = [](const PoleWindow& w) {
     return static_cast<long long>(w.count_u()) * w.count_v();
   };
@@ -704,6 +712,7 @@ Status DeformableBody::plan_region(double dt, const ControlNet& forces,
   step_idle_ = false;
   if (!local_solves_) return Status::success();
   if (local_ && local_->dt != dt) local_.reset();
+  if (kept_ && kept_->dt != dt) kept_.reset();  // its memory, for a window of no use
   if (pending_ && pending_->dt != dt) pending_.reset();
   const int nu = stiffness_.count_u(), nv = stiffness_.count_v();
   const PoleWindow net{0, nu, 0, nv};
