@@ -428,6 +428,25 @@ argil::HapticWorld joined_panels() {
   return w;
 }
 
+/// Brings the tool straight down from `start` at 0.01 mm a tick until it
+/// touches; whether joint 0 was prepared before that tick.
+bool ready_before_contact(argil::HapticWorld& w, const Eigen::Vector3d& start) {
+  bool ready = false;
+  int first_contact = -1;
+  for (int t = 0; t < 800 && first_contact < 0; ++t) {
+    const argil::DeviceSample s{.tick = t,
+                                .t = t * kDt,
+                                .X_WD = argil::Pose::at(start - Eigen::Vector3d(0, 0, 0.01 * t)),
+                                .engaged = true};
+    ready = w.joint(0).joint.ready();
+    const argil::TickResult r = w.step(s, kDt);
+    REQUIRE(r.status.ok());
+    if (r.contacts > 0) first_contact = t;
+  }
+  REQUIRE(first_contact > 0);
+  return ready;
+}
+
 }  // namespace
 
 TEST_CASE("joints: an edge the tool comes near is prepared before the contact tick",
@@ -436,20 +455,7 @@ TEST_CASE("joints: an edge the tool comes near is prepared before the contact ti
   REQUIRE_FALSE(w.joint(0).joint.ready());
   // From 6 mm above the edge down into it at 0.01 mm a tick.
   const Eigen::Vector3d start(kSize - 0.5, 0.5 * kSize, kRadius + 6.0);
-  bool ready_before_contact = false;
-  int first_contact = -1;
-  for (int t = 0; t < 800 && first_contact < 0; ++t) {
-    const argil::DeviceSample s{.tick = t,
-                                .t = t * kDt,
-                                .X_WD = argil::Pose::at(start - Eigen::Vector3d(0, 0, 0.01 * t)),
-                                .engaged = true};
-    ready_before_contact = w.joint(0).joint.ready();
-    const argil::TickResult r = w.step(s, kDt);
-    REQUIRE(r.status.ok());
-    if (r.contacts > 0) first_contact = t;
-  }
-  REQUIRE(first_contact > 0);
-  CHECK(ready_before_contact);
+  CHECK(ready_before_contact(w, start));
 }
 
 TEST_CASE(
@@ -464,20 +470,7 @@ TEST_CASE(
   const double spread = w.deformable(0)->influence_length();
   REQUIRE(reach + spread < kSize);
   const Eigen::Vector3d start(kSize - reach - 0.5 * spread, 0.5 * kSize, kRadius + 3.0);
-  bool ready_before_contact = false;
-  int first_contact = -1;
-  for (int t = 0; t < 800 && first_contact < 0; ++t) {
-    const argil::DeviceSample s{.tick = t,
-                                .t = t * kDt,
-                                .X_WD = argil::Pose::at(start - Eigen::Vector3d(0, 0, 0.01 * t)),
-                                .engaged = true};
-    ready_before_contact = w.joint(0).joint.ready();
-    const argil::TickResult r = w.step(s, kDt);
-    REQUIRE(r.status.ok());
-    if (r.contacts > 0) first_contact = t;
-  }
-  REQUIRE(first_contact > 0);
-  CHECK(ready_before_contact);
+  CHECK(ready_before_contact(w, start));
 }
 
 TEST_CASE("joints: an edge the tool stays away from is not prepared", "[haptic][joint]") {
