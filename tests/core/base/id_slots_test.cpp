@@ -1,9 +1,11 @@
 // IdSlots: an id maps to what was set for it since the last clear, -1 before;
 // clear forgets every id however large, and ids set after it start clean; the
-// table grows with the ids one query sets (against a brute-force map).
+// table grows with the ids one query sets (against a brute-force map); and
+// after 2^32 clears the generation wraps without bringing old ids back.
 #include <catch2/catch.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <random>
 
@@ -79,6 +81,23 @@ TEST_CASE("id slots agree with a map over pages, shared low bits and clears", "[
     }
     for (const auto& [id, value] : truth) REQUIRE(slots.find(id) == -1);
   }
+}
+
+TEST_CASE("id slots forget old ids when their generation wraps", "[id_slots]") {
+  // A slot stores the generation that wrote it: 2^32 clears later the
+  // generation counter comes back to that value, and without the wrap's
+  // reset the old value would be found again. (About a second of clears.)
+  IdSlots slots;
+  slots.set(5, 42);  // generation 1
+  slots.clear();
+  slots.set(7, 1);  // generation 2
+  for (std::uint64_t k = 0; k < (std::uint64_t{1} << 32) - 1; ++k) slots.clear();
+  CHECK(slots.find(5) == -1);  // a plain counter would be back at 1 here
+  CHECK(slots.find(7) == -1);
+  slots.set(5, 3);
+  CHECK(slots.find(5) == 3);
+  slots.clear();
+  CHECK(slots.find(5) == -1);
 }
 
 }  // namespace

@@ -489,3 +489,54 @@ TEST_CASE("joints: an edge the tool stays away from is not prepared", "[haptic][
   }
   CHECK_FALSE(w.joint(0).joint.ready());
 }
+
+TEST_CASE("joints: no edge is prepared ahead in a tick with contact", "[haptic][joint]") {
+  // The panels under a rigid plate 1 mm above them: the tool slides over the
+  // plate, in contact every tick, from beyond the edge's reach to right over
+  // it, and never touches the panels. Their joint never opens, so only the
+  // preparation ahead could prepare it, and it must wait for a tick without
+  // contact.
+  argil::HapticWorld w = joined_panels();
+  constexpr double kPlate = 1.0;
+  argil::BSplineSurface plate = argil::test::flat_bicubic_panel(60.0, 5);
+  plate.control_points.rowwise() += Eigen::RowVector3d(-40.0, -25.0, kPlate);
+  REQUIRE(w.add_rigid(plate, 0.0).ok());
+  const double ahead = 2.0 * kRadius + 4.0 * kEps + w.deformable(0)->influence_length();
+  REQUIRE(kPlate + kRadius < ahead);  // over the edge, the tool is within its reach
+
+  // Down onto the plate beyond the edge's reach, then along x over the edge,
+  // pressed 0.2 mm into the plate; then up off it, still within reach.
+  const double x0 = kSize - ahead - 5.0;
+  const double press_z = kPlate + kRadius - 0.2;
+  int t = 0;
+  const auto step = [&](const Eigen::Vector3d& device) {
+    const argil::DeviceSample s{
+        .tick = t, .t = t * kDt, .X_WD = argil::Pose::at(device), .engaged = true};
+    ++t;
+    const argil::TickResult r = w.step(s, kDt);
+    REQUIRE(r.status.ok());
+    return r;
+  };
+  for (int k = 0; k <= 100; ++k) {
+    (void)step({x0, 0.5 * kSize, press_z + 0.01 * (100 - k)});
+    REQUIRE_FALSE(w.joint(0).joint.ready());
+  }
+  for (int k = 0; k <= 1000; ++k) {
+    const double x = x0 + (kSize - x0) * k / 1000.0;
+    const argil::TickResult r = step({x, 0.5 * kSize, press_z});
+    REQUIRE(r.contacts > 0);
+    REQUIRE(r.body_contacts[0].empty());
+    REQUIRE(r.body_contacts[1].empty());
+    REQUIRE_FALSE(w.joint(0).joint.ready());
+  }
+  REQUIRE((step({kSize, 0.5 * kSize, press_z}).proxy.X_WT.p -
+           Eigen::Vector3d(kSize, 0.5 * kSize, kPlate + kRadius))
+              .norm() < 0.1);
+  // Lifted off, the first tick without contact prepares it.
+  bool ready = false;
+  for (int k = 0; k < 50 && !ready; ++k) {
+    const argil::TickResult r = step({kSize, 0.5 * kSize, kPlate + kRadius + 0.5});
+    ready = r.contacts == 0 && w.joint(0).joint.ready();
+  }
+  CHECK(ready);
+}
