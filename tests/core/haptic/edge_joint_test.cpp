@@ -532,7 +532,7 @@ TEST_CASE("joints: no edge is prepared ahead in a tick with contact", "[haptic][
   REQUIRE((step({kSize, 0.5 * kSize, press_z}).proxy.X_WT.p -
            Eigen::Vector3d(kSize, 0.5 * kSize, kPlate + kRadius))
               .norm() < 0.1);
-  // Lifted off, the first tick without contact prepares it.
+  // Lifted off, a tick without contact prepares it.
   bool ready = false;
   for (int k = 0; k < 50 && !ready; ++k) {
     const argil::TickResult r = step({kSize, 0.5 * kSize, kPlate + kRadius + 0.5});
