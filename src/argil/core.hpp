@@ -32,6 +32,7 @@
 #include "argil/core/geometry/trim_region.hpp"        // IWYU pragma: export
 // operators
 #include "argil/core/operators/curve_operators.hpp"    // IWYU pragma: export
+#include "argil/core/operators/patch_evaluator.hpp"    // IWYU pragma: export
 #include "argil/core/operators/surface_operators.hpp"  // IWYU pragma: export
 // hierarchy
 #include "argil/core/hierarchy/normal_cone.hpp"        // IWYU pragma: export

@@ -1,6 +1,7 @@
 // Oracle: points and derivatives up to second order agree with OpenCASCADE's
 // Geom_BSplineSurface on generated surfaces (degrees 1 to 9, non-uniform
-// knots with multiplicities, random weights).
+// knots with multiplicities, random weights), evaluated directly and through
+// the elements' Bezier patches (PatchEvaluator).
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <TColStd_Array1OfInteger.hxx>
@@ -41,7 +42,8 @@ Eigen::Vector3d eig(const gp_Vec& v) { return {v.X(), v.Y(), v.Z()}; }
 TEST_CASE("points and derivatives up to order 2 agree with OpenCASCADE to 1e-12 relative") {
   std::mt19937_64 rng(2024);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  double worst[3] = {0, 0, 0};
+  argil::OperatorCache cache;
+  double worst[3] = {0, 0, 0}, worst_patch[2] = {0, 0};
   int surfaces = 0;
   for (int degree = 1; degree <= 9; ++degree) {
     for (int trial = 0; trial < 24; ++trial) {
@@ -69,7 +71,11 @@ TEST_CASE("points and derivatives up to order 2 agree with OpenCASCADE to 1e-12 
       for (Eigen::Index k = s.degree[1]; k <= s.count(Direction::v); ++k)
         vs.push_back(s.knots[1][k]);
       double d1_scale = 0.0, d2_scale = 0.0;
-      double err[3] = {0, 0, 0};
+      double err[3] = {0, 0, 0}, err_patch[2] = {0, 0};
+      // One evaluator for all samples: each row of v crosses every element,
+      // so its few kept patches are replaced again and again.
+      const argil::SurfaceOperators ops = argil::surface_operators(s, cache).value();
+      argil::PatchEvaluator patches(s, ops);
       for (double u : us) {
         for (double v : vs) {
           gp_Pnt p;
@@ -80,6 +86,14 @@ TEST_CASE("points and derivatives up to order 2 agree with OpenCASCADE to 1e-12 
           err[1] = std::max({err[1], (d.du - eig(du)).norm(), (d.dv - eig(dv)).norm()});
           err[2] = std::max({err[2], (d.duu - eig(duu)).norm(), (d.duv - eig(duv)).norm(),
                              (d.dvv - eig(dvv)).norm()});
+          // Through the element's Bezier patch, orders 0 and 1 (the element
+          // at a knot is the one whose one-sided derivatives OCCT gives).
+          const argil::SurfaceDerivatives e1 = patches.evaluate(u, v, 1);
+          const argil::SurfaceDerivatives e0 = patches.evaluate(u, v, 0);
+          err_patch[0] =
+              std::max({err_patch[0], (e1.point - eig(p)).norm(), (e0.point - eig(p)).norm()});
+          err_patch[1] =
+              std::max({err_patch[1], (e1.du - eig(du)).norm(), (e1.dv - eig(dv)).norm()});
           // Rounding in a derivative scales with its terms, sum |N'| |P|, not with
           // the (possibly cancelling) result: measure relative to that.
           const auto pu = term_scale(s, Direction::u, u);
@@ -102,18 +116,24 @@ TEST_CASE("points and derivatives up to order 2 agree with OpenCASCADE to 1e-12 
         }
       }
       const double rel[3] = {err[0] / size, err[1] / d1_scale, err[2] / d2_scale};
+      const double rel_patch[2] = {err_patch[0] / size, err_patch[1] / d1_scale};
       INFO("degree " << s.degree[0] << "x" << s.degree[1] << (s.is_rational() ? " rational" : "")
                      << " poles " << s.count(Direction::u) << "x" << s.count(Direction::v)
-                     << ": relative errors " << rel[0] << ", " << rel[1] << ", " << rel[2]);
+                     << ": relative errors " << rel[0] << ", " << rel[1] << ", " << rel[2]
+                     << "; through the patches " << rel_patch[0] << ", " << rel_patch[1]);
       // Two independent implementations of the same sums: rounding only.
       CHECK(rel[0] <= 1e-12);
       CHECK(rel[1] <= 1e-12);
       CHECK(rel[2] <= 1e-12);
+      CHECK(rel_patch[0] <= 1e-12);
+      CHECK(rel_patch[1] <= 1e-12);
       for (int o = 0; o < 3; ++o) worst[o] = std::max(worst[o], rel[o]);
+      for (int o = 0; o < 2; ++o) worst_patch[o] = std::max(worst_patch[o], rel_patch[o]);
     }
   }
   WARN(surfaces << " surfaces; worst relative error vs OpenCASCADE: D0 " << worst[0] << ", D1 "
-                << worst[1] << ", D2 " << worst[2]);
+                << worst[1] << ", D2 " << worst[2] << "; through the patches D0 " << worst_patch[0]
+                << ", D1 " << worst_patch[1]);
 }
 
 TEST_CASE("the closest point is within eps of OpenCASCADE's global projection") {

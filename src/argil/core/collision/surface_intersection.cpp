@@ -18,6 +18,7 @@
 #include "argil/core/collision/detail/curve_densifier.hpp"
 #include "argil/core/collision/detail/curve_end_march.hpp"
 #include "argil/core/collision/detail/curve_tidy.hpp"
+#include "argil/core/collision/detail/edge_crossings.hpp"
 #include "argil/core/collision/detail/segment_chains.hpp"
 #include "argil/core/collision/detail/surface_pair_refine.hpp"
 #include "argil/core/collision/detail/swept_leaves.hpp"
@@ -600,7 +601,7 @@ IntersectionCurve refine_curve(const SurfacePair& pair, IntersectionCurve c,
   // A transversal leaf's points were refined in the descent (pinned); the
   // densifier starts from their tangents (the leaves' segments are long).
   for (std::size_t k = 0; k < (closed ? n - 1 : n); ++k) {
-    tangents[k] = pinned[k] ? curve_tangent(pair.a, pair.b, c.uv_a[k], c.uv_b[k])
+    tangents[k] = pinned[k] ? curve_tangent(pair.eval_a, pair.eval_b, c.uv_a[k], c.uv_b[k])
                             : refine_curve_point(pair, c, k, reaches[k]);
     refined[k] = pinned[k] || tangents[k].has_value();
   }
@@ -638,8 +639,9 @@ detail::EndMarch march_for(const SurfacePair& pair, double eps) {
 /// Moves a near-touch contact to a local closest pair when that is no farther
 /// apart than the start: depth -gap, or 0 where the surfaces turn out to cross.
 void refine_near_touch(const SurfacePair& pair, Contact& c, double reach) {
-  const double before =
-      (evaluate(pair.a, c.uv_a[0], c.uv_a[1]) - evaluate(pair.b, c.uv_b[0], c.uv_b[1])).norm();
+  const double before = (pair.eval_a.evaluate(c.uv_a[0], c.uv_a[1], 0).point -
+                         pair.eval_b.evaluate(c.uv_b[0], c.uv_b[1], 0).point)
+                            .norm();
   const std::optional<RefinedPair> r = refine_near(pair, {c.point, c.uv_a, c.uv_b}, false, reach);
   if (!r || !(r->gap <= before)) return;
   c.point = r->point;
@@ -886,6 +888,7 @@ class PairDescent {
     if (request.curves && pass == Pass::end)
       coincide_.emplace(ha.surface(), hb.surface(),
                         placed_b ? placed_b->R : Eigen::Matrix3d::Identity(), request.tolerance);
+    if (coarse_ > 0.0) edge_crossings_.emplace(*exact_);
   }
 
   void run() {
@@ -975,14 +978,21 @@ class PairDescent {
   /// Refines a segment's ends onto both exact surfaces, an end on an edge of
   /// either leaf along that edge (pin_to_leaf_edge); false at the first end
   /// that does not converge near the leaves (the pair is then split, so the
-  /// other end is not tried).
+  /// other end is not tried). An end on an edge the leaf pair across it has
+  /// refined already takes that crossing.
   bool refine_ends(detail::Segment& seg, const LeafTriangles& la, const LeafTriangles& lb,
-                   double reach) const {
+                   double reach) {
     for (std::size_t k = 0; k < 2; ++k) {
       Eigen::Vector2d uv_a = seg.uv_a[k], uv_b = seg.uv_b[k];
       const int fixed = pin_to_leaf_edge(uv_a, la.rect, uv_b, lb.rect);
-      const std::optional<RefinedPair> r =
-          refine_near(*exact_, {seg.points[k], uv_a, uv_b}, true, reach, fixed);
+      const PairPoint start{seg.points[k], uv_a, uv_b};
+      std::optional<RefinedPair> r;
+      if (const RefinedPair* kept = fixed >= 0 ? edge_crossings_->find(start, fixed) : nullptr) {
+        if ((kept->point - start.point).norm() <= reach) r = *kept;
+      } else {
+        r = refine_near(*exact_, start, true, reach, fixed);
+        if (r && fixed >= 0) edge_crossings_->keep(start, fixed, *r);
+      }
       if (!r) return false;
       seg.points[k] = r->point;
       seg.uv_a[k] = r->uv_a;
@@ -1133,8 +1143,9 @@ class PairDescent {
 
   const CollisionRequest& request_;
   QueryCounters& counters_;
-  const SurfacePair* exact_;  // for coarse leaves' refinement
-  double coarse_;             // see coarse_tolerance()
+  const SurfacePair* exact_;                             // for coarse leaves' refinement
+  std::optional<detail::EdgeCrossings> edge_crossings_;  // with exact_: ends refined on leaf edges
+  double coarse_;                                        // see coarse_tolerance()
   Side sa_;
   Side sb_;
   double on_plane_;                    // see on_plane_distance
@@ -1171,9 +1182,12 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   }
   // The scale bounds refinement only: a pass over every pole, skipped by the
   // haptic proxies' many unrefined queries.
-  const SurfacePair pair{ha.surface(), placed_b && exact_b ? moved_b : hb.surface(),
+  const BSplineSurface& exact_surface_b = placed_b && exact_b ? moved_b : hb.surface();
+  PatchEvaluator eval_a(ha.surface(), ha.operators()), eval_b(exact_surface_b, hb.operators());
+  const SurfacePair pair{ha.surface(), exact_surface_b,
                          request.refine ? scale_of(ha.surface(), hb.surface())
-                                        : std::numeric_limits<double>::quiet_NaN()};
+                                        : std::numeric_limits<double>::quiet_NaN(),
+                         eval_a, eval_b};
   PairDescent descent(ha, hb, placed_b, sweep, PairDescent::Pass::end, request, result.counters,
                       &pair);
   descent.run();

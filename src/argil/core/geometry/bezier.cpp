@@ -81,20 +81,38 @@ namespace {
 
 /// Bernstein polynomials of `degree` at t and their first and second
 /// derivatives: d/dt B_i^p = p (B_{i-1}^{p-1} - B_i^{p-1}), and the same again
-/// for the second derivative from degree p - 2.
+/// for the second derivative from degree p - 2. Only entries 0 to p are set
+/// (the rows are sized for kMaxDegree, and zeroing or copying them whole cost
+/// more than the recurrence on every leaf and refinement evaluation).
 struct BernsteinRows {
-  std::array<double, kMaxDegree + 1> value{}, d1{}, d2{};
+  std::array<double, kMaxDegree + 1> value, d1, d2;
 };
 
 BernsteinRows bernstein_rows(int p, double t, int order) {
-  // One recurrence (as bernstein()), keeping the rows of degree p - 2 and
-  // p - 1 on the way; entries past a row's degree stay zero.
-  std::array<double, kMaxDegree + 1> b{}, low1{}, low2{};
+  // One recurrence (as bernstein()); the derivatives are taken from the rows
+  // of degree p - 2 and p - 1 as the recurrence passes them.
+  BernsteinRows r;
+  std::array<double, kMaxDegree + 1>& b = r.value;
+  // Entry i of the row b holds, of degree `degree`: zero outside 0 to degree.
+  const auto at = [&b](int degree, int i) {
+    return i < 0 || i > degree ? 0.0 : b[static_cast<std::size_t>(i)];
+  };
+  if (order >= 1 && p < 1) r.d1[0] = 0.0;
+  if (order >= 2 && p < 2)
+    for (int i = 0; i <= p; ++i) r.d2[static_cast<std::size_t>(i)] = 0.0;
   b[0] = 1.0;
   const double s = 1.0 - t;
   for (int j = 1; j <= p; ++j) {
-    if (j == p - 1) low2 = b;
-    if (j == p) low1 = b;
+    // b holds the row of degree j - 1 (entries 0 to j - 1).
+    if (order >= 2 && j == p - 1) {
+      for (int i = 0; i <= p; ++i)
+        r.d2[static_cast<std::size_t>(i)] =
+            p * (p - 1) * (at(j - 1, i - 2) - 2.0 * at(j - 1, i - 1) + at(j - 1, i));
+    }
+    if (order >= 1 && j == p) {
+      for (int i = 0; i <= p; ++i)
+        r.d1[static_cast<std::size_t>(i)] = p * (at(j - 1, i - 1) - at(j - 1, i));
+    }
     double saved = 0.0;
     for (int k = 0; k < j; ++k) {
       const double temp = b[static_cast<std::size_t>(k)];
@@ -102,21 +120,6 @@ BernsteinRows bernstein_rows(int p, double t, int order) {
       saved = t * temp;
     }
     b[static_cast<std::size_t>(j)] = saved;
-  }
-  BernsteinRows r;
-  r.value = b;
-  const auto at = [](const std::array<double, kMaxDegree + 1>& row, int i) {
-    return i < 0 ? 0.0 : row[static_cast<std::size_t>(i)];
-  };
-  if (order >= 1 && p >= 1) {
-    for (int i = 0; i <= p; ++i)
-      r.d1[static_cast<std::size_t>(i)] = p * (at(low1, i - 1) - at(low1, i));
-  }
-  if (order >= 2 && p >= 2) {
-    for (int i = 0; i <= p; ++i) {
-      r.d2[static_cast<std::size_t>(i)] =
-          p * (p - 1) * (at(low2, i - 2) - 2.0 * at(low2, i - 1) + at(low2, i));
-    }
   }
   return r;
 }

@@ -37,15 +37,32 @@ std::optional<NormalCone> normal_cone(const BezierPatch& patch) {
   std::array<Eigen::Vector3d, kMax * kMax> normals;
   const int nu = 2 * p, nv = 2 * q;
   for (int k = 0; k < nu * nv; ++k) normals[static_cast<std::size_t>(k)].setZero();
+  // The net's differences and the product weights, each computed once (the
+  // sum below takes every combination: p (q + 1) (p + 1) q terms).
+  constexpr int kSide = kMaxNormalConeDegree + 1;
+  std::array<Eigen::Vector3d, kSide * kSide> du, dv;  // du[i][j], i < p; dv[k][l], l < q
+  std::array<double, kSide * kSide> wu, wv;           // wu[i][k]; wv[j][l]
+  for (int i = 0; i < p; ++i)
+    for (int j = 0; j <= q; ++j)
+      du[static_cast<std::size_t>(i * kSide + j)] = point(i + 1, j) - point(i, j);
+  for (int k = 0; k <= p; ++k)
+    for (int l = 0; l < q; ++l)
+      dv[static_cast<std::size_t>(k * kSide + l)] = point(k, l + 1) - point(k, l);
+  for (int i = 0; i < p; ++i)
+    for (int k = 0; k <= p; ++k)
+      wu[static_cast<std::size_t>(i * kSide + k)] = product_weight(p - 1, i, p, k);
+  for (int j = 0; j <= q; ++j)
+    for (int l = 0; l < q; ++l)
+      wv[static_cast<std::size_t>(j * kSide + l)] = product_weight(q, j, q - 1, l);
   for (int i = 0; i < p; ++i) {
     for (int j = 0; j <= q; ++j) {
-      const Eigen::Vector3d du = point(i + 1, j) - point(i, j);
+      const Eigen::Vector3d& d_u = du[static_cast<std::size_t>(i * kSide + j)];
       for (int k = 0; k <= p; ++k) {
-        const double wu = product_weight(p - 1, i, p, k);
+        const double w_u = wu[static_cast<std::size_t>(i * kSide + k)];
         for (int l = 0; l < q; ++l) {
-          const Eigen::Vector3d dv = point(k, l + 1) - point(k, l);
           normals[static_cast<std::size_t>((i + k) * nv + j + l)] +=
-              (wu * product_weight(q, j, q - 1, l)) * du.cross(dv);
+              (w_u * wv[static_cast<std::size_t>(j * kSide + l)]) *
+              d_u.cross(dv[static_cast<std::size_t>(k * kSide + l)]);
         }
       }
     }

@@ -118,7 +118,7 @@ std::optional<IntersectionCurve> CurveDensifier::between(const PairPoint& lo, co
 }
 
 const CurveTangent& CurveDensifier::tangent(Node& n) const {
-  if (!n.tangent) n.tangent = curve_tangent(pair_.a, pair_.b, n.at.uv_a, n.at.uv_b);
+  if (!n.tangent) n.tangent = curve_tangent(pair_.eval_a, pair_.eval_b, n.at.uv_a, n.at.uv_b);
   return *n.tangent;
 }
 

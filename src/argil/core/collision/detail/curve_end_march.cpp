@@ -42,7 +42,7 @@ IntersectionCurve march_from_end(const SurfacePair& pair, const PairPoint& end,
                            pair.b.domain_start(Direction::u), pair.b.domain_start(Direction::v));
   const Eigen::Vector4d hi(pair.a.domain_end(Direction::u), pair.a.domain_end(Direction::v),
                            pair.b.domain_end(Direction::u), pair.b.domain_end(Direction::v));
-  CurveTangent t = oriented(curve_tangent(pair.a, pair.b, end.uv_a, end.uv_b), outward);
+  CurveTangent t = oriented(curve_tangent(pair.eval_a, pair.eval_b, end.uv_a, end.uv_b), outward);
   // The curve must leave the end the way the piece does (within 60 degrees):
   // otherwise the end is a turn the tangent does not describe.
   if (t.unit.isZero(0.0) || !(outward.norm() > 0.0) ||

@@ -161,8 +161,10 @@ CurveTangent tangent_from(const SurfaceDerivatives& da, const SurfaceDerivatives
 
 }  // namespace
 
-RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b,
+RefinedPair refine_surface_pair(PatchEvaluator& eval_a, PatchEvaluator& eval_b,
                                 const PairRefineRequest& request) {
+  const BSplineSurface& a = eval_a.surface();
+  const BSplineSurface& b = eval_b.surface();
   Eigen::Vector4d x(request.uv_a[0], request.uv_a[1], request.uv_b[0], request.uv_b[1]);
   const Eigen::Vector4d lo(a.domain_start(Direction::u), a.domain_start(Direction::v),
                            b.domain_start(Direction::u), b.domain_start(Direction::v));
@@ -170,8 +172,8 @@ RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b
                            b.domain_end(Direction::u), b.domain_end(Direction::v));
   // The surfaces at x: the start's derivatives serve the constraint and the
   // first iteration, and the last iteration's points the result.
-  SurfaceDerivatives da = evaluate_derivatives(a, x[0], x[1], 1);
-  SurfaceDerivatives db = evaluate_derivatives(b, x[2], x[3], 1);
+  SurfaceDerivatives da = eval_a.evaluate(x[0], x[1], 1);
+  SurfaceDerivatives db = eval_b.evaluate(x[2], x[3], 1);
   bool evaluated = true;
   const CurveConstraint constraint =
       request.on_curve ? curve_constraint(da, db, x, lo, hi, request.fixed) : CurveConstraint{};
@@ -181,8 +183,8 @@ RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b
   double previous = std::numeric_limits<double>::infinity();
   for (int it = 0; it < kMaxIterations; ++it) {
     if (!evaluated) {
-      da = evaluate_derivatives(a, x[0], x[1], 1);
-      db = evaluate_derivatives(b, x[2], x[3], 1);
+      da = eval_a.evaluate(x[0], x[1], 1);
+      db = eval_b.evaluate(x[2], x[3], 1);
       evaluated = true;
     }
     out.iterations = it;
@@ -198,8 +200,8 @@ RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b
     evaluated = false;
   }
   if (!evaluated) {
-    da = evaluate_derivatives(a, x[0], x[1], 1);
-    db = evaluate_derivatives(b, x[2], x[3], 1);
+    da = eval_a.evaluate(x[0], x[1], 1);
+    db = eval_b.evaluate(x[2], x[3], 1);
   }
   out.uv_a = x.head<2>();
   out.uv_b = x.tail<2>();
@@ -209,15 +211,14 @@ RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b
   return out;
 }
 
-CurveTangent curve_tangent(const BSplineSurface& a, const BSplineSurface& b,
-                           const Eigen::Vector2d& uv_a, const Eigen::Vector2d& uv_b) {
-  return tangent_from(evaluate_derivatives(a, uv_a[0], uv_a[1], 1),
-                      evaluate_derivatives(b, uv_b[0], uv_b[1], 1));
+CurveTangent curve_tangent(PatchEvaluator& a, PatchEvaluator& b, const Eigen::Vector2d& uv_a,
+                           const Eigen::Vector2d& uv_b) {
+  return tangent_from(a.evaluate(uv_a[0], uv_a[1], 1), b.evaluate(uv_b[0], uv_b[1], 1));
 }
 
 std::optional<RefinedPair> refine_near(const SurfacePair& pair, const PairPoint& start,
                                        bool on_curve, double reach, int fixed) {
-  const RefinedPair r = refine_surface_pair(pair.a, pair.b,
+  const RefinedPair r = refine_surface_pair(pair.eval_a, pair.eval_b,
                                             {.uv_a = start.uv_a,
                                              .uv_b = start.uv_b,
                                              .on_curve = on_curve,

@@ -6,14 +6,19 @@
 #include <optional>
 
 #include "argil/core/geometry/bspline_surface.hpp"
+#include "argil/core/operators/patch_evaluator.hpp"
 
 namespace argil {
 
-/// The two surfaces and the model size [mm] refinement tolerances scale with.
+/// The two surfaces, the model size [mm] refinement tolerances scale with,
+/// and the evaluators refinement reads both surfaces through (one query's:
+/// they keep the Bezier patches of the elements its points lie in).
 struct SurfacePair {
   const BSplineSurface& a;
   const BSplineSurface& b;
   double scale;
+  PatchEvaluator& eval_a;
+  PatchEvaluator& eval_b;
 };
 
 /// A point with its parameters on both surfaces.
@@ -49,8 +54,8 @@ struct CurveTangent {
   Eigen::Vector2d uv_b = Eigen::Vector2d::Zero();
 };
 
-CurveTangent curve_tangent(const BSplineSurface& a, const BSplineSurface& b,
-                           const Eigen::Vector2d& uv_a, const Eigen::Vector2d& uv_b);
+CurveTangent curve_tangent(PatchEvaluator& a, PatchEvaluator& b, const Eigen::Vector2d& uv_a,
+                           const Eigen::Vector2d& uv_b);
 
 /// A pair of surface points after refine_surface_pair().
 struct RefinedPair {
@@ -67,7 +72,7 @@ struct RefinedPair {
 /// clamped to both domains. Stops when |F| <= 1e-14 of `scale`, when |F|
 /// stops halving after the first iterations, or when the step stalls; at most
 /// 40 iterations.
-RefinedPair refine_surface_pair(const BSplineSurface& a, const BSplineSurface& b,
+RefinedPair refine_surface_pair(PatchEvaluator& a, PatchEvaluator& b,
                                 const PairRefineRequest& request);
 
 /// Refines one point pair from `start` (on the curve: see
