@@ -146,6 +146,61 @@ TEST_CASE("Bezier extraction reproduces the surface on every element") {
   }
 }
 
+TEST_CASE("a Bezier patch's derivatives equal its B-spline's, at every degree and order") {
+  // The patch's Bernstein rows set only entries 0 to degree: any entry read
+  // past them, or a derivative row left unset at low degree, shows here.
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> pole(-50.0, 50.0), weight(0.5, 2.0), unit(0.0, 1.0);
+  for (int p = 1; p <= argil::kMaxDegree; ++p) {
+    for (const int q : {1, 2, 3, p}) {
+      const bool rational = (p + q) % 3 == 0;
+      BSplineSurface s;
+      s.degree = {p, q};
+      for (int d = 0; d < 2; ++d) {
+        const int n = s.degree[static_cast<std::size_t>(d)] + 1;
+        s.knots[static_cast<std::size_t>(d)].resize(2 * n);
+        s.knots[static_cast<std::size_t>(d)] << Eigen::VectorXd::Zero(n), Eigen::VectorXd::Ones(n);
+      }
+      s.control_points.resize((p + 1) * (q + 1), 3);
+      for (Eigen::Index k = 0; k < s.control_points.size(); ++k)
+        s.control_points.data()[k] = pole(rng);
+      if (rational) {
+        s.weights.resize(s.control_points.rows());
+        for (Eigen::Index k = 0; k < s.weights.size(); ++k) s.weights[k] = weight(rng);
+      }
+      REQUIRE(argil::validate(s).ok());
+      argil::BezierPatch patch{p, q, argil::PatchNet((p + 1) * (q + 1), 4)};
+      for (Eigen::Index k = 0; k < s.control_points.rows(); ++k) {
+        const double w = rational ? s.weights[k] : 1.0;
+        patch.points.row(k) << w * s.control_points.row(k), w;
+      }
+      // Rounding scales with the terms: |B^(k)| sums to at most (2 deg)^k,
+      // enlarged by the weights' spread (at most 4) when rational.
+      const double terms = 50.0 * (rational ? 4.0 : 1.0);
+      for (double st : {0.0, 1.0, unit(rng), unit(rng)}) {
+        const double t = unit(rng);
+        INFO("degree " << p << "x" << q << (rational ? " rational" : "") << " at (" << st << ", "
+                       << t << ")");
+        for (int order = 0; order <= 2; ++order) {
+          const argil::SurfaceDerivatives b = argil::evaluate_derivatives(patch, st, t, order);
+          const argil::SurfaceDerivatives d = argil::evaluate_derivatives(s, st, t, order);
+          CHECK(b.point == argil::evaluate_derivatives(patch, st, t, 0).point);
+          CHECK((b.point - d.point).norm() <= 1e-13 * terms);
+          if (order >= 1) {
+            CHECK((b.du - d.du).norm() <= 1e-13 * terms * 2 * p);
+            CHECK((b.dv - d.dv).norm() <= 1e-13 * terms * 2 * q);
+          }
+          if (order >= 2) {
+            CHECK((b.duu - d.duu).norm() <= 1e-13 * terms * 4 * p * p);
+            CHECK((b.dvv - d.dvv).norm() <= 1e-13 * terms * 4 * q * q);
+            CHECK((b.duv - d.duv).norm() <= 1e-13 * terms * 4 * p * q);
+          }
+        }
+      }
+    }
+  }
+}
+
 TEST_CASE("subdivision matrices split a Bezier patch into halves of the same surface") {
   const BSplineSurface s = argil::test::asymmetric_surface(true);
   argil::OperatorCache cache;

@@ -1184,10 +1184,9 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   // haptic proxies' many unrefined queries.
   const BSplineSurface& exact_surface_b = placed_b && exact_b ? moved_b : hb.surface();
   PatchEvaluator eval_a(ha.surface(), ha.operators()), eval_b(exact_surface_b, hb.operators());
-  const SurfacePair pair{ha.surface(), exact_surface_b,
+  const SurfacePair pair{eval_a, eval_b,
                          request.refine ? scale_of(ha.surface(), hb.surface())
-                                        : std::numeric_limits<double>::quiet_NaN(),
-                         eval_a, eval_b};
+                                        : std::numeric_limits<double>::quiet_NaN()};
   PairDescent descent(ha, hb, placed_b, sweep, PairDescent::Pass::end, request, result.counters,
                       &pair);
   descent.run();
@@ -1241,13 +1240,13 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
   result.contacts = std::move(regions.contacts);
   result.region_count = regions.region_count;
   if (penetration) {
-    add_penetration_contacts(pair.a, pair.b, result.contacts);
+    add_penetration_contacts(pair.a(), pair.b(), result.contacts);
     rank_regions(result.contacts, result.region_count, request.max_contacts);
   }
-  for (Contact& c : result.contacts) c = with_frame(pair.a, c);
+  for (Contact& c : result.contacts) c = with_frame(pair.a(), c);
   if (!off_material.empty()) {
     result.off_material = group_regions(off_material, request.max_contacts).contacts;
-    for (Contact& c : result.off_material) c = with_frame(pair.a, c);
+    for (Contact& c : result.off_material) c = with_frame(pair.a(), c);
   }
   return result;
 }

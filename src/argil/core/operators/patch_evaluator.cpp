@@ -38,9 +38,9 @@ const BezierPatch& PatchEvaluator::patch(int element_u, int element_v) {
 }
 
 SurfaceDerivatives PatchEvaluator::evaluate(double u, double v, int order) {
-  assert(order == 0 || order == 1);
   u = std::clamp(u, surface_.domain_start(Direction::u), surface_.domain_end(Direction::u));
   v = std::clamp(v, surface_.domain_start(Direction::v), surface_.domain_end(Direction::v));
+  if (order > 1) return evaluate_derivatives(surface_, u, v, order);
   const Place pu = place(Direction::u, u, last_u_);
   const Place pv = place(Direction::v, v, last_v_);
   last_u_ = pu.element;

@@ -26,10 +26,11 @@ class PatchEvaluator {
 
   const BSplineSurface& surface() const { return surface_; }
 
-  /// Point, and with order 1 the first partial derivatives, at (u, v)
-  /// clamped to the domain. No second order: through a short span's Bezier
-  /// net they lose digits (1e-11 of their terms' size against OpenCASCADE on
-  /// non-uniform knots, where evaluate_derivatives keeps 3e-13).
+  /// Point, and with order 1 the first partial derivatives per unit of u
+  /// and v [mm], at (u, v) clamped to the domain. Order 2 is passed on to
+  /// evaluate_derivatives: through a short span's Bezier net second
+  /// derivatives lose digits (1e-11 of their terms' size against OpenCASCADE
+  /// on non-uniform knots, where evaluate_derivatives keeps 3e-13).
   SurfaceDerivatives evaluate(double u, double v, int order);
 
  private:

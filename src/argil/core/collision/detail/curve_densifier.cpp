@@ -209,7 +209,7 @@ bool CurveDensifier::in_domains(const PairPoint& p) const {
     return uv[0] >= s.domain_start(Direction::u) && uv[0] <= s.domain_end(Direction::u) &&
            uv[1] >= s.domain_start(Direction::v) && uv[1] <= s.domain_end(Direction::v);
   };
-  return inside(pair_.a, p.uv_a) && inside(pair_.b, p.uv_b);
+  return inside(pair_.a(), p.uv_a) && inside(pair_.b(), p.uv_b);
 }
 
 }  // namespace argil

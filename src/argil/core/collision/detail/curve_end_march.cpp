@@ -38,10 +38,11 @@ IntersectionCurve march_from_end(const SurfacePair& pair, const PairPoint& end,
                                  const Eigen::Vector3d& outward, double tolerance,
                                  const ChordStop& stop) {
   IntersectionCurve out;
-  const Eigen::Vector4d lo(pair.a.domain_start(Direction::u), pair.a.domain_start(Direction::v),
-                           pair.b.domain_start(Direction::u), pair.b.domain_start(Direction::v));
-  const Eigen::Vector4d hi(pair.a.domain_end(Direction::u), pair.a.domain_end(Direction::v),
-                           pair.b.domain_end(Direction::u), pair.b.domain_end(Direction::v));
+  const Eigen::Vector4d lo(pair.a().domain_start(Direction::u), pair.a().domain_start(Direction::v),
+                           pair.b().domain_start(Direction::u),
+                           pair.b().domain_start(Direction::v));
+  const Eigen::Vector4d hi(pair.a().domain_end(Direction::u), pair.a().domain_end(Direction::v),
+                           pair.b().domain_end(Direction::u), pair.b().domain_end(Direction::v));
   CurveTangent t = oriented(curve_tangent(pair.eval_a, pair.eval_b, end.uv_a, end.uv_b), outward);
   // The curve must leave the end the way the piece does (within 60 degrees):
   // otherwise the end is a turn the tangent does not describe.

@@ -21,8 +21,9 @@ EdgeCrossings::EdgeCrossings(const SurfacePair& pair) {
   const auto length = [](const BSplineSurface& s, Direction d) {
     return s.domain_end(d) - s.domain_start(d);
   };
-  same_ = kSameStart * Eigen::Vector4d(length(pair.a, Direction::u), length(pair.a, Direction::v),
-                                       length(pair.b, Direction::u), length(pair.b, Direction::v));
+  same_ =
+      kSameStart * Eigen::Vector4d(length(pair.a(), Direction::u), length(pair.a(), Direction::v),
+                                   length(pair.b(), Direction::u), length(pair.b(), Direction::v));
 }
 
 std::uint64_t EdgeCrossings::key(const PairPoint& start, int fixed) {

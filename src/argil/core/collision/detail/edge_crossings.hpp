@@ -14,9 +14,9 @@ namespace argil::detail {
 
 class EdgeCrossings {
  public:
-  /// Starts this close, per parameter, to one kept are taken for it: each of
-  /// `pair`'s domain lengths times 1e-12 (rounding of the leaves' corners,
-  /// far below any leaf's size).
+  /// Two starts are one crossing when every parameter differs by at most its
+  /// domain's length times 1e-12: the rounding of leaf corners computed on
+  /// either side of an edge, far below any leaf's size.
   explicit EdgeCrossings(const SurfacePair& pair);
 
   /// The crossing kept from a start within rounding of `start` with the same

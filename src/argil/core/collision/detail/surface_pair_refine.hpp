@@ -10,15 +10,17 @@
 
 namespace argil {
 
-/// The two surfaces, the model size [mm] refinement tolerances scale with,
-/// and the evaluators refinement reads both surfaces through (one query's:
-/// they keep the Bezier patches of the elements its points lie in).
+/// The evaluators refinement reads both surfaces through, and the model size
+/// [mm] refinement tolerances scale with. One query's: refinement updates the
+/// evaluators' kept patches even through a const SurfacePair, so one pair is
+/// never refined on from two threads at once.
 struct SurfacePair {
-  const BSplineSurface& a;
-  const BSplineSurface& b;
-  double scale;
   PatchEvaluator& eval_a;
   PatchEvaluator& eval_b;
+  double scale;
+
+  const BSplineSurface& a() const { return eval_a.surface(); }
+  const BSplineSurface& b() const { return eval_b.surface(); }
 };
 
 /// A point with its parameters on both surfaces.
