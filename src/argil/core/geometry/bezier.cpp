@@ -79,20 +79,30 @@ Eigen::Vector3d evaluate(const BezierPatch& patch, double s, double t) {
 
 namespace {
 
-/// Bernstein polynomials of `degree` at t and their first and second
-/// derivatives: d/dt B_i^p = p (B_{i-1}^{p-1} - B_i^{p-1}), and the same again
-/// for the second derivative from degree p - 2. Only entries 0 to p are set
-/// (the rows are sized for kMaxDegree, and zeroing or copying them whole cost
-/// more than the recurrence on every leaf and refinement evaluation).
+/// A degree the compiler knows (the low ones most CAD faces have, whose
+/// loops it then unrolls), or kAnyDegree: the patch's own, read at run time.
+constexpr int kAnyDegree = -1;
+
+constexpr std::size_t row_size(int degree) {
+  return static_cast<std::size_t>(degree == kAnyDegree ? kMaxDegree : degree) + 1;
+}
+
+/// Bernstein polynomials of degree P (or `degree`) at t and their first and
+/// second derivatives: d/dt B_i^p = p (B_{i-1}^{p-1} - B_i^{p-1}), and the
+/// same again for the second derivative from degree p - 2. Only entries 0 to
+/// p are set (rows sized for kMaxDegree cost more to clear than to fill).
+template <int P>
 struct BernsteinRows {
-  std::array<double, kMaxDegree + 1> value, d1, d2;
+  std::array<double, row_size(P)> value, d1, d2;
 };
 
-BernsteinRows bernstein_rows(int p, double t, int order) {
+template <int P>
+BernsteinRows<P> bernstein_rows(int runtime_degree, double t, int order) {
+  const int p = P == kAnyDegree ? runtime_degree : P;
   // One recurrence (as bernstein()); the derivatives are taken from the rows
   // of degree p - 2 and p - 1 as the recurrence passes them.
-  BernsteinRows r;
-  std::array<double, kMaxDegree + 1>& b = r.value;
+  BernsteinRows<P> r;
+  std::array<double, row_size(P)>& b = r.value;
   // Entry i of the row b holds, of degree `degree`: zero outside 0 to degree.
   const auto at = [&b](int degree, int i) {
     return i < 0 || i > degree ? 0.0 : b[static_cast<std::size_t>(i)];
@@ -124,12 +134,13 @@ BernsteinRows bernstein_rows(int p, double t, int order) {
   return r;
 }
 
-}  // namespace
-
-SurfaceDerivatives evaluate_derivatives(const BezierPatch& patch, double s, double t, int order) {
-  const int p = patch.degree_u, q = patch.degree_v;
-  const BernsteinRows bu = bernstein_rows(p, s, order);
-  const BernsteinRows bv = bernstein_rows(q, t, order);
+/// evaluate_derivatives of a patch of degree P x Q (or its own degrees).
+template <int P, int Q>
+SurfaceDerivatives patch_derivatives(const BezierPatch& patch, double s, double t, int order) {
+  const int p = P == kAnyDegree ? patch.degree_u : P;
+  const int q = Q == kAnyDegree ? patch.degree_v : Q;
+  const BernsteinRows<P> bu = bernstein_rows<P>(p, s, order);
+  const BernsteinRows<Q> bv = bernstein_rows<Q>(q, t, order);
   detail::HomogeneousDerivatives h;
   for (int a = 0; a <= p; ++a) {
     // Sums along v first: the net row a against the v rows.
@@ -156,6 +167,21 @@ SurfaceDerivatives evaluate_derivatives(const BezierPatch& patch, double s, doub
   return detail::cartesian(h, order);
 }
 
+}  // namespace
+
+SurfaceDerivatives evaluate_derivatives(const BezierPatch& patch, double s, double t, int order) {
+  // Degrees 1 to 3 each way through loops the compiler unrolls: the same
+  // sums in the same order, so the same bits, in about half the time.
+  using Evaluate = SurfaceDerivatives (*)(const BezierPatch&, double, double, int);
+  static constexpr Evaluate kLow[3][3] = {
+      {patch_derivatives<1, 1>, patch_derivatives<1, 2>, patch_derivatives<1, 3>},
+      {patch_derivatives<2, 1>, patch_derivatives<2, 2>, patch_derivatives<2, 3>},
+      {patch_derivatives<3, 1>, patch_derivatives<3, 2>, patch_derivatives<3, 3>}};
+  const int p = patch.degree_u, q = patch.degree_v;
+  if (p >= 1 && p <= 3 && q >= 1 && q <= 3) return kLow[p - 1][q - 1](patch, s, t, order);
+  return patch_derivatives<kAnyDegree, kAnyDegree>(patch, s, t, order);
+}
+
 namespace {
 
 /// Rows (line * across + k * along) of `out` = sum over i of m(k, i) times
@@ -163,15 +189,20 @@ namespace {
 /// mapped by m. Each row of m is read once for its nonzero range (the de
 /// Casteljau halves are triangular), not once per line; the sum runs in
 /// increasing i, so every caller rounds alike.
-void map_lines(const double* in, double* out, int degree_u, int degree_v, Direction d,
-               const Eigen::MatrixXd& m) {
+template <int P, int Q>
+void map_lines_of(const double* in, double* out, int runtime_degree_u, int runtime_degree_v,
+                  Direction d, const Eigen::MatrixXd& m) {
+  const int degree_u = P == kAnyDegree ? runtime_degree_u : P;
+  const int degree_v = Q == kAnyDegree ? runtime_degree_v : Q;
   const int q1 = degree_v + 1;
   const bool in_u = d == Direction::u;
   const int count_along = in_u ? degree_u + 1 : q1;
   const int count_across = in_u ? q1 : degree_u + 1;
   const int along = in_u ? q1 : 1;
   const int across = in_u ? 1 : q1;
-  std::array<int, kMaxDegree + 1> first{}, last{};  // nonzero range of row k, inclusive
+  // Nonzero range of row k, inclusive; entries past count_along stay unset
+  // (clearing both whole arrays cost a tenth of the mapping on cubic nets).
+  std::array<int, kMaxDegree + 1> first, last;
   for (int k = 0; k < count_along; ++k) {
     int lo = 0, hi = count_along - 1;
     while (lo < hi && m(k, lo) == 0.0) ++lo;
@@ -189,6 +220,19 @@ void map_lines(const double* in, double* out, int degree_u, int degree_v, Direct
       Eigen::Map<Eigen::Vector4d>(line_out + 4 * k * along) = sum;
     }
   }
+}
+
+/// map_lines_of with degrees 1 to 3 each way known to the compiler (see
+/// evaluate_derivatives): the same sums in the same order.
+void map_lines(const double* in, double* out, int degree_u, int degree_v, Direction d,
+               const Eigen::MatrixXd& m) {
+  using Map = void (*)(const double*, double*, int, int, Direction, const Eigen::MatrixXd&);
+  static constexpr Map kLow[3][3] = {{map_lines_of<1, 1>, map_lines_of<1, 2>, map_lines_of<1, 3>},
+                                     {map_lines_of<2, 1>, map_lines_of<2, 2>, map_lines_of<2, 3>},
+                                     {map_lines_of<3, 1>, map_lines_of<3, 2>, map_lines_of<3, 3>}};
+  if (degree_u >= 1 && degree_u <= 3 && degree_v >= 1 && degree_v <= 3)
+    return kLow[degree_u - 1][degree_v - 1](in, out, degree_u, degree_v, d, m);
+  map_lines_of<kAnyDegree, kAnyDegree>(in, out, degree_u, degree_v, d, m);
 }
 
 }  // namespace

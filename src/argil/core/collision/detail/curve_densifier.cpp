@@ -178,7 +178,15 @@ bool CurveDensifier::fill(Node& lo, Node& hi, int depth) {
 /// good there as at its middle) or the points do not advance along the chord.
 bool CurveDensifier::fill_along(const HermiteArc& arc, const Node* mid, int pieces) {
   const Eigen::Vector3d chord = arc.hi.point - arc.lo.point;
-  IntersectionCurve inner;
+  // Pushed straight onto the output (no buffer to allocate) and taken back
+  // when the arc fails.
+  const std::size_t kept = out_.points.size();
+  const auto fail = [&] {
+    out_.points.resize(kept);
+    out_.uv_a.resize(kept);
+    out_.uv_b.resize(kept);
+    return false;
+  };
   Eigen::Vector3d previous = arc.lo.point;
   for (int k = 1; k < pieces; ++k) {
     PairPoint p;
@@ -186,21 +194,16 @@ bool CurveDensifier::fill_along(const HermiteArc& arc, const Node* mid, int piec
       p = mid->at;
     } else {
       const PairPoint start = arc.at(static_cast<double>(k) / pieces);
-      if (!in_domains(start)) return false;
+      if (!in_domains(start)) return fail();
       const std::optional<RefinedPair> r = refine_near(pair_, start, true, tolerance_ / 8);
-      if (!r) return false;
+      if (!r) return fail();
       p = {r->point, r->uv_a, r->uv_b};
     }
-    if (!((p.point - previous).dot(chord) > 0.0)) return false;
+    if (!((p.point - previous).dot(chord) > 0.0)) return fail();
     previous = p.point;
-    inner.points.push_back(p.point);
-    inner.uv_a.push_back(p.uv_a);
-    inner.uv_b.push_back(p.uv_b);
+    push(p);
   }
-  if (!((arc.hi.point - previous).dot(chord) > 0.0)) return false;
-  out_.points.insert(out_.points.end(), inner.points.begin(), inner.points.end());
-  out_.uv_a.insert(out_.uv_a.end(), inner.uv_a.begin(), inner.uv_a.end());
-  out_.uv_b.insert(out_.uv_b.end(), inner.uv_b.begin(), inner.uv_b.end());
+  if (!((arc.hi.point - previous).dot(chord) > 0.0)) return fail();
   return true;
 }
 

@@ -32,10 +32,10 @@ std::uint64_t EdgeCrossings::key(const PairPoint& start, int fixed) {
 }
 
 const RefinedPair* EdgeCrossings::find(const PairPoint& start, int fixed) const {
-  const auto it = by_edge_.find(key(start, fixed));
-  if (it == by_edge_.end()) return nullptr;
   const Eigen::Vector4d x = params_of(start);
-  for (const Entry& e : it->second) {
+  const auto [first, last] = by_edge_.equal_range(key(start, fixed));
+  for (auto it = first; it != last; ++it) {
+    const Entry& e = it->second;
     bool same = e.fixed == fixed && e.start[fixed] == x[fixed];
     for (int k = 0; k < 4 && same; ++k) same = std::abs(e.start[k] - x[k]) <= same_[k];
     if (same) return &e.refined;
@@ -44,7 +44,7 @@ const RefinedPair* EdgeCrossings::find(const PairPoint& start, int fixed) const 
 }
 
 void EdgeCrossings::keep(const PairPoint& start, int fixed, const RefinedPair& refined) {
-  by_edge_[key(start, fixed)].push_back({params_of(start), fixed, refined});
+  by_edge_.emplace(key(start, fixed), Entry{params_of(start), fixed, refined});
 }
 
 }  // namespace argil::detail

@@ -6,7 +6,6 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <unordered_map>
-#include <vector>
 
 #include "argil/core/collision/detail/surface_pair_refine.hpp"
 
@@ -34,7 +33,7 @@ class EdgeCrossings {
   Eigen::Vector4d same_;  // see the constructor
   /// The held parameter's index and value: entries on one edge line.
   static std::uint64_t key(const PairPoint& start, int fixed);
-  std::unordered_map<std::uint64_t, std::vector<Entry>> by_edge_;
+  std::unordered_multimap<std::uint64_t, Entry> by_edge_;
 };
 
 }  // namespace argil::detail
