@@ -850,6 +850,44 @@ bool leaves_farther_than(const LeafTriangles& la, const LeafTriangles& lb, doubl
   return true;
 }
 
+/// True when an arc of the exact intersection could end on an edge of leaf
+/// `edges_of` that its triangles do not show meeting the other leaf's: the
+/// straight edge stays off the other leaf's triangles (farther than
+/// `on_plane`) but comes within `band` of them. Each straight edge lies
+/// within its leaf's flatness of the patch's edge at the same parameter, and
+/// the other patch within its own flatness of its triangles, so an arc ending
+/// on an edge puts the straight edge within the two flatnesses (`band`) of
+/// the triangles.
+bool edge_may_hide_crossing(const LeafTriangles& edges_of, const LeafTriangles& other, double band,
+                            double on_plane) {
+  const Triangle& t0 = edges_of.triangles[0];
+  const Triangle& t1 = edges_of.triangles[1];
+  const std::array<Eigen::Vector3d, 4> ring{t0[0], t0[1], t0[2], t1[2]};  // c00, c10, c11, c01
+  for (std::size_t k = 0; k < 4; ++k) {
+    const Eigen::Vector3d& p0 = ring[k];
+    const Eigen::Vector3d& p1 = ring[(k + 1) % 4];
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Triangle& t : other.triangles) {
+      // Both ends farther than band on one side of the plane: farther from the triangle.
+      const Eigen::Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
+      const double length = n.norm();
+      if (length > 0.0) {
+        const double s0 = n.dot(p0 - t[0]) / length, s1 = n.dot(p1 - t[0]) / length;
+        if ((s0 > band && s1 > band) || (s0 < -band && s1 < -band)) continue;
+      }
+      nearest = std::min(nearest, segment_triangle_distance(p0, p1, t[0], t[1], t[2]));
+    }
+    if (nearest > on_plane && nearest <= band) return true;
+  }
+  return false;
+}
+
+/// True when (u, v) lies in the rectangle grown by 1e-9 of its sides (rounding).
+bool inside(const ParamRect& r, const Eigen::Vector2d& uv) {
+  const double du = 1e-9 * r.width(), dv = 1e-9 * r.height();
+  return uv[0] >= r.u0 - du && uv[0] <= r.u1 + du && uv[1] >= r.v0 - dv && uv[1] <= r.v1 + dv;
+}
+
 /// The simultaneous descent of collide(a, b) over node pairs (see the header).
 /// A swept query runs it at the end placement first; only when nothing
 /// crosses there is the way looked at: a pair that met on it ends no farther
@@ -1004,15 +1042,29 @@ class PairDescent {
   /// A transversal pair (see transversal()) as a leaf: its triangles' crossings
   /// with every end point refined onto both exact surfaces, which the
   /// densifier then follows between them. False, with nothing kept, when a
-  /// point does not refine near its leaves: the pair is split instead.
+  /// leaf edge could hide an arc's end (edge_may_hide_crossing) or a point
+  /// does not refine near its leaves: the pair is split instead.
   bool coarse_leaf_pair(int ea, const View& va, int eb, const View& vb) {
     const LeafTriangles la = sa_.leaf(ea);
     const LeafTriangles lb = sb_.leaf(eb);
     const double eps = request_.tolerance;
     const double reach = 2.0 * (la.radius + lb.radius) + eps;
     LeafPairFindings found = leaf_crossings(la, lb, reach, on_plane_, &*coincide_);
+    // Every arc of a transversal pair ends on an edge of one leaf. Without a
+    // triangle crossing, an edge could still hide an arc's end (a short arc
+    // bulging in across it within the flatness, which the triangles pass
+    // over): then the pair is split.
+    const double band = va.flatness + vb.flatness + on_plane_;
+    if (found.segments.empty() && (edge_may_hide_crossing(la, lb, band, on_plane_) ||
+                                   edge_may_hide_crossing(lb, la, band, on_plane_)))
+      return false;
+    // An end refined out of either leaf is a crossing of another pair: the
+    // triangles crossed where the exact surfaces do not (an arc that bulges
+    // across a leaf edge within the flatness), and the pair is split.
     for (detail::Segment& seg : found.segments) {
       if (!refine_ends(seg, la, lb, reach)) return false;
+      for (std::size_t k = 0; k < 2; ++k)
+        if (!inside(la.rect, seg.uv_a[k]) || !inside(lb.rect, seg.uv_b[k])) return false;
       seg.pinned = true;
     }
     ++counters_.leaf_pairs;
