@@ -2,6 +2,7 @@
 // the coarse leaf triangles of a refined query pass over them (or cross where
 // the surfaces do not), and the curve must still come out, whole and on both
 // surfaces. Oracle: the analytic curve.
+#include <Eigen/Dense>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
@@ -69,6 +70,59 @@ struct Cap {
   }
 };
 
+/// A sheet z = x / 2 + bend ((y - y1)(y - y2))^2 - bend over x in [0, 10],
+/// y in [-3, 7] (degree 1 x 4, its Bezier poles interpolating the quartic):
+/// it meets the plane z = 0 in one arc x = 2 bend (1 - q^2), q = (y - y1)(y - y2),
+/// that touches the sheet's edge x = 0 where q = -1, midway between y1 and y2.
+struct EdgeTouch {
+  double bend = 5e-4, y1 = 1.0, y2 = 3.0;
+
+  double x_at(double y) const {
+    const double q = (y - y1) * (y - y2);
+    return 2.0 * bend * (1.0 - q * q);
+  }
+  BSplineSurface sheet() const {
+    const double y0 = -3.0, y4 = 7.0;
+    // Bernstein values of degree 4 at five parameters, solved for the poles.
+    Eigen::Matrix<double, 5, 5> basis;
+    Eigen::Matrix<double, 5, 1> values;
+    const double binomial[5] = {1, 4, 6, 4, 1};
+    for (int r = 0; r < 5; ++r) {
+      const double t = r / 4.0;
+      for (int i = 0; i < 5; ++i)
+        basis(r, i) = binomial[i] * std::pow(t, i) * std::pow(1.0 - t, 4 - i);
+      values[r] = -0.5 * x_at(y0 + t * (y4 - y0));  // z at x = 0
+    }
+    const Eigen::Matrix<double, 5, 1> poles = basis.lu().solve(values);
+    BSplineSurface s;
+    s.degree = {1, 4};
+    s.knots = {Eigen::Vector4d(0, 0, 1, 1),
+               (Eigen::VectorXd(10) << 0, 0, 0, 0, 0, 1, 1, 1, 1, 1).finished()};
+    s.control_points.resize(10, 3);
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 5; ++j)
+        s.control_points.row(i * 5 + j) << 10.0 * i, y0 + (y4 - y0) * j / 4.0,
+            0.5 * 10.0 * i + poles[j];
+    return s;
+  }
+  /// The arc spans |q| <= 1: y from m - sqrt(h^2 + 1) to m + sqrt(h^2 + 1)
+  /// about the middle m, h being half of y2 - y1.
+  double half_span() const { return std::sqrt(0.25 * (y2 - y1) * (y2 - y1) + 1.0); }
+  double middle() const { return 0.5 * (y1 + y2); }
+  double length() const {
+    double sum = 0.0;
+    const int n = 20000;
+    const double h = 2.0 * half_span() / n;
+    for (int k = 0; k < n; ++k) {
+      const double y = middle() - half_span() + (k + 0.5) * h;
+      const double q = (y - y1) * (y - y2);
+      const double slope = -4.0 * bend * q * (2.0 * y - y1 - y2);
+      sum += h * std::sqrt(1.0 + slope * slope);
+    }
+    return sum;
+  }
+};
+
 }  // namespace
 
 TEST_CASE("arcs bulging across a leaf edge within the flatness come out whole in refined queries") {
@@ -108,4 +162,30 @@ TEST_CASE("arcs bulging across a leaf edge within the flatness come out whole in
     }
   }
   CHECK(cases == 40);
+}
+
+TEST_CASE("an arc touching a face edge between two coarse leaves comes out whole") {
+  // The triangles meet the floor only at a leaf corner on the edge (no
+  // crossing segment); refined, the pair is split until the arc shows.
+  const BSplineSurface floor = floor_plane();
+  const argil::SurfaceHierarchy hf = argil::test::hierarchy_for(floor);
+  const EdgeTouch touch;
+  const BSplineSurface sheet = touch.sheet();
+  const argil::SurfaceHierarchy hs = argil::test::hierarchy_for(sheet);
+  for (const double relative : {1e-6, 1e-8}) {
+    const double eps = relative * 70.0;
+    INFO("eps " << eps);
+    const CollisionResult r =
+        argil::collide(hf, hs, argil::CollisionRequest{.tolerance = eps, .refine = true});
+    REQUIRE(r.status.ok());
+    REQUIRE(r.curves.size() == 1);
+    double farthest = 0.0;
+    for (int k = 0; k <= 400; ++k) {
+      const double y = touch.middle() - touch.half_span() + 2.0 * touch.half_span() * k / 400;
+      farthest = std::max(
+          farthest, argil::test::distance_to_curves(Eigen::Vector3d(touch.x_at(y), y, 0.0), r));
+    }
+    CHECK(farthest <= eps);
+    CHECK(std::abs(r.curves[0].length() - touch.length()) <= 2.0 * eps);
+  }
 }

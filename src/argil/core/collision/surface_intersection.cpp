@@ -851,15 +851,15 @@ bool leaves_farther_than(const LeafTriangles& la, const LeafTriangles& lb, doubl
 }
 
 /// True when an arc of the exact intersection could end on an edge of leaf
-/// `edges_of` that its triangles do not show meeting the other leaf's: the
-/// straight edge stays off the other leaf's triangles (farther than
-/// `on_plane`) but comes within `band` of them. Each straight edge lies
-/// within its leaf's flatness of the patch's edge at the same parameter, and
-/// the other patch within its own flatness of its triangles, so an arc ending
-/// on an edge puts the straight edge within the two flatnesses (`band`) of
-/// the triangles.
-bool edge_may_hide_crossing(const LeafTriangles& edges_of, const LeafTriangles& other, double band,
-                            double on_plane) {
+/// `edges_of`, for a leaf pair whose triangles do not cross: a straight edge
+/// comes within `band` of the other leaf's triangles (touching them counts:
+/// a corner on the other's triangles gives no crossing segment). Each
+/// straight edge lies within its leaf's flatness of the patch's edge at the
+/// same parameter, and the other patch within its own flatness of its
+/// triangles, so an arc ending on an edge puts the straight edge within the
+/// two flatnesses (`band`) of the triangles.
+bool edge_may_hide_crossing(const LeafTriangles& edges_of, const LeafTriangles& other,
+                            double band) {
   const Triangle& t0 = edges_of.triangles[0];
   const Triangle& t1 = edges_of.triangles[1];
   const std::array<Eigen::Vector3d, 4> ring{t0[0], t0[1], t0[2], t1[2]};  // c00, c10, c11, c01
@@ -877,7 +877,7 @@ bool edge_may_hide_crossing(const LeafTriangles& edges_of, const LeafTriangles& 
       }
       nearest = std::min(nearest, segment_triangle_distance(p0, p1, t[0], t[1], t[2]));
     }
-    if (nearest > on_plane && nearest <= band) return true;
+    if (nearest <= band) return true;
   }
   return false;
 }
@@ -1055,8 +1055,8 @@ class PairDescent {
     // bulging in across it within the flatness, which the triangles pass
     // over): then the pair is split.
     const double band = va.flatness + vb.flatness + on_plane_;
-    if (found.segments.empty() && (edge_may_hide_crossing(la, lb, band, on_plane_) ||
-                                   edge_may_hide_crossing(lb, la, band, on_plane_)))
+    if (found.segments.empty() &&
+        (edge_may_hide_crossing(la, lb, band) || edge_may_hide_crossing(lb, la, band)))
       return false;
     // An end refined out of either leaf is a crossing of another pair: the
     // triangles crossed where the exact surfaces do not (an arc that bulges
