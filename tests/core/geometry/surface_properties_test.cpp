@@ -147,8 +147,9 @@ TEST_CASE("Bezier extraction reproduces the surface on every element") {
 }
 
 TEST_CASE("a Bezier patch's derivatives equal its B-spline's, at every degree and order") {
-  // The patch's Bernstein rows set only entries 0 to degree: any entry read
-  // past them, or a derivative row left unset at low degree, shows here.
+  // The patch's Bernstein rows set only entries 0 to degree: a derivative row
+  // left unset at low degree, or a wrong entry read, shows here as a value off
+  // the B-spline's (reads of unset entries only surely under a sanitizer).
   std::mt19937_64 rng(12);
   std::uniform_real_distribution<double> pole(-50.0, 50.0), weight(0.5, 2.0), unit(0.0, 1.0);
   for (int p = 1; p <= argil::kMaxDegree; ++p) {

@@ -857,7 +857,7 @@ bool leaves_farther_than(const LeafTriangles& la, const LeafTriangles& lb, doubl
 /// straight edge lies within its leaf's flatness of the patch's edge at the
 /// same parameter, and the other patch within its own flatness of its
 /// triangles, so an arc ending on an edge puts the straight edge within the
-/// two flatnesses (`band`) of the triangles.
+/// two flatnesses of the triangles (`band`: those plus rounding).
 bool edge_may_hide_crossing(const LeafTriangles& edges_of, const LeafTriangles& other,
                             double band) {
   const Triangle& t0 = edges_of.triangles[0];

@@ -90,7 +90,8 @@ constexpr std::size_t row_size(int degree) {
 /// Bernstein polynomials of degree P (or `degree`) at t and their first and
 /// second derivatives: d/dt B_i^p = p (B_{i-1}^{p-1} - B_i^{p-1}), and the
 /// same again for the second derivative from degree p - 2. Only entries 0 to
-/// p are set (rows sized for kMaxDegree cost more to clear than to fill).
+/// p are set (rows sized for kMaxDegree, when the degree is known only at run
+/// time, cost more to clear than to fill).
 template <int P>
 struct BernsteinRows {
   std::array<double, row_size(P)> value, d1, d2;
@@ -171,7 +172,8 @@ SurfaceDerivatives patch_derivatives(const BezierPatch& patch, double s, double 
 
 SurfaceDerivatives evaluate_derivatives(const BezierPatch& patch, double s, double t, int order) {
   // Degrees 1 to 3 each way through loops the compiler unrolls: the same
-  // sums in the same order, so the same bits, in about half the time.
+  // sums in the same order, so the same bits (as long as the compiler fuses
+  // no multiply-adds, as on x86-64 without -march), in about half the time.
   using Evaluate = SurfaceDerivatives (*)(const BezierPatch&, double, double, int);
   static constexpr Evaluate kLow[3][3] = {
       {patch_derivatives<1, 1>, patch_derivatives<1, 2>, patch_derivatives<1, 3>},
