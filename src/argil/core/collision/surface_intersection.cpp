@@ -485,6 +485,7 @@ Eigen::Vector2d param_of(const std::array<Eigen::Vector2d, 3>& p, const Eigen::V
 struct PendingContact {
   LeafContact leaf{};
   bool crossing = false;  // on a crossing (depth 0) or a near-touch (depth -gap)
+  bool refined = false;   // already on both exact surfaces (a transversal leaf's)
   double reach = 0.0;
 };
 
@@ -495,6 +496,7 @@ struct PendingContact {
 struct PendingContacts {
   struct Origin {
     bool crossing = false;
+    bool refined = false;
     double reach = 0.0;
   };
   std::vector<LeafContact> leaves;
@@ -502,7 +504,7 @@ struct PendingContacts {
 
   void add(const PendingContact& c) {
     leaves.push_back(c.leaf);
-    origins.push_back({c.crossing, c.reach});
+    origins.push_back({c.crossing, c.refined, c.reach});
   }
   void append(const PendingContacts& other) {
     leaves.insert(leaves.end(), other.leaves.begin(), other.leaves.end());
@@ -592,17 +594,17 @@ void drop_steps_back(IntersectionCurve& c, std::vector<bool>& refined,
 /// neighbours.
 IntersectionCurve refine_curve(const SurfacePair& pair, IntersectionCurve c,
                                const std::vector<double>& reaches, const std::vector<bool>& pinned,
-                               double eps) {
+                               const std::vector<CurveTangent>& pinned_tangents, double eps) {
   const std::size_t n = c.points.size();
   // A closed curve repeats its first point: refine it once.
   const bool closed = n > 2 && c.points[n - 1] == c.points[0] && c.uv_a[n - 1] == c.uv_a[0];
   std::vector<bool> refined(n, false);
   std::vector<std::optional<CurveTangent>> tangents(n);
-  // A transversal leaf's points were refined in the descent (pinned); the
-  // densifier starts from their tangents (the leaves' segments are long).
+  // A transversal leaf's points were refined in the descent (pinned), with
+  // their tangents; the densifier starts from those (the leaves' segments
+  // are long).
   for (std::size_t k = 0; k < (closed ? n - 1 : n); ++k) {
-    tangents[k] = pinned[k] ? curve_tangent(pair.eval_a, pair.eval_b, c.uv_a[k], c.uv_b[k])
-                            : refine_curve_point(pair, c, k, reaches[k]);
+    tangents[k] = pinned[k] ? pinned_tangents[k] : refine_curve_point(pair, c, k, reaches[k]);
     refined[k] = pinned[k] || tangents[k].has_value();
   }
   if (closed) {
@@ -655,6 +657,7 @@ void refine_near_touch(const SurfacePair& pair, Contact& c, double reach) {
 /// and depth, what regions are grouped and ranked by (a's normal and
 /// tangents are left to with_frame, for the contacts kept).
 void refine_contact(const SurfacePair& pair, Contact& c, const PendingContacts::Origin& origin) {
+  if (origin.refined) return;
   if (!origin.crossing) {
     refine_near_touch(pair, c, origin.reach);
     return;
@@ -1035,6 +1038,7 @@ class PairDescent {
       seg.points[k] = r->point;
       seg.uv_a[k] = r->uv_a;
       seg.uv_b[k] = r->uv_b;
+      seg.tangents[k] = r->tangent;
     }
     return true;
   }
@@ -1066,6 +1070,20 @@ class PairDescent {
       for (std::size_t k = 0; k < 2; ++k)
         if (!inside(la.rect, seg.uv_a[k]) || !inside(lb.rect, seg.uv_b[k])) return false;
       seg.pinned = true;
+    }
+    // The contact takes the longest segment's refined end: a point of the
+    // exact curve inside both leaves, which needs no refinement of its own.
+    if (found.contact && found.contact->crossing && !found.segments.empty()) {
+      const auto longest = std::max_element(found.segments.begin(), found.segments.end(),
+                                            [](const detail::Segment& x, const detail::Segment& y) {
+                                              return (x.points[1] - x.points[0]).squaredNorm() <
+                                                     (y.points[1] - y.points[0]).squaredNorm();
+                                            });
+      Contact& c = found.contact->leaf.contact;
+      c.point = longest->points[0];
+      c.uv_a = longest->uv_a[0];
+      c.uv_b = longest->uv_b[0];
+      found.contact->refined = true;
     }
     ++counters_.leaf_pairs;
     // Its triangles stray up to its flatness from the patches: surfaces that
@@ -1267,7 +1285,7 @@ CollisionResult collide_placed(const SurfaceHierarchy& ha, const SurfaceHierarch
       for (std::size_t ci = 0; ci < result.curves.size(); ++ci) {
         IntersectionCurve& c = result.curves[ci];
         c = refine_curve(pair, std::move(c), chained.reaches[ci], chained.pinned[ci],
-                         request.tolerance);
+                         chained.tangents[ci], request.tolerance);
         end_reaches.push_back({chained.reaches[ci].front(), chained.reaches[ci].back(),
                                chained.pinned[ci].front(), chained.pinned[ci].back()});
       }

@@ -85,6 +85,7 @@ class ChainWalker {
     out_.curves.emplace_back();
     out_.reaches.emplace_back();
     out_.pinned.emplace_back();
+    out_.tangents.emplace_back();
     append(start);
     int e = start;
     for (;;) {
@@ -110,6 +111,7 @@ class ChainWalker {
     IntersectionCurve& c = out_.curves.back();
     out_.reaches.back().push_back(s.reach);
     out_.pinned.back().push_back(s.pinned);
+    out_.tangents.back().push_back(s.tangents[k]);
     c.points.push_back(s.points[k]);
     c.uv_a.push_back(s.uv_a[k]);
     c.uv_b.push_back(s.uv_b[k]);

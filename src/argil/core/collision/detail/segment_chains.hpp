@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "argil/core/collision/contact.hpp"
+#include "argil/core/collision/detail/surface_pair_refine.hpp"
 
 namespace argil::detail {
 
@@ -19,15 +20,18 @@ struct Segment {
   /// Its ends already lie on both exact surfaces, refined along the leaves'
   /// edges (a transversal leaf's: see surface_intersection.cpp).
   bool pinned = false;
+  /// A pinned segment's curve tangent at each end (from its refinement).
+  std::array<CurveTangent, 2> tangents{};
 };
 
 /// Curves chained from segments, and per curve point the reach of the segment
-/// it came from (how far refinement may move it) and whether that segment was
-/// pinned.
+/// it came from (how far refinement may move it), whether that segment was
+/// pinned and, if so, the curve's tangent there.
 struct ChainedCurves {
   std::vector<IntersectionCurve> curves;
   std::vector<std::vector<double>> reaches;
   std::vector<std::vector<bool>> pinned;
+  std::vector<std::vector<CurveTangent>> tangents;
 };
 
 /// Chains segments into polylines (a segment whose ends both lie within 1e-3
