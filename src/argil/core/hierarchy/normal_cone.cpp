@@ -49,9 +49,9 @@ struct KnownWeights {
   static constexpr ProductWeights value = product_weights(P, Q);
 };
 
-/// The cone around the normal's control vectors of a degree P x Q patch (or its own
-/// degrees); nullopt when one vanishes or no cone narrower than a half
-/// space holds them.
+/// The cone around the normal's control vectors of a degree P x Q patch (or
+/// of its own degrees); nullopt when one vanishes or no cone narrower than a
+/// half space holds them.
 template <int P, int Q>
 std::optional<NormalCone> cone_of(const BezierPatch& patch) {
   const int p = P == kAnyDegree ? patch.degree_u : P;
