@@ -35,9 +35,10 @@
 #include "argil/core/operators/patch_evaluator.hpp"    // IWYU pragma: export
 #include "argil/core/operators/surface_operators.hpp"  // IWYU pragma: export
 // hierarchy
-#include "argil/core/hierarchy/normal_cone.hpp"        // IWYU pragma: export
-#include "argil/core/hierarchy/patch_bound.hpp"        // IWYU pragma: export
-#include "argil/core/hierarchy/surface_hierarchy.hpp"  // IWYU pragma: export
+#include "argil/core/hierarchy/edge_crossings_bound.hpp"  // IWYU pragma: export
+#include "argil/core/hierarchy/normal_cone.hpp"           // IWYU pragma: export
+#include "argil/core/hierarchy/patch_bound.hpp"           // IWYU pragma: export
+#include "argil/core/hierarchy/surface_hierarchy.hpp"     // IWYU pragma: export
 // collision
 #include "argil/core/collision/broad_phase.hpp"            // IWYU pragma: export
 #include "argil/core/collision/contact.hpp"                // IWYU pragma: export

@@ -28,6 +28,7 @@
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/core/geometry/triangle_distance.hpp"
 #include "argil/core/geometry/trim_region.hpp"
+#include "argil/core/hierarchy/edge_crossings_bound.hpp"
 #include "argil/core/hierarchy/normal_cone.hpp"
 
 namespace argil {
@@ -177,6 +178,7 @@ struct SideScratch {
   IdSlots node_slots, block_slots, cone_slots;
   ChunkedVector<View, 64> views;
   std::vector<std::optional<NormalCone>> cones;
+  std::vector<double> leans;  // chord_lean along each cone's axis, NaN until asked
 
   /// Views kept for the next query: a haptic tick's queries see a few
   /// hundred (under 200 on the 64 x 64 panel); an offline query of two large
@@ -197,6 +199,7 @@ struct SideScratch {
       views.clear();
     }
     cones.clear();
+    leans.clear();
   }
 };
 
@@ -272,8 +275,31 @@ class Side {
       std::optional<NormalCone> c = normal_cone(h_.node(node).patch);
       if (c && placed_) c->axis = placed_->R * c->axis;
       scratch_->cones.push_back(c);
+      scratch_->leans.push_back(std::numeric_limits<double>::quiet_NaN());
     }
     return scratch_->cones[static_cast<std::size_t>(slot)];
+  }
+
+  /// chord_lean() of a node with a cone, along the cone's axis, computed
+  /// once per query (call cone() first).
+  double chord_lean(int node) {
+    const int slot = scratch_->cone_slots.find(static_cast<std::size_t>(node));
+    double& lean = scratch_->leans[static_cast<std::size_t>(slot)];
+    if (std::isnan(lean)) {
+      const NormalCone& c = *scratch_->cones[static_cast<std::size_t>(slot)];
+      lean = argil::chord_lean(h_.node(node).patch, own_direction(c.axis));
+    }
+    return lean;
+  }
+
+  /// edge_rise() of a node's edge along a unit direction of the query's frame.
+  double edge_rise(int node, PatchEdge edge, const Eigen::Vector3d& axis) const {
+    return argil::edge_rise(h_.node(node).patch, edge, own_direction(axis));
+  }
+
+  /// A direction of the query's frame in the side's own.
+  Eigen::Vector3d own_direction(const Eigen::Vector3d& d) const {
+    return placed_ ? Eigen::Vector3d(placed_->R.transpose() * d) : d;
   }
 
   /// The entry's bounds in its own frame.
@@ -853,34 +879,36 @@ bool leaves_farther_than(const LeafTriangles& la, const LeafTriangles& lb, doubl
   return true;
 }
 
-/// True when an arc of the exact intersection could end on an edge of leaf
-/// `edges_of`, for a leaf pair whose triangles do not cross: a straight edge
-/// comes within `band` of the other leaf's triangles (touching them counts:
-/// a corner on the other's triangles gives no crossing segment). Each
-/// straight edge lies within its leaf's flatness of the patch's edge at the
-/// same parameter, and the other patch within its own flatness of its
-/// triangles, so an arc ending on an edge puts the straight edge within the
-/// two flatnesses of the triangles (`band`: those plus rounding).
-bool edge_may_hide_crossing(const LeafTriangles& edges_of, const LeafTriangles& other,
-                            double band) {
+/// True when an arc of the exact intersection could end on edge `k` of leaf
+/// `edges_of` (ring order c00-c10, c10-c11, c11-c01, c01-c00, as PatchEdge):
+/// the straight edge comes within `band` of the other leaf's triangles
+/// (touching them counts: a corner on the other's triangles gives no
+/// crossing segment). Each straight edge lies within its leaf's flatness of
+/// the patch's edge at the same parameter, and the other patch within its
+/// own flatness of its triangles, so an arc ending on an edge puts the
+/// straight edge within the two flatnesses of the triangles (`band`: those
+/// plus rounding).
+bool edge_may_hide_crossing(const LeafTriangles& edges_of, std::size_t k,
+                            const LeafTriangles& other, double band) {
   const Triangle& t0 = edges_of.triangles[0];
   const Triangle& t1 = edges_of.triangles[1];
   const std::array<Eigen::Vector3d, 4> ring{t0[0], t0[1], t0[2], t1[2]};  // c00, c10, c11, c01
-  for (std::size_t k = 0; k < 4; ++k) {
-    const Eigen::Vector3d& p0 = ring[k];
-    const Eigen::Vector3d& p1 = ring[(k + 1) % 4];
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const Triangle& t : other.triangles) {
-      // Both ends farther than band on one side of the plane: farther from the triangle.
-      const Eigen::Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
-      const double length = n.norm();
-      if (length > 0.0) {
-        const double s0 = n.dot(p0 - t[0]) / length, s1 = n.dot(p1 - t[0]) / length;
-        if ((s0 > band && s1 > band) || (s0 < -band && s1 < -band)) continue;
-      }
-      nearest = std::min(nearest, segment_triangle_distance(p0, p1, t[0], t[1], t[2]));
+  const Eigen::Vector3d& p0 = ring[k];
+  const Eigen::Vector3d& p1 = ring[(k + 1) % 4];
+  const Eigen::Vector3d lo = p0.cwiseMin(p1).array() - band, hi = p0.cwiseMax(p1).array() + band;
+  for (const Triangle& t : other.triangles) {
+    // The triangle outside the edge's box grown by band: farther than band.
+    if ((t[0].cwiseMax(t[1]).cwiseMax(t[2]).array() < lo.array()).any() ||
+        (t[0].cwiseMin(t[1]).cwiseMin(t[2]).array() > hi.array()).any())
+      continue;
+    // Both ends farther than band on one side of the plane: farther from the triangle.
+    const Eigen::Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
+    const double length = n.norm();
+    if (length > 0.0) {
+      const double s0 = n.dot(p0 - t[0]) / length, s1 = n.dot(p1 - t[0]) / length;
+      if ((s0 > band && s1 > band) || (s0 < -band && s1 < -band)) continue;
     }
-    if (nearest <= band) return true;
+    if (segment_triangle_distance(p0, p1, t[0], t[1], t[2]) <= band) return true;
   }
   return false;
 }
@@ -1054,13 +1082,8 @@ class PairDescent {
     const double eps = request_.tolerance;
     const double reach = 2.0 * (la.radius + lb.radius) + eps;
     LeafPairFindings found = leaf_crossings(la, lb, reach, on_plane_, &*coincide_);
-    // Every arc of a transversal pair ends on an edge of one leaf. Without a
-    // triangle crossing, an edge could still hide an arc's end (a short arc
-    // bulging in across it within the flatness, which the triangles pass
-    // over): then the pair is split.
     const double band = va.flatness + vb.flatness + on_plane_;
-    if (found.segments.empty() &&
-        (edge_may_hide_crossing(la, lb, band) || edge_may_hide_crossing(lb, la, band)))
+    if (found.segments.empty() && !arc_ends_accounted(ea, eb, la, lb, found.segments, band))
       return false;
     // An end refined out of either leaf is a crossing of another pair: the
     // triangles crossed where the exact surfaces do not (an arc that bulges
@@ -1071,6 +1094,8 @@ class PairDescent {
         if (!inside(la.rect, seg.uv_a[k]) || !inside(lb.rect, seg.uv_b[k])) return false;
       seg.pinned = true;
     }
+    if (!found.segments.empty() && !arc_ends_accounted(ea, eb, la, lb, found.segments, band))
+      return false;
     // The contact takes the longest segment's refined end: a point of the
     // exact curve inside both leaves, which needs no refinement of its own.
     if (found.contact && found.contact->crossing && !found.segments.empty()) {
@@ -1090,6 +1115,60 @@ class PairDescent {
     // come within eps/3 have triangles this close.
     const double near_touch = std::max(eps, eps / 3.0 + va.flatness + vb.flatness);
     keep_findings(ea, eb, la, lb, std::move(found), near_touch, reach);
+    return true;
+  }
+
+  /// Every arc of a transversal pair runs between two ends where an edge
+  /// curve of one leaf meets the other's patch. True when no arc can hide
+  /// beside the refined segments `found`: every edge holding a segment's end meets
+  /// the other patch at most once (crosses_at_most_once, along the other's
+  /// normal cone axis), and of the edges without one at most one comes
+  /// within `band` of the other leaf's triangles (edge_may_hide_crossing:
+  /// where an arc's end must lie), and that one meets the other patch at
+  /// most once; so a hidden arc, which needs two ends, has nowhere to end.
+  /// Before 2026-12-02 any edge within `band` split a pair without segments,
+  /// and nothing was checked beside found segments (an arc 0.2 mm beside a
+  /// found one was lost).
+  bool arc_ends_accounted(int ea, int eb, const LeafTriangles& la, const LeafTriangles& lb,
+                          const std::vector<detail::Segment>& found, double band) {
+    // Edges 0 to 3 are a's in ring order (PatchEdge), 4 to 7 b's.
+    std::array<const Eigen::Vector3d*, 8> end_on{};
+    const double same = 1e-3 * request_.tolerance;
+    const auto mark = [&](const Eigen::Vector2d& uv, const ParamRect& r, std::size_t first,
+                          const Eigen::Vector3d& point) {
+      const double du = 1e-9 * r.width(), dv = 1e-9 * r.height();
+      const std::array<bool, 4> on{std::abs(uv[1] - r.v0) <= dv, std::abs(uv[0] - r.u1) <= du,
+                                   std::abs(uv[1] - r.v1) <= dv, std::abs(uv[0] - r.u0) <= du};
+      for (std::size_t k = 0; k < 4; ++k) {
+        if (!on[k]) continue;
+        const Eigen::Vector3d*& kept = end_on[first + k];
+        if (kept && (*kept - point).norm() > same) return false;  // two ends on one edge
+        kept = &point;
+      }
+      return true;
+    };
+    for (const detail::Segment& seg : found)
+      for (std::size_t k = 0; k < 2; ++k)
+        if (!mark(seg.uv_a[k], la.rect, 0, seg.points[k]) ||
+            !mark(seg.uv_b[k], lb.rect, 4, seg.points[k]))
+          return false;
+    const Eigen::Vector3d& axis_a = sa_.cone(ea)->axis;
+    const Eigen::Vector3d& axis_b = sb_.cone(eb)->axis;
+    const auto once = [&](std::size_t e) {
+      const auto edge = static_cast<PatchEdge>(e % 4);
+      return e < 4 ? crosses_at_most_once(sa_.edge_rise(ea, edge, axis_b), sb_.chord_lean(eb))
+                   : crosses_at_most_once(sb_.edge_rise(eb, edge, axis_a), sa_.chord_lean(ea));
+    };
+    int near_without_end = 0;
+    for (std::size_t e = 0; e < 8; ++e) {
+      if (end_on[e]) {
+        if (!once(e)) return false;
+        continue;
+      }
+      const bool near = e < 4 ? edge_may_hide_crossing(la, e, lb, band)
+                              : edge_may_hide_crossing(lb, e - 4, la, band);
+      if (near && (++near_without_end > 1 || !once(e))) return false;
+    }
     return true;
   }
 
