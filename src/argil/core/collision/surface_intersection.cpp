@@ -1126,25 +1126,36 @@ class PairDescent {
   /// within `band` of the other leaf's triangles (edge_may_hide_crossing:
   /// where an arc's end must lie), and that one meets the other patch at
   /// most once; so a hidden arc, which needs two ends, has nowhere to end.
+  /// The found ends must pair up (an even count of distinct ones).
   /// Before 2026-12-02 any edge within `band` split a pair without segments,
   /// and nothing was checked beside found segments (an arc 0.2 mm beside a
   /// found one was lost).
   bool arc_ends_accounted(int ea, int eb, const LeafTriangles& la, const LeafTriangles& lb,
                           const std::vector<detail::Segment>& found, double band) {
-    // Edges 0 to 3 are a's in ring order (PatchEdge), 4 to 7 b's.
+    // Edges 0 to 3 are a's in ring order (PatchEdge), 4 to 7 b's. An end lies on an edge when it
+    // holds that edge's parameter exactly: refine_ends pins an end to the edge it crossed and keeps
+    // it there (an end near an edge by rounding only, as on a diagonal near a corner, marks
+    // nothing, and that edge is then tested as one without an end).
     std::array<const Eigen::Vector3d*, 8> end_on{};
+    std::array<const Eigen::Vector3d*, 16> ends{};  // distinct ends on edges
+    std::size_t end_count = 0;
     const double same = 1e-3 * request_.tolerance;
     const auto mark = [&](const Eigen::Vector2d& uv, const ParamRect& r, std::size_t first,
                           const Eigen::Vector3d& point) {
-      const double du = 1e-9 * r.width(), dv = 1e-9 * r.height();
-      const std::array<bool, 4> on{std::abs(uv[1] - r.v0) <= dv, std::abs(uv[0] - r.u1) <= du,
-                                   std::abs(uv[1] - r.v1) <= dv, std::abs(uv[0] - r.u0) <= du};
+      const std::array<bool, 4> on{uv[1] == r.v0, uv[0] == r.u1, uv[1] == r.v1, uv[0] == r.u0};
+      bool marked = false;
       for (std::size_t k = 0; k < 4; ++k) {
         if (!on[k]) continue;
         const Eigen::Vector3d*& kept = end_on[first + k];
         if (kept && (*kept - point).norm() > same) return false;  // two ends on one edge
         kept = &point;
+        marked = true;
       }
+      if (!marked) return true;
+      for (std::size_t k = 0; k < end_count; ++k)
+        if ((*ends[k] - point).norm() <= same) return true;
+      if (end_count == ends.size()) return false;
+      ends[end_count++] = &point;
       return true;
     };
     for (const detail::Segment& seg : found)
@@ -1152,6 +1163,10 @@ class PairDescent {
         if (!mark(seg.uv_a[k], la.rect, 0, seg.points[k]) ||
             !mark(seg.uv_b[k], lb.rect, 4, seg.points[k]))
           return false;
+    // Every arc has two distinct ends: an odd count means the segments
+    // folded back onto one end (triangles crossing an edge twice where the
+    // surface crosses it once) and the arc's other end is not accounted for.
+    if (end_count % 2 != 0) return false;
     const Eigen::Vector3d& axis_a = sa_.cone(ea)->axis;
     const Eigen::Vector3d& axis_b = sb_.cone(eb)->axis;
     const auto once = [&](std::size_t e) {

@@ -30,9 +30,10 @@ double edge_rise(const BezierPatch& patch, PatchEdge edge, const Eigen::Vector3d
 
 /// An edge curve whose rise exceeds the other patch's chord lean along the
 /// same axis meets that patch at most once: two meeting points would make a
-/// chord of both.
+/// chord of both. The margin covers the rounding of both bounds (a few ulps
+/// of numbers below 1).
 inline bool crosses_at_most_once(double edge_rise, double chord_lean) {
-  return edge_rise > chord_lean;
+  return edge_rise > chord_lean + 1e-12;
 }
 
 }  // namespace argil
