@@ -10,23 +10,13 @@
 #include "argil/core/hierarchy/edge_crossings_bound.hpp"
 #include "argil/core/hierarchy/normal_cone.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
+#include "core/hierarchy/grown_nodes.hpp"
 #include "support/random_surface.hpp"
 
 namespace argil {
 namespace {
 
 constexpr int kDepth = 3;  // levels grown below each root
-
-std::vector<int> grow(const SurfaceHierarchy& h) {
-  std::vector<int> ids = h.roots();
-  for (std::size_t k = 0; k < ids.size(); ++k) {
-    if (h.node(ids[k]).level == kDepth) continue;
-    const int id = ids[k];
-    for (int hu = 0; hu < 2; ++hu)
-      for (int hv = 0; hv < 2; ++hv) ids.push_back(h.child(id, hu, hv));
-  }
-  return ids;
-}
 
 /// The node's point at local (s, t) in [0, 1]^2, through the B-spline.
 Eigen::Vector3d at(const BSplineSurface& s, const ParamRect& r, double a, double b) {
@@ -61,7 +51,7 @@ TEST_CASE("chord lean and edge rise bound every sampled chord", "[edge_crossings
     Result<SurfaceHierarchy> built = SurfaceHierarchy::build(s, cache);
     REQUIRE(built.ok());
     const SurfaceHierarchy& h = built.value();
-    for (const int id : grow(h)) {
+    for (const int id : test::grown_nodes(h, kDepth)) {
       const HierarchyNode n = h.node(id);
       const std::optional<NormalCone> cone = normal_cone(n.patch);
       if (!cone) continue;

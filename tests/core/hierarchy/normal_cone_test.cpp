@@ -9,6 +9,7 @@
 #include "argil/core/geometry/evaluate.hpp"
 #include "argil/core/hierarchy/normal_cone.hpp"
 #include "argil/core/hierarchy/surface_hierarchy.hpp"
+#include "core/hierarchy/grown_nodes.hpp"
 #include "support/random_surface.hpp"
 
 namespace argil {
@@ -17,17 +18,6 @@ namespace {
 constexpr int kSamples = 11;     // per side of a node's rectangle
 constexpr int kDepth = 3;        // levels grown below each root
 constexpr double kInset = 1e-9;  // of a node's sides, at its edges
-
-std::vector<int> grow(const SurfaceHierarchy& h) {
-  std::vector<int> ids = h.roots();
-  for (std::size_t k = 0; k < ids.size(); ++k) {
-    if (h.node(ids[k]).level == kDepth) continue;
-    const int id = ids[k];
-    for (int hu = 0; hu < 2; ++hu)
-      for (int hv = 0; hv < 2; ++hv) ids.push_back(h.child(id, hu, hv));
-  }
-  return ids;
-}
 
 TEST_CASE("normal cones hold every sampled normal of polynomial patches", "[normal_cone]") {
   std::mt19937_64 rng(4242);
@@ -41,7 +31,7 @@ TEST_CASE("normal cones hold every sampled normal of polynomial patches", "[norm
     Result<SurfaceHierarchy> built = SurfaceHierarchy::build(s, cache);
     REQUIRE(built.ok());
     const SurfaceHierarchy& h = built.value();
-    for (const int id : grow(h)) {
+    for (const int id : test::grown_nodes(h, kDepth)) {
       const HierarchyNode n = h.node(id);
       ++nodes;
       const std::optional<NormalCone> cone = normal_cone(n.patch);

@@ -1082,9 +1082,6 @@ class PairDescent {
     const double eps = request_.tolerance;
     const double reach = 2.0 * (la.radius + lb.radius) + eps;
     LeafPairFindings found = leaf_crossings(la, lb, reach, on_plane_, &*coincide_);
-    const double band = va.flatness + vb.flatness + on_plane_;
-    if (found.segments.empty() && !arc_ends_accounted(ea, eb, la, lb, found.segments, band))
-      return false;
     // An end refined out of either leaf is a crossing of another pair: the
     // triangles crossed where the exact surfaces do not (an arc that bulges
     // across a leaf edge within the flatness), and the pair is split.
@@ -1094,8 +1091,8 @@ class PairDescent {
         if (!inside(la.rect, seg.uv_a[k]) || !inside(lb.rect, seg.uv_b[k])) return false;
       seg.pinned = true;
     }
-    if (!found.segments.empty() && !arc_ends_accounted(ea, eb, la, lb, found.segments, band))
-      return false;
+    const double band = va.flatness + vb.flatness + on_plane_;
+    if (!arc_ends_accounted(ea, eb, la, lb, found.segments, band)) return false;
     // The contact takes the longest segment's refined end: a point of the
     // exact curve inside both leaves, which needs no refinement of its own.
     if (found.contact && found.contact->crossing && !found.segments.empty()) {
